@@ -1,0 +1,201 @@
+// gearloss command-line interface: a thin layer over the library.
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <cstdio>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/config.hpp"
+#include "io/reports.hpp"
+#include "map/map_runner.hpp"
+#include "units/units.hpp"
+
+namespace {
+
+// Exit codes (README "Exit codes").
+enum Exit : int {
+    kOk = 0,
+    kUsage = 1,
+    kInput = 2,
+    kOutput = 3,
+    kInternal = 4,
+    kInterrupted = 130,
+};
+
+volatile std::sig_atomic_t g_signal = 0;
+void on_signal(int sig) {
+    g_signal = sig;
+    gearloss::io::g_interrupted = true;
+}
+
+using gearloss::InputError;
+namespace io = gearloss::io;
+
+struct Common {
+    std::string config;
+    std::string ratio;
+    std::string oil_temp;
+};
+
+io::Case load(const Common& c) {
+    std::optional<std::string> ratio;
+    if (!c.ratio.empty()) ratio = c.ratio;
+    io::Case k = io::load_case(c.config, ratio);
+    if (!c.oil_temp.empty()) {
+        gearloss::units::Quantity q;
+        try {
+            q = gearloss::units::parse_quantity(c.oil_temp);
+        } catch (const gearloss::units::UnitError& e) {
+            throw InputError("", 0, 0, "--oil-temp", e.msg + " (expected e.g. '70degC')");
+        }
+        if (!q.absolute_temperature || q.value <= 0)
+            throw InputError("", 0, 0, "--oil-temp", "'" + c.oil_temp + "' is not a temperature (e.g. '70degC')");
+        k.model.thermal.mode = gearloss::solver::ThermalMode::fixed;
+        k.model.thermal.oil_temperature = q.value;
+    }
+    return k;
+}
+
+double single_value(const std::string& text, const gearloss::units::Dimension& d, const char* what, const char* ex) {
+    const auto v = io::parse_value_list(text, d, what, ex);
+    if (v.size() != 1) throw InputError("", 0, 0, what, "expected one value");
+    return v[0];
+}
+
+void progress_line(size_t done, size_t total) {
+    static auto t0 = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double rate = s > 0 ? done / s : 0;
+    const double eta = rate > 0 ? (total - done) / rate : 0;
+    std::fprintf(stderr, "\r%zu/%zu points, %.0f points/s, ETA %.1f s   ", done, total, rate, eta);
+    if (done == total) std::fprintf(stderr, "\n");
+}
+
+int run_map(const Common& c, const std::string& out, int threads, bool detail, const std::string& speeds,
+            const std::string& torques) {
+    io::Case k = load(c);
+    if (!speeds.empty() || !torques.empty()) {
+        if (!k.grid.is_grid) {
+            k.grid.is_grid = true;
+            for (const auto& [w, T] : k.grid.points) {
+                k.grid.speeds.push_back(w);
+                k.grid.torques.push_back(T);
+            }
+        }
+        if (!speeds.empty())
+            k.grid.speeds = io::parse_value_list(speeds, gearloss::units::dim::angular_speed, "--speed", "600,700,800rpm");
+        if (!torques.empty())
+            k.grid.torques = io::parse_value_list(torques, gearloss::units::dim::torque, "--torque", "150,200,250Nm");
+    }
+    gearloss::map::MapOptions opt;
+    opt.threads = threads;
+    opt.detail = detail;
+    if (::isatty(STDERR_FILENO) && k.grid.size() >= 20000) opt.progress = progress_line;
+    const auto results = gearloss::map::run_map(k.model, k.grid, opt);
+    if (io::g_interrupted) return kInterrupted;
+    io::AtomicFile f(out);
+    std::string buf = gearloss::map::csv_header(k.model, detail);
+    for (const auto& r : results) {
+        buf += gearloss::map::csv_row(k.model, r, detail);
+        if (buf.size() > (1u << 20)) {
+            f.write(buf);
+            buf.clear();
+        }
+    }
+    f.write(buf);
+    f.commit();
+    return kOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+
+    CLI::App app{"gearloss — where the power goes in a gearbox: mesh, churning, bearing and seal losses with the\n"
+                 "thermally stabilised oil temperature, from a YAML description.\n\n"
+                 "Examples:\n"
+                 "  gearloss check configs/transfer-75W90.yaml\n"
+                 "  gearloss point configs/transfer-75W90.yaml --speed 800rpm --torque 250Nm\n"
+                 "  gearloss map configs/transfer-75W90.yaml -o map.csv\n"
+                 "  gearloss map configs/fzg-c40-paor.yaml --speed 500,1000,1500rpm --torque 100,200Nm --oil-temp 90degC"};
+    app.set_version_flag("--version", std::string("gearloss ") + GEARLOSS_VERSION);
+    app.require_subcommand(1);
+
+    Common common;
+    std::string out = "-", speeds, torques, speed1, torque1;
+    int threads = 0;
+    bool detail = false, json = false;
+
+    auto add_common = [&](CLI::App* s) {
+        s->add_option("config", common.config, "gearbox case (YAML)")->required();
+        s->add_option("--ratio", common.ratio, "select a ratio defined under gearbox.ratios");
+        s->add_option("--oil-temp", common.oil_temp, "fixed oil temperature (e.g. 70degC): no thermal solve");
+    };
+
+    auto* map = app.add_subcommand("map", "all operating points of the grid to CSV (parallel, written atomically)");
+    add_common(map);
+    map->add_option("-o,--output", out, "output CSV file ('-' = stdout)");
+    map->add_option("--threads", threads, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+    map->add_flag("--detail", detail, "add a column per mesh, gear, bearing and seal");
+    map->add_option("--speed", speeds, "override the input speeds, e.g. 600,700,800rpm");
+    map->add_option("--torque", torques, "override the input torques, e.g. 150,200,250Nm");
+    map->footer("Example: gearloss map configs/transfer-75W90.yaml --speed 600,700,800rpm --torque 150,200,250Nm -o out.csv");
+
+    auto* point = app.add_subcommand("point", "one operating point: every component's loss, temperatures and films");
+    add_common(point);
+    point->add_option("--speed", speed1, "input speed, e.g. 800rpm")->required();
+    point->add_option("--torque", torque1, "input torque, e.g. 250Nm")->required();
+    point->footer("Example: gearloss point configs/transfer-75W90.yaml --speed 800rpm --torque 250Nm");
+
+    auto* check = app.add_subcommand("check", "validate a case and print derived data (geometry, H_V, speeds, oil)");
+    add_common(check);
+    check->add_flag("--json", json, "print the derived data as JSON");
+    check->footer("Example: gearloss check configs/fzg-c40-paor.yaml --json");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        return kUsage;
+    }
+
+    try {
+        int rc = kOk;
+        if (map->parsed()) {
+            rc = run_map(common, out, threads, detail, speeds, torques);
+        } else if (point->parsed()) {
+            io::Case k = load(common);
+            const double w = single_value(speed1, gearloss::units::dim::angular_speed, "--speed", "800rpm");
+            const double T = single_value(torque1, gearloss::units::dim::torque, "--torque", "250Nm");
+            const auto r = gearloss::solver::solve_point(k.model, w, T, true);
+            std::fputs(io::point_report(k, r).c_str(), stdout);
+        } else if (check->parsed()) {
+            io::Case k = load(common);
+            std::fputs((json ? io::check_json(k) : io::check_report(k)).c_str(), stdout);
+        }
+        if (io::g_interrupted) {
+            std::fprintf(stderr, "gearloss: interrupted (signal %d); no output written\n", static_cast<int>(g_signal));
+            return g_signal == SIGTERM ? 143 : kInterrupted;
+        }
+        return rc;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "gearloss: error: %s\n", e.what());
+        return kInput;
+    } catch (const io::IoError& e) {
+        std::fprintf(stderr, "gearloss: error: %s\n", e.what());
+        return io::g_interrupted ? kInterrupted : kOutput;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "gearloss: internal error: %s\n", e.what());
+        return kInternal;
+    }
+}

@@ -1,0 +1,29 @@
+#pragma once
+// Input errors carry where they come from so the CLI can print
+// "file:line:col: key.path: message" and exit non-zero.
+#include <stdexcept>
+#include <string>
+
+namespace gearloss {
+
+struct InputError : std::runtime_error {
+    InputError(std::string file_, int line_, int column_, std::string key_, std::string message_)
+        : std::runtime_error(format(file_, line_, column_, key_, message_)),
+          file(std::move(file_)), line(line_), column(column_), key(std::move(key_)), message(std::move(message_)) {}
+    std::string file;
+    int line;     // 1-based, 0 when unknown
+    int column;   // 1-based, 0 when unknown
+    std::string key;
+    std::string message;
+
+    static std::string format(const std::string& f, int l, int c, const std::string& k, const std::string& m) {
+        std::string s = f.empty() ? std::string("<input>") : f;
+        if (l > 0) s += ":" + std::to_string(l);
+        if (c > 0) s += ":" + std::to_string(c);
+        s += ": ";
+        if (!k.empty()) s += k + ": ";
+        return s + m;
+    }
+};
+
+}  // namespace gearloss

@@ -1,0 +1,92 @@
+#pragma once
+// Gearbox topology (shafts, gears, meshes, bearings, seals), its kinematics
+// (speed of every rotating body from the input speed) and the shaft statics
+// that turn gear forces into bearing loads.
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bearings/skf_model.hpp"
+#include "geometry/gear_geometry.hpp"
+
+namespace gearloss::gearbox {
+
+struct Shaft {
+    std::string name;
+};
+
+struct Gear {
+    geometry::GearSpec spec;
+    int shaft = -1;
+    double position = 0;        // axial position along the shaft [m]
+    bool free = false;          // runs on its own bearings, locked only when engaged
+    std::optional<double> immersion;  // depth below the oil level [m]; else from the oil level
+};
+
+struct Mesh {
+    std::string name;
+    int gear[2] = {-1, -1};
+    double angle = 0;           // direction of the line of centres gear0 -> gear1 [rad], y up
+    std::optional<double> centre_distance;  // working centre distance when the design fixes it [m]
+};
+
+struct Bearing {
+    std::string name;
+    bearings::BearingSpec spec;
+    int shaft = -1;
+    double position = 0;        // axial [m]
+    int under_gear = -1;        // >= 0: between this free gear and its shaft
+    bool locating = false;      // takes the shaft's axial load
+};
+
+struct Seal {
+    std::string name;
+    int shaft = -1;
+    double diameter = 0;        // m
+};
+
+struct Gearbox {
+    std::vector<Shaft> shafts;
+    std::vector<Gear> gears;
+    std::vector<Mesh> meshes;
+    std::vector<Bearing> bearings;
+    std::vector<Seal> seals;
+    int input_shaft = -1, output_shaft = -1;
+    std::vector<int> engaged;   // free gears locked to their shaft in the selected ratio
+    std::optional<double> oil_level;  // y of the oil surface in the housing frame [m]
+    double oil_volume = 0;      // m^3
+};
+
+struct TopologyError : std::exception {
+    explicit TopologyError(std::string m) : msg(std::move(m)) {}
+    const char* what() const noexcept override { return msg.c_str(); }
+    std::string msg;
+};
+
+// Immutable data derived from the topology: speeds per unit input speed,
+// loaded path, geometry of every mesh, bearing loads per unit input torque.
+struct Layout {
+    struct MeshData {
+        geometry::PairGeometry geom;
+        double H_V_ohlendorf = 0, H_V_buckingham = 0, H_V_wimmer = 0;
+        double L_min = 0;
+        bool loaded = false;
+        int driver_forward = 0;  // gear index (0/1) that drives when the input power is positive
+    };
+    std::vector<int> body_of_gear, body_of_shaft;
+    std::vector<double> body_speed_ratio;   // omega_body / omega_input (signed)
+    std::vector<MeshData> meshes;
+    std::vector<Eigen::Vector2d> shaft_centre;
+    std::vector<double> gear_immersion;     // m (0 = not dipping)
+    std::vector<double> bearing_speed_ratio;  // relative ring speed / omega_input (magnitude)
+    std::vector<double> seal_speed_ratio;
+    // Bearing radial and axial load [N] per N*m of input torque, for positive
+    // and negative input torque (the radial separating force does not reverse).
+    std::vector<double> bearing_Fr_pos, bearing_Fa_pos, bearing_Fr_neg, bearing_Fa_neg;
+    double ratio = 0;   // omega_out / omega_in (signed)
+};
+
+Layout analyse(const Gearbox& gb);
+
+}  // namespace gearloss::gearbox

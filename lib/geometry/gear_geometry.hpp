@@ -1,0 +1,71 @@
+#pragma once
+// Involute helical gear pair geometry with profile shift (ISO 21771 / DIN 3960,
+// as consolidated in gear-losses.md §1). All lengths in metres, angles in rad.
+#include <optional>
+#include <string>
+
+namespace gearloss::geometry {
+
+struct Material {
+    double E = 210e9;      // Pa
+    double poisson = 0.3;
+    double density = 7850; // kg/m^3
+};
+
+enum class Hand { right, left, spur };
+
+struct GearSpec {
+    std::string name;
+    int z = 0;              // teeth
+    double mn = 0;          // normal module
+    double x = 0;           // profile shift coefficient
+    double b = 0;           // face width
+    double alpha_n = 0.349065850398866; // normal pressure angle (20 deg)
+    double beta = 0;        // helix angle magnitude
+    Hand hand = Hand::spur;
+    double ha_star = 1.0;   // addendum coefficient of the basic rack
+    double hf_star = 1.25;  // dedendum coefficient
+    double Ra = 0.5e-6;     // arithmetic mean roughness of the flanks
+    std::optional<double> Rq;  // rms roughness; ~1.25 Ra when absent (Gaussian)
+    Material material;
+
+    double mt() const;
+    double alpha_t() const;
+    double d() const;   // reference diameter
+    double db() const;  // base diameter
+    double signed_beta() const { return hand == Hand::left ? -beta : beta; }
+};
+
+double involute(double a);
+// Inverse of the involute function on [0, 1.5) rad.
+double inverse_involute(double inv);
+
+// Derived data of an external gear pair; index 0 = first gear named in the mesh.
+struct PairGeometry {
+    double u = 0;            // z2/z1 (>0)
+    double alpha_t = 0, alpha_wt = 0, beta_b = 0;
+    double a = 0, a_w = 0;   // reference and working centre distance
+    double y = 0, k = 0;     // centre-distance modification and tip alteration coefficients
+    double d[2]{}, db[2]{}, dw[2]{}, da[2]{}, df[2]{};
+    double p_bt = 0;         // transverse base pitch
+    double eps1 = 0, eps2 = 0, eps_alpha = 0, eps_beta = 0, eps_gamma = 0;
+    // Path of contact measured from T1 (pinion base tangent point) along the line of action.
+    double T1T2 = 0, T1A = 0, T1B = 0, T1C = 0, T1D = 0, T1E = 0;
+    double rho_redC = 0;     // reduced normal radius of curvature at the pitch point
+    double tip_clearance[2]{};   // c = a_w - r_a,i - r_f,other
+    double tip_thickness[2]{};   // transverse tooth thickness at the tip circle
+    double b_eff = 0;        // common face width
+};
+
+struct GeometryError : std::exception {
+    explicit GeometryError(std::string m) : msg(std::move(m)) {}
+    const char* what() const noexcept override { return msg.c_str(); }
+    std::string msg;
+};
+
+// Computes the pair geometry. With `a_w` given, the working pressure angle
+// follows from it (the profile shifts stay as given and the tip alteration k
+// absorbs the difference). Throws GeometryError for an impossible pair.
+PairGeometry pair_geometry(const GearSpec& g1, const GearSpec& g2, std::optional<double> a_w = std::nullopt);
+
+}  // namespace gearloss::geometry

@@ -1,0 +1,77 @@
+#include "io/atomic_file.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <mutex>
+#include <set>
+#include <unistd.h>
+
+namespace gearloss::io {
+
+std::atomic<bool> g_interrupted{false};
+
+namespace {
+std::mutex g_mutex;
+std::set<std::string>& pending() {
+    static std::set<std::string> s;
+    return s;
+}
+}  // namespace
+
+void remove_pending_temporaries() noexcept {
+    // Best effort; unlink is async-signal-safe, the set is only read here.
+    for (const auto& p : pending()) ::unlink(p.c_str());
+}
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+    if (path_ == "-") {
+        to_stdout_ = true;
+        f_ = stdout;
+        return;
+    }
+    tmp_ = path_ + ".tmp." + std::to_string(::getpid());
+    f_ = std::fopen(tmp_.c_str(), "wb");
+    if (!f_) throw IoError("cannot write '" + path_ + "': " + std::strerror(errno));
+    std::lock_guard<std::mutex> lk(g_mutex);
+    pending().insert(tmp_);
+}
+
+AtomicFile::~AtomicFile() {
+    if (to_stdout_) return;
+    if (!committed_) {
+        if (f_) std::fclose(f_);
+        ::unlink(tmp_.c_str());
+        std::lock_guard<std::mutex> lk(g_mutex);
+        pending().erase(tmp_);
+    }
+}
+
+void AtomicFile::write(const std::string& s) {
+    if (std::fwrite(s.data(), 1, s.size(), f_) != s.size())
+        throw IoError("cannot write '" + path_ + "': " + std::strerror(errno));
+}
+
+void AtomicFile::commit() {
+    if (to_stdout_) {
+        std::fflush(stdout);
+        committed_ = true;
+        return;
+    }
+    if (g_interrupted) throw IoError("interrupted; '" + path_ + "' left unchanged");
+    if (std::fflush(f_) != 0 || ::fsync(fileno(f_)) != 0) {
+        const std::string e = std::strerror(errno);
+        throw IoError("cannot write '" + path_ + "': " + e);
+    }
+    if (std::fclose(f_) != 0) {
+        f_ = nullptr;
+        throw IoError("cannot write '" + path_ + "': " + std::strerror(errno));
+    }
+    f_ = nullptr;
+    if (std::rename(tmp_.c_str(), path_.c_str()) != 0)
+        throw IoError("cannot rename into '" + path_ + "': " + std::strerror(errno));
+    committed_ = true;
+    std::lock_guard<std::mutex> lk(g_mutex);
+    pending().erase(tmp_);
+}
+
+}  // namespace gearloss::io

@@ -1,0 +1,43 @@
+#pragma once
+// YAML case description -> solver::Model + operating grid (docs/config.md).
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/yaml_reader.hpp"
+#include "solver/model.hpp"
+
+namespace gearloss::io {
+
+struct OperatingGrid {
+    // Either a speeds x torques grid (speed outer, torque inner) or a point list.
+    std::vector<double> speeds, torques;             // rad/s, N*m
+    std::vector<std::pair<double, double>> points;   // (rad/s, N*m)
+    bool is_grid = true;
+    size_t size() const { return is_grid ? speeds.size() * torques.size() : points.size(); }
+    std::pair<double, double> at(size_t i) const {
+        if (!is_grid) return points[i];
+        return {speeds[i / torques.size()], torques[i % torques.size()]};
+    }
+};
+
+struct Case {
+    std::string file;
+    solver::Model model;
+    OperatingGrid grid;
+    std::vector<std::string> ratio_names;
+    std::string ratio;
+};
+
+// Loads a case; `ratio` overrides gearbox.ratio.
+Case load_case(const std::string& file, const std::optional<std::string>& ratio = std::nullopt);
+// Loads an oil from a YAML mapping (inline or a separate file).
+lubricant::Oil load_oil(const YamlNode& node);
+lubricant::Oil load_oil_file(const std::string& file);
+
+// "600,700,800rpm" or "600 rpm, 700 rpm" -> SI values of the expected dimension.
+std::vector<double> parse_value_list(const std::string& text, const units::Dimension& d, const char* what,
+                                     const char* example);
+
+}  // namespace gearloss::io

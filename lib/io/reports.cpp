@@ -1,0 +1,220 @@
+#include "io/reports.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "bearings/skf_model.hpp"
+#include "io/json.hpp"
+
+namespace gearloss::io {
+
+namespace {
+constexpr double rpm = 30.0 / std::numbers::pi;
+constexpr double deg = 180.0 / std::numbers::pi;
+
+std::string status_line(const solver::PointResult& r) {
+    if (r.status == solver::PointStatus::no_equilibrium)
+        return fmt::format("status: no_equilibrium (losses exceed heat rejection up to {:.1f} degC)\n",
+                           r.oil_temperature - 273.15);
+    return "status: ok\n";
+}
+}  // namespace
+
+std::string point_report(const Case& c, const solver::PointResult& r) {
+    const auto& m = c.model;
+    const auto& gb = m.gearbox;
+    const auto& L = m.layout;
+    std::string s;
+    s += fmt::format("{} — oil {}{}\n", m.name, m.oil.name, c.ratio.empty() ? "" : ", ratio " + c.ratio);
+    s += fmt::format("input  {:10.2f} rpm  {:10.2f} N*m  {:10.1f} W\n", r.speed_in * rpm, r.torque_in, r.power_in);
+    s += status_line(r);
+    if (r.status != solver::PointStatus::ok) return s;
+    s += fmt::format("output {:10.2f} rpm  {:10.2f} N*m  {:10.1f} W\n", r.omega_out * rpm, r.torque_out, r.power_out);
+    s += fmt::format("oil temperature {:.2f} degC (ambient {:.2f} degC, {})\n", r.oil_temperature - 273.15,
+                     r.ambient - 273.15, m.thermal.mode == solver::ThermalMode::fixed ? "fixed" : "stabilised");
+    const auto os = m.oil.state(r.oil_temperature);
+    s += fmt::format("oil at that temperature: nu {:.3f} cSt, rho {:.1f} kg/m^3, eta {:.3f} mPa*s, alpha {:.3f} 1/GPa\n\n",
+                     os.nu_cSt, os.rho, os.eta * 1e3, os.alpha_p * 1e9);
+    const auto& Lo = r.losses;
+    s += "meshes                 H_V     mu_mZ   P [W]     Lambda   h_c [um]  h_min [um]\n";
+    for (size_t i = 0; i < gb.meshes.size(); ++i) {
+        const auto& md = L.meshes[i];
+        const double H = m.options.loss_factor == mesh::LossFactorModel::ohlendorf   ? md.H_V_ohlendorf
+                         : m.options.loss_factor == mesh::LossFactorModel::buckingham ? md.H_V_buckingham
+                                                                                      : md.H_V_wimmer;
+        if (Lo.mesh_each[i] > 0)
+            s += fmt::format("  {:<18} {:7.4f} {:7.4f} {:9.2f} {:8.3f} {:9.3f} {:11.3f}\n", gb.meshes[i].name, H,
+                             Lo.mesh_mu[i], Lo.mesh_each[i], Lo.mesh_lambda[i], Lo.mesh_hc[i] * 1e6, Lo.mesh_hmin[i] * 1e6);
+        else
+            s += fmt::format("  {:<18} {:7.4f}  {}\n", gb.meshes[i].name, H, md.loaded ? "(no power)" : "idle (no load)");
+    }
+    s += "churning              immersion [mm]  speed [rpm]  P [W]     regime\n";
+    for (size_t g = 0; g < gb.gears.size(); ++g)
+        s += fmt::format("  {:<18} {:14.2f} {:12.1f} {:9.2f}  {}\n", gb.gears[g].spec.name, L.gear_immersion[g] * 1e3,
+                         std::abs(L.body_speed_ratio[L.body_of_gear[g]] * r.speed_in) * rpm, Lo.churn_each[g],
+                         churning::to_string(Lo.churn_regime[g]));
+    s += "bearings              type                       n [rpm]   Fr [N]    Fa [N]    P [W]\n";
+    const bool neg = r.torque_in < 0;
+    for (size_t i = 0; i < gb.bearings.size(); ++i) {
+        const double T = std::abs(r.torque_in);
+        s += fmt::format("  {:<18} {:<26} {:8.1f} {:9.1f} {:9.1f} {:8.2f}\n", gb.bearings[i].name,
+                         bearings::to_string(gb.bearings[i].spec.type), L.bearing_speed_ratio[i] * std::abs(r.speed_in) * rpm,
+                         T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]),
+                         T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]), Lo.bearing_each[i]);
+    }
+    if (!gb.seals.empty()) {
+        s += "seals                 d [mm]   P [W]\n";
+        for (size_t i = 0; i < gb.seals.size(); ++i)
+            s += fmt::format("  {:<18} {:7.1f} {:8.2f}\n", gb.seals[i].name, gb.seals[i].diameter * 1e3, Lo.seal_each[i]);
+    }
+    s += fmt::format("\ntotals [W]: mesh {:.2f}, churning {:.2f}, bearings {:.2f}, seals {:.2f}, total {:.2f}\n", Lo.mesh,
+                     Lo.churning, Lo.bearings, Lo.seals, Lo.total());
+    if (r.has_efficiency) s += fmt::format("efficiency {:.4f} %\n", 100.0 * r.efficiency);
+    if (Lo.has_lambda) s += fmt::format("minimum specific film thickness Lambda {:.3f}\n", Lo.lambda_min);
+    return s;
+}
+
+namespace {
+struct MeshRow {
+    std::string name;
+    const geometry::PairGeometry* g;
+    const gearbox::Layout::MeshData* md;
+};
+}  // namespace
+
+std::string check_report(const Case& c) {
+    const auto& m = c.model;
+    const auto& gb = m.gearbox;
+    const auto& L = m.layout;
+    std::string s = fmt::format("{}: configuration is valid\n", c.file);
+    s += fmt::format("overall ratio n_out/n_in = {:.6f} (i = n_in/n_out = {:.5f}){}\n", L.ratio, 1.0 / L.ratio,
+                     c.ratio.empty() ? "" : ", ratio '" + c.ratio + "'");
+    s += "\nmeshes (lengths in mm)\n";
+    for (size_t i = 0; i < gb.meshes.size(); ++i) {
+        const auto& md = L.meshes[i];
+        const auto& g = md.geom;
+        const auto& g0 = gb.gears[gb.meshes[i].gear[0]].spec;
+        const auto& g1 = gb.gears[gb.meshes[i].gear[1]].spec;
+        s += fmt::format("  {} ({} / {}): {}\n", gb.meshes[i].name, g0.name, g1.name, md.loaded ? "loaded" : "idle");
+        s += fmt::format("    u = {:.5f}, a = {:.3f}, a_w = {:.3f}, alpha_t = {:.4f} deg, alpha_wt = {:.4f} deg, beta_b = {:.4f} deg\n",
+                         g.u, g.a * 1e3, g.a_w * 1e3, g.alpha_t * deg, g.alpha_wt * deg, g.beta_b * deg);
+        s += fmt::format("    d = {:.3f} / {:.3f}, d_w = {:.3f} / {:.3f}, d_a = {:.3f} / {:.3f}, d_f = {:.3f} / {:.3f}, d_b = {:.3f} / {:.3f}\n",
+                         g.d[0] * 1e3, g.d[1] * 1e3, g.dw[0] * 1e3, g.dw[1] * 1e3, g.da[0] * 1e3, g.da[1] * 1e3,
+                         g.df[0] * 1e3, g.df[1] * 1e3, g.db[0] * 1e3, g.db[1] * 1e3);
+        s += fmt::format("    y = {:.4f}, k = {:.4f}, tip thickness = {:.3f} / {:.3f}, tip clearance = {:.3f} / {:.3f}\n", g.y,
+                         g.k, g.tip_thickness[0] * 1e3, g.tip_thickness[1] * 1e3, g.tip_clearance[0] * 1e3,
+                         g.tip_clearance[1] * 1e3);
+        s += fmt::format("    eps_1 = {:.4f}, eps_2 = {:.4f}, eps_alpha = {:.4f}, eps_beta = {:.4f}, eps_gamma = {:.4f}\n",
+                         g.eps1, g.eps2, g.eps_alpha, g.eps_beta, g.eps_gamma);
+        s += fmt::format("    H_V: Ohlendorf {:.4f}, Buckingham {:.4f}, Wimmer (rigid) {:.4f}; rho_redC = {:.4f}, L_min = {:.3f}\n",
+                         md.H_V_ohlendorf, md.H_V_buckingham, md.H_V_wimmer, g.rho_redC * 1e3, md.L_min * 1e3);
+    }
+    s += "\nshafts (housing frame, y up, mm) and speeds per input speed\n";
+    for (size_t i = 0; i < gb.shafts.size(); ++i)
+        s += fmt::format("  {:<10} centre ({:8.3f}, {:8.3f})  n/n_in = {:+.6f}\n", gb.shafts[i].name,
+                         L.shaft_centre[i].x() * 1e3, L.shaft_centre[i].y() * 1e3, L.body_speed_ratio[L.body_of_shaft[i]]);
+    s += "\ngears: n/n_in, immersion [mm]\n";
+    for (size_t g = 0; g < gb.gears.size(); ++g)
+        s += fmt::format("  {:<10} {:+.6f}  {:7.2f}{}\n", gb.gears[g].spec.name, L.body_speed_ratio[L.body_of_gear[g]],
+                         L.gear_immersion[g] * 1e3, gb.gears[g].free ? "  (free)" : "");
+    s += "\nbearings: n/n_in, radial and axial load per 100 N*m input (forward / reverse torque)\n";
+    for (size_t i = 0; i < gb.bearings.size(); ++i) {
+        const auto& b = gb.bearings[i];
+        s += fmt::format("  {:<10} {:<26} {:.5f}  Fr {:8.1f} / {:8.1f} N  Fa {:8.1f} / {:8.1f} N{}\n", b.name,
+                         bearings::to_string(b.spec.type), L.bearing_speed_ratio[i], 100 * L.bearing_Fr_pos[i],
+                         100 * L.bearing_Fr_neg[i], 100 * L.bearing_Fa_pos[i], 100 * L.bearing_Fa_neg[i],
+                         b.spec.type == bearings::BearingType::needle_roller ? "  (SKF constants: caged CRB proxy)" : "");
+    }
+    const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
+    s += fmt::format("\noil {} ({}): nu40 = {:.3f} cSt, nu100 = {:.3f} cSt, rho15 = {:.1f} kg/m^3, X_L = {:.3f}\n", m.oil.name,
+                     lubricant::to_string(m.oil.base), s40.nu_cSt, s100.nu_cSt, m.oil.rho15, m.oil.X_L);
+    s += fmt::format("    alpha_p(40) = {:.4g} 1/Pa, alpha_p(100) = {:.4g} 1/Pa, beta_T(40) = {:.4g} 1/K\n", s40.alpha_p,
+                     s100.alpha_p, s40.beta_T);
+    s += fmt::format("operating points: {}\n", c.grid.size());
+    return s;
+}
+
+std::string check_json(const Case& c) {
+    const auto& m = c.model;
+    const auto& gb = m.gearbox;
+    const auto& L = m.layout;
+    Json j;
+    j.begin_object();
+    j.key("file").value(c.file);
+    j.key("name").value(m.name);
+    j.key("valid").value(true);
+    j.key("ratio_name").value(c.ratio);
+    j.key("speed_ratio_out_in").value(L.ratio);
+    j.key("meshes").begin_array();
+    for (size_t i = 0; i < gb.meshes.size(); ++i) {
+        const auto& md = L.meshes[i];
+        const auto& g = md.geom;
+        j.begin_object();
+        j.key("name").value(gb.meshes[i].name);
+        j.key("gears").begin_array().value(gb.gears[gb.meshes[i].gear[0]].spec.name).value(gb.gears[gb.meshes[i].gear[1]].spec.name).end_array();
+        j.key("loaded").value(md.loaded);
+        j.key("u").value(g.u);
+        j.key("centre_distance_mm").value(g.a_w * 1e3);
+        j.key("reference_centre_distance_mm").value(g.a * 1e3);
+        j.key("working_pressure_angle_deg").value(g.alpha_wt * deg);
+        j.key("tip_diameters_mm").begin_array().value(g.da[0] * 1e3).value(g.da[1] * 1e3).end_array();
+        j.key("root_diameters_mm").begin_array().value(g.df[0] * 1e3).value(g.df[1] * 1e3).end_array();
+        j.key("working_pitch_diameters_mm").begin_array().value(g.dw[0] * 1e3).value(g.dw[1] * 1e3).end_array();
+        j.key("eps_1").value(g.eps1);
+        j.key("eps_2").value(g.eps2);
+        j.key("eps_alpha").value(g.eps_alpha);
+        j.key("eps_beta").value(g.eps_beta);
+        j.key("eps_gamma").value(g.eps_gamma);
+        j.key("H_V_ohlendorf").value(md.H_V_ohlendorf);
+        j.key("H_V_buckingham").value(md.H_V_buckingham);
+        j.key("H_V_wimmer").value(md.H_V_wimmer);
+        j.key("rho_redC_mm").value(g.rho_redC * 1e3);
+        j.end_object();
+    }
+    j.end_array();
+    j.key("shafts").begin_array();
+    for (size_t i = 0; i < gb.shafts.size(); ++i) {
+        j.begin_object();
+        j.key("name").value(gb.shafts[i].name);
+        j.key("x_mm").value(L.shaft_centre[i].x() * 1e3);
+        j.key("y_mm").value(L.shaft_centre[i].y() * 1e3);
+        j.key("speed_ratio").value(L.body_speed_ratio[L.body_of_shaft[i]]);
+        j.end_object();
+    }
+    j.end_array();
+    j.key("gears").begin_array();
+    for (size_t g = 0; g < gb.gears.size(); ++g) {
+        j.begin_object();
+        j.key("name").value(gb.gears[g].spec.name);
+        j.key("speed_ratio").value(L.body_speed_ratio[L.body_of_gear[g]]);
+        j.key("immersion_mm").value(L.gear_immersion[g] * 1e3);
+        j.end_object();
+    }
+    j.end_array();
+    j.key("bearings").begin_array();
+    for (size_t i = 0; i < gb.bearings.size(); ++i) {
+        j.begin_object();
+        j.key("name").value(gb.bearings[i].name);
+        j.key("type").value(bearings::to_string(gb.bearings[i].spec.type));
+        j.key("speed_ratio").value(L.bearing_speed_ratio[i]);
+        j.key("Fr_per_Nm").value(L.bearing_Fr_pos[i]);
+        j.key("Fa_per_Nm").value(L.bearing_Fa_pos[i]);
+        j.end_object();
+    }
+    j.end_array();
+    const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
+    j.key("oil").begin_object();
+    j.key("name").value(m.oil.name);
+    j.key("base").value(lubricant::to_string(m.oil.base));
+    j.key("nu40_cSt").value(s40.nu_cSt);
+    j.key("nu100_cSt").value(s100.nu_cSt);
+    j.key("rho15_kg_m3").value(m.oil.rho15);
+    j.key("X_L").value(m.oil.X_L);
+    j.end_object();
+    j.key("operating_points").value(c.grid.size());
+    j.end_object();
+    return j.str() + "\n";
+}
+
+}  // namespace gearloss::io

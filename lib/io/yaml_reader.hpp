@@ -1,0 +1,76 @@
+#pragma once
+// A YAML node with its file and key path, so that every read can fail with an
+// error naming the file, line and key, and unknown keys are caught.
+#include <yaml-cpp/yaml.h>
+
+#include <functional>
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "units/units.hpp"
+
+namespace gearloss::io {
+
+class YamlNode {
+public:
+    YamlNode(YAML::Node node, std::string file, std::string path);
+    static YamlNode load_file(const std::string& file);
+
+    const std::string& file() const { return file_; }
+    const std::string& path() const { return path_; }
+    const YAML::Node& raw() const { return node_; }
+    bool is_map() const { return node_.IsMap(); }
+    bool is_sequence() const { return node_.IsSequence(); }
+    bool is_scalar() const { return node_.IsScalar(); }
+    bool has(const std::string& key) const;
+
+    [[noreturn]] void fail(const std::string& message) const;
+
+    YamlNode at(const std::string& key) const;                 // required
+    std::optional<YamlNode> get(const std::string& key) const; // optional
+    std::vector<YamlNode> items() const;                       // sequence elements
+    std::vector<std::pair<std::string, YamlNode>> entries() const;  // map entries
+
+    // Rejects keys that are not in `allowed`, suggesting the closest one.
+    void allow_keys(std::initializer_list<const char*> allowed) const;
+
+    std::string as_string() const;
+    double as_number() const;             // plain number, no unit
+    int as_int() const;
+    bool as_bool() const;
+    // Quantity with a unit of the expected dimension, converted to SI.
+    double as_quantity(const units::Dimension& expected, const char* example) const;
+    // Temperature: "40 degC" / "313.15 K" (absolute).
+    double as_temperature() const;
+    template <class E>
+    E as_enum(std::initializer_list<std::pair<const char*, E>> choices) const {
+        const std::string s = as_string();
+        std::string list;
+        for (const auto& [name, value] : choices) {
+            if (s == name) return value;
+            list += (list.empty() ? "" : ", ") + std::string(name);
+        }
+        fail("'" + s + "' is not one of: " + list);
+    }
+
+    // Shorthands for required/optional keys.
+    double quantity(const std::string& key, const units::Dimension& d, const char* example) const {
+        return at(key).as_quantity(d, example);
+    }
+    std::optional<double> opt_quantity(const std::string& key, const units::Dimension& d, const char* example) const {
+        auto n = get(key);
+        if (!n) return std::nullopt;
+        return n->as_quantity(d, example);
+    }
+    double positive_quantity(const std::string& key, const units::Dimension& d, const char* example) const;
+
+private:
+    YAML::Node node_;
+    std::string file_;
+    std::string path_;
+};
+
+}  // namespace gearloss::io

@@ -1,0 +1,63 @@
+#pragma once
+// A lubricant described by datasheet values, and its state at a temperature.
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "lubricant/viscosity.hpp"
+
+namespace gearloss::lubricant {
+
+enum class BaseOil { mineral, pao, ester, pag, pag_water_soluble, phosphate_ester, traction_fluid, transmission_fluid };
+const char* to_string(BaseOil b);
+
+// Sliding friction pair of the SKF 2004 model for one rolling-element family.
+struct BearingFrictionPair {
+    double mu_bl = 0.15;  // boundary; SKF 2004 text
+    std::optional<double> mu_ehl;  // full film; default by bearing type (see bearings/)
+};
+
+// Properties at one temperature, SI units, with the powers of the kinematic
+// viscosity that several loss models share precomputed once.
+struct OilState {
+    double T = 0;          // K
+    double nu = 0;         // m^2/s
+    double nu_cSt = 0;     // mm^2/s (the unit of most empirical loss formulas)
+    double rho = 0;        // kg/m^3
+    double eta = 0;        // Pa*s
+    double alpha_p = 0;    // pressure-viscosity coefficient, 1/Pa
+    double beta_T = 0;     // thermoviscosity -d ln(eta)/dT, 1/K
+    double k = 0;          // thermal conductivity, W/(m K)
+    double cp = 0;         // J/(kg K)
+};
+
+class Oil {
+public:
+    struct PiezoPoint { double T_K; double alpha; };
+    std::string name = "oil";
+    BaseOil base = BaseOil::mineral;
+    std::variant<VogelLaw, WaltherLaw> viscosity;
+    double rho15 = 870.0;          // kg/m^3 at 15 degC
+    double expansion = 6.5e-4;     // 1/K, rho(T) = rho15 (1 - expansion (T - 15 degC))
+    std::vector<PiezoPoint> piezo_table;  // empty -> Gold et al. (2001) from base oil
+    std::optional<double> k_fixed;   // W/(m K); else from base oil
+    std::optional<double> cp_fixed;  // J/(kg K); else Cragoe
+    double X_L = 1.0;               // lubricant factor of the mean gear friction
+    BearingFrictionPair bearing_ball, bearing_roller;
+
+    OilState state(double T_K) const;
+    double nu_mm2s(double T_K) const;
+    double density(double T_K) const;
+    double pressure_viscosity(double T_K, double nu_mm2s) const;
+};
+
+// X_L default by base oil (ISO/TS 6336-20 table); nullopt where the table has none.
+std::optional<double> default_XL(BaseOil b);
+
+// Gold et al. (2001) alpha = s * nu^t (nu in mm^2/s), constants as consolidated
+// in bearings-ehl-oil.md §2.
+std::pair<double, double> gold_constants(BaseOil b);
+
+}  // namespace gearloss::lubricant

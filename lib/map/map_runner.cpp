@@ -1,0 +1,90 @@
+#include "map/map_runner.hpp"
+
+#include <atomic>
+#include <fmt/format.h>
+#include <numbers>
+#include <omp.h>
+
+#include "io/atomic_file.hpp"
+
+namespace gearloss::map {
+
+namespace {
+constexpr double rpm = 30.0 / std::numbers::pi;
+std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : std::string(); }
+std::string fixed(double v, int d) { return std::isfinite(v) ? fmt::format("{:.{}f}", v, d) : std::string(); }
+}  // namespace
+
+std::vector<solver::PointResult> run_map(const solver::Model& m, const io::OperatingGrid& grid, const MapOptions& opt) {
+    const long n = static_cast<long>(grid.size());
+    std::vector<solver::PointResult> out(static_cast<size_t>(n));
+    const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
+    std::atomic<size_t> done{0};
+    std::atomic<bool> stop{false};
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 64)
+    for (long i = 0; i < n; ++i) {
+        if (stop.load(std::memory_order_relaxed)) continue;
+        if (io::g_interrupted.load(std::memory_order_relaxed)) {
+            stop = true;
+            continue;
+        }
+        const auto [w, T] = grid.at(static_cast<size_t>(i));
+        out[static_cast<size_t>(i)] = solver::solve_point(m, w, T, opt.detail);
+        const size_t d = ++done;
+        if (opt.progress && omp_get_thread_num() == 0 && (d & 255) == 0) opt.progress(d, static_cast<size_t>(n));
+    }
+    if (opt.progress) opt.progress(done.load(), static_cast<size_t>(n));
+    return out;
+}
+
+std::string csv_header(const solver::Model& m, bool detail) {
+    std::string h =
+        "speed_in_rpm,torque_in_Nm,power_in_W,ambient_temp_C,oil_temp_C,P_mesh_W,P_churn_W,P_bearing_W,P_seal_W,"
+        "P_total_W,power_out_W,torque_out_Nm,efficiency,lambda_min,status";
+    if (detail) {
+        const auto& gb = m.gearbox;
+        for (const auto& me : gb.meshes)
+            h += fmt::format(",P_mesh_{0}_W,mu_{0},lambda_{0},h_min_{0}_um", me.name);
+        for (const auto& g : gb.gears) h += fmt::format(",P_churn_{}_W", g.spec.name);
+        for (const auto& b : gb.bearings) h += fmt::format(",P_bearing_{}_W", b.name);
+        for (const auto& s : gb.seals) h += fmt::format(",P_seal_{}_W", s.name);
+    }
+    return h + "\n";
+}
+
+std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail) {
+    const bool ok = r.status == solver::PointStatus::ok;
+    std::string s = fmt::format("{},{},{},{},", num(r.speed_in * rpm), num(r.torque_in), num(r.power_in),
+                                fixed(r.ambient - 273.15, 2));
+    if (ok) {
+        const auto& L = r.losses;
+        s += fmt::format("{},{},{},{},{},{},{},{},{},{},", fixed(r.oil_temperature - 273.15, 3), num(L.mesh),
+                         num(L.churning), num(L.bearings), num(L.seals), num(L.total()), num(r.power_out),
+                         num(r.torque_out), r.has_efficiency ? fmt::format("{:.6f}", r.efficiency) : std::string(),
+                         L.has_lambda ? num(L.lambda_min) : std::string());
+    } else {
+        s += ",,,,,,,,,,";
+    }
+    s += solver::to_string(r.status);
+    if (detail) {
+        const auto& gb = m.gearbox;
+        const auto& L = r.losses;
+        for (size_t i = 0; i < gb.meshes.size(); ++i) {
+            if (ok && !L.mesh_each.empty())
+                s += fmt::format(",{},{},{},{}", num(L.mesh_each[i]), num(L.mesh_mu[i]),
+                                 L.mesh_each[i] > 0 ? num(L.mesh_lambda[i]) : std::string(),
+                                 L.mesh_each[i] > 0 ? num(L.mesh_hmin[i] * 1e6) : std::string());
+            else
+                s += ",,,,";
+        }
+        auto list = [&](const std::vector<double>& v, size_t n) {
+            for (size_t i = 0; i < n; ++i) s += "," + (ok && i < v.size() ? num(v[i]) : std::string());
+        };
+        list(L.churn_each, gb.gears.size());
+        list(L.bearing_each, gb.bearings.size());
+        list(L.seal_each, gb.seals.size());
+    }
+    return s + "\n";
+}
+
+}  // namespace gearloss::map

@@ -1,0 +1,263 @@
+#include "solver/operating_point.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "seals/radial_lip_seal.hpp"
+
+namespace gearloss::solver {
+
+const char* to_string(PointStatus s) {
+    switch (s) {
+        case PointStatus::ok: return "ok";
+        case PointStatus::no_equilibrium: return "no_equilibrium";
+    }
+    return "?";
+}
+
+namespace {
+constexpr double rad_s_to_rpm = 30.0 / std::numbers::pi;
+}
+
+PointState prepare_point(const Model& m, double omega_in, double torque_in) {
+    const auto& gb = m.gearbox;
+    const auto& L = m.layout;
+    const auto& opt = m.options;
+    PointState p;
+    p.omega_in = omega_in;
+    p.torque_in = torque_in;
+    p.power_in = omega_in * torque_in;
+    const double P = std::abs(p.power_in);
+
+    p.meshes.resize(gb.meshes.size());
+    for (size_t i = 0; i < gb.meshes.size(); ++i) {
+        const auto& md = L.meshes[i];
+        auto& ms = p.meshes[i];
+        const auto& g0 = gb.gears[gb.meshes[i].gear[0]].spec;
+        const auto& g1 = gb.gears[gb.meshes[i].gear[1]].spec;
+        switch (opt.loss_factor) {
+            case mesh::LossFactorModel::ohlendorf: ms.H_V = md.H_V_ohlendorf; break;
+            case mesh::LossFactorModel::buckingham: ms.H_V = md.H_V_buckingham; break;
+            case mesh::LossFactorModel::wimmer: ms.H_V = md.H_V_wimmer; break;
+        }
+        if (opt.lambda_roughness == LambdaRoughness::average_Ra) {
+            ms.sigma = 0.5 * (g0.Ra + g1.Ra);
+        } else {
+            const double q0 = g0.Rq ? *g0.Rq : 1.25 * g0.Ra, q1 = g1.Rq ? *g1.Rq : 1.25 * g1.Ra;
+            ms.sigma = std::sqrt(q0 * q0 + q1 * q1);
+        }
+        const double w0 = L.body_speed_ratio[L.body_of_gear[gb.meshes[i].gear[0]]] * omega_in;
+        const double vt = std::abs(w0) * 0.5 * md.geom.dw[0];
+        const double v_sum = 2.0 * vt * std::sin(md.geom.alpha_wt);
+        ms.contact.u_e = 0.5 * v_sum;
+        ms.contact.R = md.geom.rho_redC;
+        ms.contact.E_prime = m.mesh_E_prime[i];
+        ms.contact.SRR = 0.0;  // pitch point
+        if (!md.loaded || !opt.mesh || P == 0.0 || w0 == 0.0) continue;
+        ms.power = P;
+        const double T0 = P / std::abs(w0);
+        const double F_bt = T0 / (0.5 * md.geom.db[0]);
+        const double w_Nmm = F_bt / (md.geom.b_eff * 1e3);
+        const double rho_mm = md.geom.rho_redC * 1e3;
+        const double Ra_um = 0.5 * (g0.Ra + g1.Ra) * 1e6;
+        ms.contact.w_line = F_bt / std::cos(md.geom.beta_b) / md.L_min;
+        switch (opt.friction) {
+            case mesh::FrictionModel::schlenk:
+            case mesh::FrictionModel::fernandes_mixed:
+                ms.mu_prefactor = mesh::mean_friction_schlenk(w_Nmm, v_sum, rho_mm, 1.0, Ra_um, m.oil.X_L);
+                break;
+            case mesh::FrictionModel::iso_6336_20: {
+                // ISO/TS 6336-20 caps the pitch-line speed at 50 m/s in v_sum.
+                const double v_sum_c = 2.0 * std::min(vt, 50.0) * std::sin(md.geom.alpha_wt);
+                ms.mu_prefactor = mesh::mean_friction_iso_6336_20(w_Nmm, v_sum_c, rho_mm, 1.0, Ra_um, m.oil.X_L);
+                break;
+            }
+        }
+    }
+
+    p.churn.resize(gb.gears.size());
+    if (opt.churning) {
+        for (size_t g = 0; g < gb.gears.size(); ++g) {
+            const double h = L.gear_immersion[g];
+            if (h <= 0.0) continue;
+            const auto& spec = gb.gears[g].spec;
+            churning::DippingGear dg;
+            dg.Rp = 0.5 * spec.d();
+            dg.b = spec.b;
+            dg.z = spec.z;
+            dg.tooth_height = spec.mn * (spec.ha_star + spec.hf_star);
+            dg.alpha = spec.alpha_t();
+            dg.h = h;
+            const double w = L.body_speed_ratio[L.body_of_gear[g]] * omega_in;
+            p.churn[g] = churning::ChurningAtSpeed::make(dg, w, gb.oil_volume);
+        }
+    }
+
+    p.bearings.resize(gb.bearings.size());
+    p.bearing_omega.resize(gb.bearings.size());
+    const bool neg = torque_in < 0.0;
+    const double T = std::abs(torque_in);
+    for (size_t i = 0; i < gb.bearings.size(); ++i) {
+        const double w = L.bearing_speed_ratio[i] * std::abs(omega_in);
+        p.bearing_omega[i] = w;
+        if (!opt.bearings) continue;
+        const double Fr = T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]);
+        const double Fa = T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]);
+        p.bearings[i] = bearings::SkfAtPoint::make(gb.bearings[i].spec, Fr, Fa, w * rad_s_to_rpm);
+        p.any_drag = p.any_drag || p.bearings[i].drag_b != 0.0;
+    }
+
+    p.seal_power.resize(gb.seals.size(), 0.0);
+    if (opt.seals)
+        for (size_t i = 0; i < gb.seals.size(); ++i) {
+            p.seal_power[i] = seals::radial_seal_power(gb.seals[i].diameter, L.seal_speed_ratio[i] * omega_in);
+            p.seal_total += p.seal_power[i];
+        }
+    return p;
+}
+
+LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubricant::OilState& s, bool detail,
+                              bool film) {
+    const auto& gb = m.gearbox;
+    const auto& opt = m.options;
+    LossBreakdown r;
+    const double nu = s.nu_cSt;
+    const double lnnu = std::log(nu);
+
+    // Mesh friction.
+    const double eta_factor = std::exp(-0.05 * std::log(s.eta * 1e3));  // eta [mPa s]^-0.05
+    const bool need_film = detail || film || opt.friction == mesh::FrictionModel::fernandes_mixed;
+    if (detail) {
+        const size_t n = gb.meshes.size();
+        r.mesh_each.assign(n, 0.0);
+        r.mesh_mu.assign(n, 0.0);
+        r.mesh_lambda.assign(n, 0.0);
+        r.mesh_hmin.assign(n, 0.0);
+        r.mesh_hc.assign(n, 0.0);
+    }
+    double lambda_min = 0;
+    bool has_lambda = false;
+    for (size_t i = 0; i < p.meshes.size(); ++i) {
+        const auto& ms = p.meshes[i];
+        if (ms.power == 0.0) continue;
+        double mu = ms.mu_prefactor * eta_factor;
+        if (need_film) {
+            const mesh::Film f =
+                mesh::line_contact_film(ms.contact, s.eta, s.alpha_p, s.beta_T, s.k, opt.film_correction);
+            const double lambda = f.h_c / ms.sigma;
+            if (opt.friction == mesh::FrictionModel::fernandes_mixed) {
+                const double xi = mesh::boundary_share_doleschel(lambda);
+                mu = xi * opt.gear_mu_bl + (1.0 - xi) * opt.gear_mu_ehl;
+            }
+            if (!has_lambda || lambda < lambda_min) lambda_min = lambda;
+            has_lambda = true;
+            if (detail) {
+                r.mesh_lambda[i] = lambda;
+                r.mesh_hmin[i] = f.h_min;
+                r.mesh_hc[i] = f.h_c;
+            }
+        }
+        const double loss = ms.power * mu * ms.H_V;
+        r.mesh += loss;
+        if (detail) {
+            r.mesh_each[i] = loss;
+            r.mesh_mu[i] = mu;
+        }
+    }
+    r.lambda_min = lambda_min;
+    r.has_lambda = has_lambda;
+
+    // Churning.
+    if (detail) {
+        r.churn_each.assign(gb.gears.size(), 0.0);
+        r.churn_regime.assign(gb.gears.size(), churning::Regime::none);
+    }
+    if (opt.churning) {
+        // Re = Omega Rp^2 / nu with nu in m^2/s (SI, as folded in ChurningAtSpeed).
+        const double nu021 = std::exp(0.21 * std::log(s.nu));
+        for (size_t g = 0; g < p.churn.size(); ++g) {
+            const auto& c = p.churn[g];
+            if (c.coef_low == 0.0 && c.coef_high == 0.0) continue;
+            churning::Regime reg;
+            const double P = c.torque(s.rho, s.nu, nu021, &reg) * c.omega;
+            r.churning += P;
+            if (detail) {
+                r.churn_each[g] = P;
+                r.churn_regime[g] = reg;
+            }
+        }
+    }
+
+    // Bearings.
+    if (detail) r.bearing_each.assign(gb.bearings.size(), 0.0);
+    if (opt.bearings && !p.bearings.empty()) {
+        const double nu06 = std::exp(0.6 * lnnu), nu064 = std::exp(0.64 * lnnu), nu14 = std::exp(1.4 * lnnu);
+        const double nu1379 = p.any_drag ? std::exp(1.379 * lnnu) : 0.0;
+        for (size_t i = 0; i < p.bearings.size(); ++i) {
+            const double M = p.bearings[i].moment(nu, nu06, nu064, nu14, nu1379);  // N*mm
+            const double P = M * 1e-3 * p.bearing_omega[i];
+            r.bearings += P;
+            if (detail) r.bearing_each[i] = P;
+        }
+    }
+
+    r.seals = p.seal_total;
+    if (detail) r.seal_each = p.seal_power;
+    return r;
+}
+
+double total_loss(const Model& m, const PointState& p, double T_oil) {
+    return evaluate_losses(m, p, m.oil.state(T_oil), false).total();
+}
+
+PointResult solve_point(const Model& m, double omega_in, double torque_in, bool detail, double ambient) {
+    PointResult r;
+    r.speed_in = omega_in;
+    r.torque_in = torque_in;
+    r.ambient = ambient;
+    const PointState p = prepare_point(m, omega_in, torque_in);
+    r.power_in = p.power_in;
+    double T;
+    if (m.thermal.mode == ThermalMode::fixed) {
+        T = m.thermal.oil_temperature;
+    } else {
+        const auto& rej = m.thermal.rejection;
+        auto F = [&](double Toil) { return total_loss(m, p, Toil) - rej.heat_flow(Toil, ambient, omega_in); };
+        auto G = [&](double Toil) {
+            const double Tq = std::max(Toil, ambient + 0.5);
+            return rej.heat_flow(Tq, ambient, omega_in) / (Tq - ambient);
+        };
+        const thermal::Equilibrium eq = thermal::solve_equilibrium(F, G, ambient, m.thermal.equilibrium);
+        r.evaluations = eq.evaluations;
+        r.thermal_residual = eq.residual;
+        if (eq.status == thermal::EquilibriumStatus::no_equilibrium) {
+            r.status = PointStatus::no_equilibrium;
+            r.oil_temperature = eq.T;
+            return r;
+        }
+        T = eq.T;
+    }
+    r.oil_temperature = T;
+    r.losses = evaluate_losses(m, p, m.oil.state(T), detail, true);
+    const double Ploss = r.losses.total();
+    r.power_out = r.power_in - Ploss;
+    r.omega_out = m.layout.ratio * omega_in;
+    // Output torque in the output's own sense of rotation: positive when power
+    // leaves through the output shaft.
+    if (r.omega_out != 0.0) {
+        r.torque_out = r.power_out / std::abs(r.omega_out);
+    } else {
+        r.torque_out = torque_in / std::abs(m.layout.ratio);  // standstill: ideal torque ratio
+    }
+    if (r.power_in > 0.0) {
+        r.efficiency = r.power_out / r.power_in;
+        r.has_efficiency = true;
+    } else if (r.power_in < 0.0) {
+        // Driven from the output: power enters there, |P_in| leaves at the input.
+        r.efficiency = -r.power_in / (-r.power_in + Ploss);
+        r.has_efficiency = true;
+    }
+    return r;
+}
+
+}  // namespace gearloss::solver

@@ -1,0 +1,72 @@
+#pragma once
+// Losses at one operating point and the coupled (stabilised) oil temperature.
+#include <string>
+#include <vector>
+
+#include "bearings/skf_model.hpp"
+#include "churning/changenet_velex.hpp"
+#include "solver/model.hpp"
+
+namespace gearloss::solver {
+
+// Everything about a point that does not depend on the oil temperature:
+// kinematics, mesh loads, bearing load terms (computed once per point).
+struct PointState {
+    double omega_in = 0, torque_in = 0, power_in = 0;
+    struct MeshState {
+        double power = 0;         // transmitted power magnitude [W]
+        double mu_prefactor = 0;  // mu = mu_prefactor * eta_mPas^-0.05 (Schlenk / ISO forms)
+        double H_V = 0;
+        mesh::LineContact contact;
+        double sigma = 0;         // roughness for Lambda [m]
+    };
+    std::vector<MeshState> meshes;
+    std::vector<churning::ChurningAtSpeed> churn;      // per gear
+    std::vector<bearings::SkfAtPoint> bearings;        // per bearing
+    std::vector<double> bearing_omega;
+    std::vector<double> seal_power;                     // per seal, oil independent
+    double seal_total = 0;
+    bool any_drag = false;
+};
+
+PointState prepare_point(const Model& m, double omega_in, double torque_in);
+
+struct LossBreakdown {
+    double mesh = 0, churning = 0, bearings = 0, seals = 0;
+    double total() const { return mesh + churning + bearings + seals; }
+    // Per component (filled only when detail is requested).
+    std::vector<double> mesh_each, mesh_mu, mesh_lambda, mesh_hmin, mesh_hc;
+    std::vector<double> churn_each, bearing_each, seal_each;
+    std::vector<churning::Regime> churn_regime;
+    double lambda_min = 0;   // over loaded meshes; NaN-free: 0 when no loaded mesh
+    bool has_lambda = false;
+};
+
+// Losses at oil state s. `film` computes the pitch-point films and lambda_min;
+// `detail` also fills the per-component vectors.
+LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubricant::OilState& s, bool detail,
+                              bool film = false);
+// Total loss only (the hot path of the thermal solve).
+double total_loss(const Model& m, const PointState& p, double T_oil);
+
+enum class PointStatus { ok, no_equilibrium };
+const char* to_string(PointStatus s);
+
+struct PointResult {
+    double speed_in = 0, torque_in = 0, power_in = 0;  // rad/s, N*m, W
+    double ambient = 0, oil_temperature = 0;            // K
+    double power_out = 0, torque_out = 0, omega_out = 0;
+    double efficiency = 0;
+    bool has_efficiency = false;
+    PointStatus status = PointStatus::ok;
+    double thermal_residual = 0;   // W, P - Q at the solution (stabilised)
+    int evaluations = 0;
+    LossBreakdown losses;
+};
+
+PointResult solve_point(const Model& m, double omega_in, double torque_in, bool detail, double ambient_K);
+inline PointResult solve_point(const Model& m, double omega_in, double torque_in, bool detail = false) {
+    return solve_point(m, omega_in, torque_in, detail, m.thermal.ambient);
+}
+
+}  // namespace gearloss::solver

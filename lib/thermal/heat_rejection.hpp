@@ -1,0 +1,34 @@
+#pragma once
+// Heat flow from the oil to the surroundings (gear-losses.md §6).
+#include <variant>
+
+namespace gearloss::thermal {
+
+// Equivalent thermal resistance from a rig, optionally falling with speed as
+// air is stirred by rotating parts: R(n) = R0 (n/n_ref)^-b for n > n_ref.
+struct ThermalResistance {
+    double R0 = 0.1;       // K/W
+    double n_ref = 0;      // rad/s; 0 = no speed dependence
+    double exponent = 0;   // b
+    double resistance(double omega_in) const;
+};
+
+// Housing surface: convection (free/forced, mixed by the cube rule) and
+// radiation; housing wall assumed at oil temperature (splash-lubricated box).
+struct HousingSurface {
+    double area = 0.5;          // m^2
+    double emissivity = 0.9;    // painted housing
+    double height = 0.3;        // characteristic vertical length for free convection [m]
+    double length = 0.3;        // flow length for forced convection [m]
+    double air_speed = 0.0;     // m/s
+    double convection_coefficient(double T_wall, double T_amb) const;  // W/(m^2 K)
+    double radiation_coefficient(double T_wall, double T_amb) const;   // W/(m^2 K)
+};
+
+struct HeatRejection {
+    std::variant<ThermalResistance, HousingSurface> model;
+    // Heat flow [W] at oil temperature T_oil, ambient T_amb (K), input speed omega.
+    double heat_flow(double T_oil, double T_amb, double omega_in) const;
+};
+
+}  // namespace gearloss::thermal

@@ -1,0 +1,58 @@
+#pragma once
+// Quantities with units at the input/output boundary. Everything inside the
+// library is SI; this module turns "3.5 mm", "800 rpm", "250 N*m", "40 degC",
+// "112.35 cSt" into SI numbers and checks the dimension the caller expects.
+#include <array>
+#include <string>
+#include <string_view>
+
+namespace gearloss::units {
+
+// Exponents of the SI base dimensions: length, mass, time, temperature.
+struct Dimension {
+    std::array<int, 4> e{0, 0, 0, 0};
+    constexpr bool operator==(const Dimension&) const = default;
+};
+
+Dimension make_dim(int L, int M, int T, int Th);
+std::string to_string(const Dimension& d);
+
+// Named dimensions used by the loaders.
+namespace dim {
+extern const Dimension none, length, mass, time, temperature, angle, angular_speed, force, torque,
+    pressure, power, area, volume, density, kinematic_viscosity, dynamic_viscosity, per_kelvin,
+    per_pascal, velocity, thermal_resistance, heat_transfer_coefficient, thermal_conductivity,
+    specific_heat, heat_capacity, energy;
+}  // namespace dim
+
+struct Quantity {
+    double value = 0.0;  // SI
+    Dimension dim;
+    bool absolute_temperature = false;  // parsed from degC/degF/K alone
+};
+
+// Parses "<number> <unit expression>". Throws UnitError with a message that
+// says what was wrong. A bare number parses as dimensionless.
+Quantity parse_quantity(std::string_view text);
+
+// Parses a unit expression alone ("N*m", "W/(m^2*K)", "1/K", "cSt").
+// Temperature units degC/degF are accepted only as a whole expression and
+// then `offset` receives the additive part (K = scale*x + offset).
+struct UnitFactor {
+    double scale = 1.0;
+    double offset = 0.0;
+    Dimension dim;
+    bool affine = false;
+};
+UnitFactor parse_unit(std::string_view expr);
+
+struct UnitError : std::exception {
+    explicit UnitError(std::string m) : msg(std::move(m)) {}
+    const char* what() const noexcept override { return msg.c_str(); }
+    std::string msg;
+};
+
+// Converts an SI value to the unit named by expr (for CSV/report output).
+double from_si(double value_si, std::string_view expr);
+
+}  // namespace gearloss::units

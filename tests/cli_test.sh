@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# End-to-end checks of the gearloss command line: exit codes, stdout/stderr,
+# atomic output files. Usage: cli_test.sh GEARLOSS_BINARY SOURCE_DIR
+set -u
+bin=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+check() {  # check NAME CONDITION...
+    local name=$1
+    shift
+    if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi
+}
+
+# A good map: 9 rows + header, no NaN/inf anywhere, status ok.
+"$bin" map "$src/configs/transfer-box.yaml" -o "$tmp/map.csv"
+rc=$?
+check "map exit code 0" test $rc -eq 0
+check "map has 10 lines" test "$(wc -l < "$tmp/map.csv")" -eq 10
+check "map has no nan/inf" bash -c "! grep -qiE 'nan|inf' '$tmp/map.csv'"
+check "map header" grep -q '^speed_in_rpm,torque_in_Nm,power_in_W,ambient_temp_C,oil_temp_C,P_mesh_W,P_churn_W,P_bearing_W,P_seal_W,P_total_W' "$tmp/map.csv"
+
+# Command-line grid and fixed temperature override the config.
+"$bin" map "$src/configs/transfer-box.yaml" --speed 600,700rpm --torque 150,200,250Nm --oil-temp 70degC -o "$tmp/o.csv"
+check "override grid: 6 rows" test "$(wc -l < "$tmp/o.csv")" -eq 7
+check "override oil temp" bash -c "cut -d, -f5 '$tmp/o.csv' | tail -n +2 | sort -u | grep -qx '70.000'"
+
+# Bad config: exit 2, message names file:line and key, previous output untouched.
+cp "$tmp/map.csv" "$tmp/before.csv"
+sed 's/teeth: 32,/teeth: -3,/' "$src/configs/transfer-box.yaml" > "$src/configs/tmp-cli-bad.yaml"
+"$bin" map "$src/configs/tmp-cli-bad.yaml" -o "$tmp/map.csv" 2> "$tmp/err.txt"
+rc=$?
+rm -f "$src/configs/tmp-cli-bad.yaml"
+check "bad config exit 2" test $rc -eq 2
+check "bad config message" grep -qE 'tmp-cli-bad.yaml:[0-9]+:[0-9]+: gears\[0\]\.teeth: ' "$tmp/err.txt"
+check "previous output kept" cmp -s "$tmp/map.csv" "$tmp/before.csv"
+check "no temporary left" bash -c "! ls '$tmp' | grep -q '\.tmp\.'"
+
+# Bad command-line value: exit 2 naming the option.
+"$bin" map "$src/configs/transfer-box.yaml" --speed 600kg -o "$tmp/x.csv" 2> "$tmp/err2.txt"
+check "bad --speed exit 2" test $? -eq 2
+check "bad --speed message" grep -q -- '--speed' "$tmp/err2.txt"
+check "no file on error" test ! -e "$tmp/x.csv"
+
+# Usage error: exit 1.
+"$bin" map 2> /dev/null
+check "usage exit 1" test $? -eq 1
+"$bin" --version | grep -q '^gearloss '
+check "version" test $? -eq 0
+
+# point and check commands.
+"$bin" point "$src/configs/transfer-box.yaml" --speed 800rpm --torque 250Nm > "$tmp/point.txt"
+check "point exit 0" test $? -eq 0
+check "point lists bearings" grep -q 'B6_6307.2' "$tmp/point.txt"
+"$bin" check "$src/configs/fzg-c40-paor.yaml" --json > "$tmp/check.json"
+check "check --json exit 0" test $? -eq 0
+check "check json valid" python3 -c "import json,sys; d=json.load(open('$tmp/check.json')); assert abs(d['meshes'][0]['centre_distance_mm']-91.5)<1e-6"
+
+# Interrupted run (SIGINT during a large map): exit 130, no output file.
+"$bin" map "$src/configs/transfer-box.yaml" --speed "$(python3 -c "print(','.join(str(300+i) for i in range(2000)))")rpm" \
+    --torque "$(python3 -c "print(','.join(str(10+i) for i in range(400)))")Nm" -o "$tmp/big.csv" &
+pid=$!
+sleep 0.5
+kill -INT $pid
+wait $pid
+rc=$?
+check "interrupt exit 130" test $rc -eq 130
+check "interrupt leaves no file" test ! -e "$tmp/big.csv"
+check "interrupt leaves no temporary" bash -c "! ls '$tmp' | grep -q '\.tmp\.'"
+
+echo "$pass passed, $fail failed"
+test $fail -eq 0

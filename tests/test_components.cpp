@@ -1,0 +1,126 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+
+#include "bearings/skf_model.hpp"
+#include "churning/changenet_velex.hpp"
+#include "seals/radial_lip_seal.hpp"
+
+using namespace gearloss;
+using Approx = Catch::Detail::Approx;
+
+namespace {
+bearings::BearingSpec dgbb_6205() {
+    bearings::BearingSpec b;
+    b.type = bearings::BearingType::deep_groove_ball;
+    b.d = 25;
+    b.D = 52;
+    b.B = 15;
+    b.C0 = 7800;
+    b.k = *bearings::skf_constants(b.type, "62");
+    b.K_rs = 3e-8;
+    b.mu_bl = 0.15;
+    b.mu_ehl = 0.05;  // mineral oil
+    return b;
+}
+}  // namespace
+
+TEST_CASE("SKF model: 6205 worked values of the reference", "[bearings]") {
+    // bearings-ehl-oil.md §1 check values: n 3000, nu 20, Fr 1000 N, Fa 0, K_rs 3e-8, mineral:
+    // G_rr 0.02082, G_sl 125.02, phi_ish 0.9636, phi_rs 0.9673, M_rr 15.33, phi_bl 0.00748, M_sl 6.34, M 20.63 N mm.
+    const auto b = dgbb_6205();
+    const auto g = bearings::skf_load_terms(b, 1000, 0, 3000);
+    CHECK(g.G_rr == Approx(0.02082).epsilon(1e-3));
+    CHECK(g.G_sl == Approx(125.02).epsilon(1e-3));
+    const auto m = bearings::skf_moment(b, 1000, 0, 3000, 20);
+    CHECK(m.phi_ish == Approx(0.9636).epsilon(1e-3));
+    CHECK(m.phi_rs == Approx(0.9673).epsilon(1e-3));
+    CHECK(m.phi_bl == Approx(0.00748).epsilon(5e-3));
+    CHECK(m.rolling / (m.phi_ish * m.phi_rs) == Approx(15.33).epsilon(1e-3));
+    CHECK(m.sliding == Approx(6.34).epsilon(2e-3));
+    CHECK(m.total() == Approx(20.63).epsilon(1e-3));
+    // With an axial load of 500 N: M = 48.17 N mm.
+    CHECK(bearings::skf_moment(b, 1000, 500, 3000, 20).total() == Approx(48.17).epsilon(1e-3));
+}
+
+TEST_CASE("SKF model: tapered roller 302 worked value", "[bearings]") {
+    // Same size, Y 1.6, Fr 2000 N, Fa 500 N, n 3000, nu 20 -> M = 129.4 N mm.
+    bearings::BearingSpec b;
+    b.type = bearings::BearingType::tapered_roller;
+    b.d = 25;
+    b.D = 52;
+    b.Y = 1.6;
+    b.k = *bearings::skf_constants(b.type, "302");
+    b.K_rs = 3e-8;
+    b.mu_bl = 0.15;
+    b.mu_ehl = 0.002;
+    CHECK(bearings::skf_moment(b, 2000, 500, 3000, 20).total() == Approx(129.4).epsilon(1e-3));
+}
+
+TEST_CASE("SKF drag terms for the 6205 half submerged", "[bearings]") {
+    // Reference: H = 0.5 d_m -> second term 1.42 N mm, first term = V_M * 2692 N mm.
+    auto b = dgbb_6205();
+    b.bath_H = 0.5 * b.dm();
+    b.bath_VM = 0.0;
+    CHECK(bearings::skf_drag_moment(b, 3000, 20) == Approx(1.42).epsilon(5e-3));
+    b.bath_VM = 1e-3;
+    CHECK(bearings::skf_drag_moment(b, 3000, 20) == Approx(1.42 + 2.692).epsilon(5e-3));
+}
+
+TEST_CASE("SKF precomputed form equals the direct evaluation", "[bearings]") {
+    const auto b = dgbb_6205();
+    const auto p = bearings::SkfAtPoint::make(b, 1000, 300, 2500);
+    const double nu = 35;
+    const double fast = p.moment(nu, std::pow(nu, 0.6), std::pow(nu, 0.64), std::pow(nu, 1.4), std::pow(nu, 1.379));
+    CHECK(fast == Approx(bearings::skf_moment(b, 1000, 300, 2500, nu).total()).epsilon(1e-12));
+    CHECK(bearings::SkfAtPoint::make(b, 1000, 0, 0).moment(nu, 1, 1, 1, 1) == 0.0);  // standstill
+}
+
+TEST_CASE("constants table lookups", "[bearings]") {
+    CHECK(bearings::skf_constants(bearings::BearingType::cylindrical_roller, "NJ 3")->R1 == 1.09e-6);
+    CHECK(bearings::skf_constants(bearings::BearingType::tapered_roller, "323")->R1 == 2.38e-6);
+    CHECK_FALSE(bearings::skf_constants(bearings::BearingType::deep_groove_ball, "99").has_value());
+}
+
+TEST_CASE("radial lip seal loss", "[seals]") {
+    // ISO/TR 14179-2: 7.69e-6 * 50^2 * 3000 = 57.7 W.
+    CHECK(seals::radial_seal_power(0.050, 3000 * std::numbers::pi / 30) == Approx(57.675).epsilon(1e-9));
+}
+
+TEST_CASE("Changenet-Velex churning against a hand calculation", "[churning]") {
+    // Rp 50 mm, b 20 mm, z 20, tooth height 6.75 mm, alpha 20 deg, h 20 mm, V0 1 L,
+    // Omega 100 rad/s, rho 850 kg/m^3. Hand (python): theta = acos(1 - 0.4) = 0.92730,
+    // S_m = 5.78726e-3 m^2; nu = 50 cSt -> Re_c = 2000, C_m = 1.04631e-2, C_ch = 3.21687e-2 N m;
+    // nu = 0.5 cSt -> Re_c = 2e5, C_m = 2.48314e-2, C_ch = 7.63438e-2 N m.
+    churning::DippingGear g{0.05, 0.02, 20, 6.75e-3, 20 * std::numbers::pi / 180, 0.02};
+    CHECK(churning::submerged_surface(g) == Approx(5.787263e-3).epsilon(1e-6));
+    churning::Regime r;
+    CHECK(churning::dimensionless_torque(g, 100, 50e-6, 1e-3, &r) == Approx(1.046311e-2).epsilon(1e-6));
+    CHECK(r == churning::Regime::low_reynolds);
+    CHECK(churning::churning_torque(g, 100, 850, 50e-6, 1e-3) == Approx(3.216867e-2).epsilon(1e-6));
+    CHECK(churning::churning_torque(g, 100, 850, 0.5e-6, 1e-3, &r) == Approx(7.634377e-2).epsilon(1e-6));
+    CHECK(r == churning::Regime::high_reynolds);
+}
+
+TEST_CASE("churning regime limits and the transition band", "[churning]") {
+    churning::DippingGear g{0.05, 0.02, 20, 6.75e-3, 0.35, 0.02};
+    const double w = 100;  // Re_c = w Rp b / nu = 0.1 / nu
+    auto at = [&](double ReC, churning::Regime* r = nullptr) {
+        return churning::churning_torque(g, w, 850, 0.1 / ReC, 1e-3, r);
+    };
+    churning::Regime r;
+    at(5999, &r);
+    CHECK(r == churning::Regime::low_reynolds);
+    at(6001, &r);
+    CHECK(r == churning::Regime::transition);
+    at(8999, &r);
+    CHECK(r == churning::Regime::transition);
+    at(9001, &r);
+    CHECK(r == churning::Regime::high_reynolds);
+    // Linear interpolation on Re_c makes the torque continuous at both limits.
+    CHECK(at(6000 - 1e-6) == Approx(at(6000 + 1e-6)).epsilon(1e-6));
+    CHECK(at(9000 - 1e-6) == Approx(at(9000 + 1e-6)).epsilon(1e-6));
+    // Not immersed: no churning.
+    g.h = 0;
+    CHECK(churning::churning_torque(g, w, 850, 1e-5, 1e-3) == 0.0);
+}

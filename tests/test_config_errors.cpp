@@ -1,0 +1,90 @@
+#include <catch2/catch.hpp>
+
+#include "core/errors.hpp"
+#include "io/config.hpp"
+#include "test_support.hpp"
+
+using namespace gearloss;
+using test_support::TempConfig;
+
+namespace {
+std::string base(const std::string& file = "transfer-box.yaml") {
+    return test_support::read_file(test_support::source_path("configs/" + file));
+}
+
+struct Expect {
+    std::string from, to;          // mutation of the shipped config
+    std::string line_of;           // text whose line the error must name ("" = no check)
+    std::string key;               // key path the error must name
+    std::string message;           // part of the message
+    std::string file = "transfer-box.yaml";
+    std::string from2 = {}, to2 = {};  // optional second mutation
+};
+
+void expect_error(const Expect& e) {
+    std::string text = test_support::replace_once(base(e.file), e.from, e.to);
+    if (!e.from2.empty()) text = test_support::replace_once(text, e.from2, e.to2);
+    TempConfig cfg(text);
+    INFO("mutation: '" << e.from << "' -> '" << e.to << "'");
+    try {
+        (void)io::load_case(cfg.path);
+        FAIL("no error raised");
+    } catch (const InputError& err) {
+        INFO(err.what());
+        CHECK(err.file == cfg.path);
+        CHECK_THAT(err.key, Catch::Contains(e.key));
+        CHECK_THAT(err.message, Catch::Contains(e.message));
+        if (!e.line_of.empty()) CHECK(err.line == test_support::line_of(text, e.line_of));
+        CHECK(err.line > 0);
+    }
+}
+}  // namespace
+
+TEST_CASE("bad input names file, line and key", "[config]") {
+    // Each class of bad input from the issue, one mutation each.
+    expect_error({"teeth: 32,", "teeth: -3,", "name: w1", "gears[0].teeth", "at least 5"});
+    expect_error({"module: 3.5 mm, profile_shift: 0.381", "module: 3.5 furlong, profile_shift: 0.381", "name: w1",
+                  "gears[0].module", "unknown unit 'furlong'"});
+    expect_error({"face_width: 35 mm,   helix_angle: 20 deg, hand: right, material: 15CrNi6, Ra: 0.5 um}",
+                  "face_width: 35 kg,   helix_angle: 20 deg, hand: right, material: 15CrNi6, Ra: 0.5 um}", "name: w1",
+                  "gears[0].face_width", "expected m"});
+    expect_error({"module: 3.5 mm, profile_shift: 0.381", "module: 3.5, profile_shift: 0.381", "name: w1",
+                  "gears[0].module", "has no unit"});
+    expect_error({"d: 45 mm, D: 100 mm", "d: 45 mm, D: 40 mm", "B5_NJ309E", "bearings[0].D", "must exceed bore"});
+    // yaml-cpp marks a block mapping at its first key: the error points into the housing block.
+    expect_error({"  oil_volume: 2 L            # seed 001\n", "", "oil_level: -30 mm", "housing",
+                  "missing required key 'oil_volume'"});
+    expect_error({"ambient: 25 degC", "ambient: 25", "ambient: 25", "thermal.ambient", "not a temperature"});
+    expect_error({"face_width: 35 mm,   helix_angle: 20 deg, hand: right, material: 15CrNi6, Ra: 0.5 um}",
+                  "faze_width: 35 mm,   helix_angle: 20 deg, hand: right, material: 15CrNi6, Ra: 0.5 um}", "name: w1",
+                  "gears[0].faze_width", "did you mean 'face_width'"});
+    // Profile shift that makes a pointed tooth (FZG pinion, x = 1.9 with the centre distance
+    // free: tip thickness -0.15 mm despite the tip shortening); the mesh line is named.
+    expect_error({"profile_shift: 0.1817, face_width: 40 mm", "profile_shift: 1.9, face_width: 40 mm", "name: C40",
+                  "meshes[0]", "pointed tooth", "fzg-c40-paor.yaml", ", centre_distance: 91.5 mm", ""});
+    // Too large a profile-shift sum at a fixed centre distance: the contact ratio falls below 1.
+    expect_error({"teeth: 23, module: 3.5 mm, profile_shift: 0.415", "teeth: 23, module: 3.5 mm, profile_shift: 2.4",
+                  "name: m12", "meshes[0]", "contact ratio"});
+    expect_error({"type: needle_roller, d: 38 mm", "type: needle_rollr, d: 38 mm", "N_w4", "bearings[6].type",
+                  "unknown bearing type 'needle_rollr'"});
+    expect_error({"low:  {engage: [w5]", "low:  {engage: [w5, w4]", "input: III", "gearbox", "locked"});
+    expect_error({"ratio: low", "ratio: medium", "ratio: medium", "gearbox.ratio", "unknown ratio 'medium'"});
+    expect_error({"speeds: [600 rpm, 700 rpm, 800 rpm]", "speeds: [600 N*m]", "speeds:", "operating.speeds[0]",
+                  "expected 1/s"});
+}
+
+TEST_CASE("YAML syntax errors and missing files are input errors", "[config]") {
+    TempConfig cfg(test_support::replace_once(base(), "shafts: [III, II, I]", "shafts: [III, II, I"));
+    CHECK_THROWS_AS(io::load_case(cfg.path), InputError);
+    CHECK_THROWS_WITH(io::load_case("/nonexistent/case.yaml"), Catch::Contains("cannot open file"));
+}
+
+TEST_CASE("value lists from the command line", "[config]") {
+    const auto v = io::parse_value_list("600,700,800rpm", units::dim::angular_speed, "--speed", "600rpm");
+    REQUIRE(v.size() == 3);
+    CHECK(v[2] == Catch::Detail::Approx(800 * 3.14159265358979 / 30));
+    const auto t = io::parse_value_list("150 N*m, 0.2 kNm", units::dim::torque, "--torque", "150Nm");
+    CHECK(t[1] == Catch::Detail::Approx(200));
+    CHECK_THROWS_WITH(io::parse_value_list("600,700kg", units::dim::angular_speed, "--speed", "600rpm"),
+                      Catch::Contains("--speed"));
+}

@@ -1,0 +1,44 @@
+#pragma once
+// Helpers shared by the tests: shipped configs and temporary mutated copies.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace test_support {
+
+inline std::string source_path(const std::string& rel) { return std::string(GEARLOSS_SOURCE_DIR) + "/" + rel; }
+
+inline std::string read_file(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// Writes `text` next to the shipped configs (so relative oil paths resolve)
+// and removes it when the object goes out of scope.
+struct TempConfig {
+    std::string path;
+    explicit TempConfig(const std::string& text, const std::string& name = "tmp-test-config.yaml") {
+        path = source_path("configs/" + name);
+        std::ofstream(path) << text;
+    }
+    ~TempConfig() { std::filesystem::remove(path); }
+};
+
+// Replaces the first occurrence of `from`; fails loudly if it is absent so a
+// changed config cannot make a test pass vacuously.
+inline std::string replace_once(std::string s, const std::string& from, const std::string& to) {
+    const auto p = s.find(from);
+    if (p == std::string::npos) throw std::runtime_error("test setup: '" + from + "' not found");
+    return s.replace(p, from.size(), to);
+}
+
+inline int line_of(const std::string& text, const std::string& needle) {
+    const auto p = text.find(needle);
+    if (p == std::string::npos) throw std::runtime_error("test setup: '" + needle + "' not found");
+    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(p), '\n'));
+}
+
+}  // namespace test_support

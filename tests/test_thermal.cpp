@@ -1,0 +1,76 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "io/config.hpp"
+#include "solver/operating_point.hpp"
+#include "test_support.hpp"
+#include "thermal/equilibrium.hpp"
+#include "thermal/heat_rejection.hpp"
+
+using namespace gearloss;
+using Approx = Catch::Detail::Approx;
+
+TEST_CASE("constant loss through a thermal resistance: T = Ta + P R", "[thermal]") {
+    thermal::HeatRejection h{thermal::ThermalResistance{0.1, 0, 0}};
+    const double Ta = 298.15;
+    auto F = [&](double T) { return 300.0 - h.heat_flow(T, Ta, 0); };
+    auto G = [&](double) { return 10.0; };
+    const auto eq = thermal::solve_equilibrium(F, G, Ta);
+    REQUIRE(eq.status == thermal::EquilibriumStatus::ok);
+    CHECK(eq.T == Approx(Ta + 30.0).margin(1e-3));
+    CHECK(std::abs(eq.residual) < 0.02);
+}
+
+TEST_CASE("losses growing faster than heat rejection have no equilibrium", "[thermal]") {
+    // P = 200 + 5 (T - Ta) W against Q = 4 (T - Ta) W: P - Q > 0 at every temperature.
+    const double Ta = 298.15;
+    auto F = [&](double T) { return 200.0 + 5.0 * (T - Ta) - 4.0 * (T - Ta); };
+    auto G = [&](double) { return 4.0; };
+    const auto eq = thermal::solve_equilibrium(F, G, Ta);
+    CHECK(eq.status == thermal::EquilibriumStatus::no_equilibrium);
+}
+
+TEST_CASE("the first stable root is found when two exist", "[thermal]") {
+    // F = 60 - 4x + 0.05 x^2 (x = T - Ta): roots x = 20 (stable, F falls through zero)
+    // and x = 60 (unstable).
+    const double Ta = 298.15;
+    auto F = [&](double T) {
+        const double x = T - Ta;
+        return 60.0 - 4.0 * x + 0.05 * x * x;
+    };
+    auto G = [&](double) { return 4.0; };
+    const auto eq = thermal::solve_equilibrium(F, G, Ta);
+    REQUIRE(eq.status == thermal::EquilibriumStatus::ok);
+    CHECK(eq.T - Ta == Approx(20.0).margin(1e-3));
+}
+
+TEST_CASE("housing radiation and free convection coefficients", "[thermal]") {
+    thermal::HousingSurface s;
+    s.emissivity = 0.9;
+    // 0.9 * 5.670374e-8 * (348.15^2 + 298.15^2) * (348.15 + 298.15) = 6.92976 W/(m^2 K)
+    CHECK(s.radiation_coefficient(348.15, 298.15) == Approx(6.92976).epsilon(1e-5));
+    // Free convection of air on a 0.3 m wall at dT = 50 K: the laminar shortcut
+    // 1.42 (dT/L)^0.25 = 5.09 W/(m^2 K); the full correlation must agree within 10 %.
+    s.height = 0.3;
+    CHECK(s.convection_coefficient(348.15, 298.15) == Approx(5.09).epsilon(0.10));
+}
+
+TEST_CASE("stabilised points satisfy the heat balance; fixed mode skips the solve", "[thermal][solver]") {
+    auto c = io::load_case(test_support::source_path("configs/transfer-box.yaml"));
+    const auto& m = c.model;
+    for (size_t i = 0; i < c.grid.size(); ++i) {
+        const auto [w, T] = c.grid.at(i);
+        const auto r = solver::solve_point(m, w, T);
+        REQUIRE(r.status == solver::PointStatus::ok);
+        const double Q = m.thermal.rejection.heat_flow(r.oil_temperature, r.ambient, w);
+        // Residual at the solution: the bracket is 1e-3 K wide, the conductance ~8 W/K.
+        CHECK(std::abs(r.losses.total() - Q) < 0.05);
+        CHECK(r.oil_temperature > r.ambient);
+    }
+    c.model.thermal.mode = solver::ThermalMode::fixed;
+    c.model.thermal.oil_temperature = 343.15;
+    const auto r = solver::solve_point(c.model, 83.7758, 250);
+    CHECK(r.oil_temperature == 343.15);
+    CHECK(r.losses.total() ==
+          Approx(solver::total_loss(c.model, solver::prepare_point(c.model, 83.7758, 250), 343.15)).epsilon(1e-12));
+}
