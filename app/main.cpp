@@ -1,5 +1,6 @@
 // gearloss command-line interface: a thin layer over the library.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <fmt/format.h>
@@ -74,7 +75,7 @@ void progress_line(size_t done, size_t total) {
 }
 
 int run_map(const Common& c, const std::string& out, int threads, bool detail, const std::string& speeds,
-            const std::string& torques) {
+            const std::string& torques, bool stats) {
     io::Case k = load(c);
     if (!speeds.empty() || !torques.empty()) {
         if (!k.grid.is_grid) {
@@ -93,8 +94,19 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
     opt.threads = threads;
     opt.detail = detail;
     if (::isatty(STDERR_FILENO) && k.grid.size() >= 20000) opt.progress = progress_line;
+    const auto t0 = std::chrono::steady_clock::now();
     const auto results = gearloss::map::run_map(k.model, k.grid, opt);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (io::g_interrupted) return kInterrupted;
+    if (stats) {
+        size_t evals = 0, no_eq = 0;
+        for (const auto& r : results) {
+            evals += static_cast<size_t>(r.evaluations);
+            no_eq += r.status != gearloss::solver::PointStatus::ok;
+        }
+        std::fprintf(stderr, "points %zu, solve %.4f s, %.0f points/s, %.2f loss evaluations/point, %zu without equilibrium\n",
+                     results.size(), seconds, results.size() / seconds, double(evals) / results.size(), no_eq);
+    }
     io::AtomicFile f(out);
     std::string buf = gearloss::map::csv_header(k.model, detail);
     for (const auto& r : results) {
@@ -128,7 +140,7 @@ int main(int argc, char** argv) {
     Common common;
     std::string out = "-", speeds, torques, speed1, torque1;
     int threads = 0;
-    bool detail = false, json = false;
+    bool detail = false, json = false, stats = false;
 
     auto add_common = [&](CLI::App* s) {
         s->add_option("config", common.config, "gearbox case (YAML)")->required();
@@ -141,6 +153,7 @@ int main(int argc, char** argv) {
     map->add_option("-o,--output", out, "output CSV file ('-' = stdout)");
     map->add_option("--threads", threads, "threads (default: all cores)")->check(CLI::Range(1, 1024));
     map->add_flag("--detail", detail, "add a column per mesh, gear, bearing and seal");
+    map->add_flag("--stats", stats, "print solve time, points per second and loss evaluations per point to stderr");
     map->add_option("--speed", speeds, "override the input speeds, e.g. 600,700,800rpm");
     map->add_option("--torque", torques, "override the input torques, e.g. 150,200,250Nm");
     map->footer("Example: gearloss map configs/transfer-75W90.yaml --speed 600,700,800rpm --torque 150,200,250Nm -o out.csv");
@@ -172,7 +185,7 @@ int main(int argc, char** argv) {
     try {
         int rc = kOk;
         if (map->parsed()) {
-            rc = run_map(common, out, threads, detail, speeds, torques);
+            rc = run_map(common, out, threads, detail, speeds, torques, stats);
         } else if (point->parsed()) {
             io::Case k = load(common);
             const double w = single_value(speed1, gearloss::units::dim::angular_speed, "--speed", "800rpm");

@@ -20,16 +20,27 @@ constexpr double rad_s_to_rpm = 30.0 / std::numbers::pi;
 }
 
 PointState prepare_point(const Model& m, double omega_in, double torque_in) {
+    PointState p;
+    prepare_point(m, omega_in, torque_in, p);
+    return p;
+}
+
+void prepare_point(const Model& m, double omega_in, double torque_in, PointState& p) {
     const auto& gb = m.gearbox;
     const auto& L = m.layout;
     const auto& opt = m.options;
-    PointState p;
+    p.meshes.assign(gb.meshes.size(), PointState::MeshState{});
+    p.churn.assign(gb.gears.size(), churning::ChurningAtSpeed{});
+    p.bearings.assign(gb.bearings.size(), bearings::SkfAtPoint{});
+    p.bearing_omega.assign(gb.bearings.size(), 0.0);
+    p.seal_power.assign(gb.seals.size(), 0.0);
+    p.seal_total = 0.0;
+    p.any_drag = false;
     p.omega_in = omega_in;
     p.torque_in = torque_in;
     p.power_in = omega_in * torque_in;
     const double P = std::abs(p.power_in);
 
-    p.meshes.resize(gb.meshes.size());
     for (size_t i = 0; i < gb.meshes.size(); ++i) {
         const auto& md = L.meshes[i];
         auto& ms = p.meshes[i];
@@ -75,7 +86,6 @@ PointState prepare_point(const Model& m, double omega_in, double torque_in) {
         }
     }
 
-    p.churn.resize(gb.gears.size());
     if (opt.churning) {
         for (size_t g = 0; g < gb.gears.size(); ++g) {
             const double h = L.gear_immersion[g];
@@ -93,8 +103,6 @@ PointState prepare_point(const Model& m, double omega_in, double torque_in) {
         }
     }
 
-    p.bearings.resize(gb.bearings.size());
-    p.bearing_omega.resize(gb.bearings.size());
     const bool neg = torque_in < 0.0;
     const double T = std::abs(torque_in);
     for (size_t i = 0; i < gb.bearings.size(); ++i) {
@@ -107,13 +115,11 @@ PointState prepare_point(const Model& m, double omega_in, double torque_in) {
         p.any_drag = p.any_drag || p.bearings[i].drag_b != 0.0;
     }
 
-    p.seal_power.resize(gb.seals.size(), 0.0);
     if (opt.seals)
         for (size_t i = 0; i < gb.seals.size(); ++i) {
             p.seal_power[i] = seals::radial_seal_power(gb.seals[i].diameter, L.seal_speed_ratio[i] * omega_in);
             p.seal_total += p.seal_power[i];
         }
-    return p;
 }
 
 LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubricant::OilState& s, bool detail,
@@ -215,7 +221,9 @@ PointResult solve_point(const Model& m, double omega_in, double torque_in, bool 
     r.speed_in = omega_in;
     r.torque_in = torque_in;
     r.ambient = ambient;
-    const PointState p = prepare_point(m, omega_in, torque_in);
+    // Per-thread storage: a map solves many points per thread without allocating.
+    thread_local PointState p;
+    prepare_point(m, omega_in, torque_in, p);
     r.power_in = p.power_in;
     double T;
     if (m.thermal.mode == ThermalMode::fixed) {

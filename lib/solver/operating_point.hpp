@@ -30,6 +30,8 @@ struct PointState {
 };
 
 PointState prepare_point(const Model& m, double omega_in, double torque_in);
+// Same, reusing the storage of `p` (no allocation once warm).
+void prepare_point(const Model& m, double omega_in, double torque_in, PointState& p);
 
 struct LossBreakdown {
     double mesh = 0, churning = 0, bearings = 0, seals = 0;
