@@ -29,12 +29,12 @@ check "override oil temp" bash -c "cut -d, -f5 '$tmp/o.csv' | tail -n +2 | sort 
 
 # Bad config: exit 2, message names file:line and key, previous output untouched.
 cp "$tmp/map.csv" "$tmp/before.csv"
-sed 's/teeth: 32,/teeth: -3,/' "$src/configs/transfer-box.yaml" > "$src/configs/tmp-cli-bad.yaml"
-"$bin" map "$src/configs/tmp-cli-bad.yaml" -o "$tmp/map.csv" 2> "$tmp/err.txt"
+sed 's/teeth: 32,/teeth: -3,/' "$src/configs/transfer-box.yaml" > "$src/configs/tmp-cli-bad-$$.yaml"
+"$bin" map "$src/configs/tmp-cli-bad-$$.yaml" -o "$tmp/map.csv" 2> "$tmp/err.txt"
 rc=$?
-rm -f "$src/configs/tmp-cli-bad.yaml"
+rm -f "$src/configs/tmp-cli-bad-$$.yaml"
 check "bad config exit 2" test $rc -eq 2
-check "bad config message" grep -qE 'tmp-cli-bad.yaml:[0-9]+:[0-9]+: gears\[0\]\.teeth: ' "$tmp/err.txt"
+check "bad config message" grep -qE 'tmp-cli-bad-[0-9]+.yaml:[0-9]+:[0-9]+: gears\[0\]\.teeth: ' "$tmp/err.txt"
 check "previous output kept" cmp -s "$tmp/map.csv" "$tmp/before.csv"
 check "no temporary left" bash -c "! ls '$tmp' | grep -q '\.tmp\.'"
 

@@ -1,6 +1,10 @@
 #pragma once
 // Helpers shared by the tests: shipped configs and temporary mutated copies.
+#include <algorithm>
+#include <atomic>
 #include <filesystem>
+#include <stdexcept>
+#include <unistd.h>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -17,11 +21,13 @@ inline std::string read_file(const std::string& path) {
 }
 
 // Writes `text` next to the shipped configs (so relative oil paths resolve)
-// and removes it when the object goes out of scope.
+// under a name unique to this process and instance (ctest runs cases in
+// parallel processes), and removes it when the object goes out of scope.
 struct TempConfig {
     std::string path;
-    explicit TempConfig(const std::string& text, const std::string& name = "tmp-test-config.yaml") {
-        path = source_path("configs/" + name);
+    explicit TempConfig(const std::string& text) {
+        static std::atomic<int> counter{0};
+        path = source_path("configs/tmp-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".yaml");
         std::ofstream(path) << text;
     }
     ~TempConfig() { std::filesystem::remove(path); }
