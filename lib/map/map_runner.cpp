@@ -11,7 +11,10 @@ namespace gearloss::map {
 
 namespace {
 constexpr double rpm = 30.0 / std::numbers::pi;
-std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : std::string(); }
+std::string num(double v) {
+    if (!std::isfinite(v)) return {};
+    return fmt::format("{:.6g}", v == 0.0 ? 0.0 : v);  // no "-0" in a spreadsheet
+}
 std::string fixed(double v, int d) { return std::isfinite(v) ? fmt::format("{:.{}f}", v, d) : std::string(); }
 }  // namespace
 

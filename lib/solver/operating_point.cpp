@@ -258,7 +258,9 @@ PointResult solve_point(const Model& m, double omega_in, double torque_in, bool 
         r.torque_out = torque_in / std::abs(m.layout.ratio);  // standstill: ideal torque ratio
     }
     if (r.power_in > 0.0) {
-        r.efficiency = r.power_out / r.power_in;
+        // When the losses exceed the input power no power reaches the output
+        // (power_out < 0 says by how much); the efficiency is then 0, not negative.
+        r.efficiency = std::max(0.0, r.power_out / r.power_in);
         r.has_efficiency = true;
     } else if (r.power_in < 0.0) {
         // Driven from the output: power enters there, |P_in| leaves at the input.
