@@ -161,62 +161,47 @@ lubricant::Oil load_oil_file(const std::string& file) {
     return load_oil(root.has("oil") ? root.at("oil") : root);
 }
 
+namespace {
+// Position where the unit starts in "600rpm" / "1.5e-3 m" (an 'e' followed by a
+// digit or sign belongs to the number); npos when there is no unit.
+size_t unit_start(const std::string& s) {
+    for (size_t u = 0; u < s.size(); ++u) {
+        const char c = s[u];
+        const bool exponent = (c == 'e' || c == 'E') && u + 1 < s.size() &&
+                              (std::isdigit(static_cast<unsigned char>(s[u + 1])) || s[u + 1] == '-' || s[u + 1] == '+');
+        if ((std::isalpha(static_cast<unsigned char>(c)) || c == '%') && !exponent) return u;
+    }
+    return std::string::npos;
+}
+}  // namespace
+
 std::vector<double> parse_value_list(const std::string& text, const units::Dimension& d, const char* what,
                                      const char* example) {
-    // A trailing unit applies to items without their own: "600,700,800rpm".
+    // Items are comma-separated; a unit on the last item applies to items
+    // without one: "600,700,800rpm".
     std::vector<std::string> parts;
     size_t start = 0;
     for (size_t i = 0; i <= text.size(); ++i)
         if (i == text.size() || text[i] == ',') {
-            parts.push_back(text.substr(start, i - start));
+            std::string p = text.substr(start, i - start);
+            p.erase(0, p.find_first_not_of(' '));
+            p.erase(p.find_last_not_of(' ') + 1);
+            parts.push_back(p);
             start = i + 1;
         }
-    std::string unit;
-    {
-        const std::string& last = parts.back();
-        size_t k = 0;
-        while (k < last.size() && (std::isdigit(static_cast<unsigned char>(last[k])) || last[k] == '.' || last[k] == '-' ||
-                                   last[k] == '+' || last[k] == 'e' || last[k] == 'E' || last[k] == ' '))
-            ++k;
-        // 'e' could start a unit-free exponent only when followed by a digit; keep it simple:
-        // everything from the first letter that is not an exponent marker is the unit.
-        size_t u = 0;
-        for (; u < last.size(); ++u) {
-            const char c = last[u];
-            if (std::isalpha(static_cast<unsigned char>(c)) && !((c == 'e' || c == 'E') && u + 1 < last.size() &&
-                                                                 (std::isdigit(static_cast<unsigned char>(last[u + 1])) ||
-                                                                  last[u + 1] == '-' || last[u + 1] == '+')))
-                break;
-        }
-        unit = u < last.size() ? last.substr(u) : "";
-        (void)k;
-    }
+    const size_t u = unit_start(parts.back());
+    const std::string unit = u == std::string::npos ? "" : parts.back().substr(u);
     std::vector<double> out;
-    for (std::string p : parts) {
-        auto trim = [](std::string s) {
-            s.erase(0, s.find_first_not_of(' '));
-            s.erase(s.find_last_not_of(' ') + 1);
-            return s;
-        };
-        p = trim(p);
-        bool has_unit = false;
-        for (size_t u = 0; u < p.size(); ++u) {
-            const char c = p[u];
-            if (std::isalpha(static_cast<unsigned char>(c)) &&
-                !((c == 'e' || c == 'E') && u + 1 < p.size() &&
-                  (std::isdigit(static_cast<unsigned char>(p[u + 1])) || p[u + 1] == '-' || p[u + 1] == '+'))) {
-                has_unit = true;
-                break;
-            }
-        }
-        const std::string q = has_unit ? p : p + " " + unit;
+    for (const auto& p : parts) {
+        if (p.empty()) throw InputError("", 0, 0, what, "empty item in '" + text + "' (expected e.g. '" + example + "')");
+        const std::string q = unit_start(p) == std::string::npos ? p + " " + unit : p;
         units::Quantity v;
         try {
             v = units::parse_quantity(q);
         } catch (const units::UnitError& e) {
             throw InputError("", 0, 0, what, e.msg + " (expected e.g. '" + example + "')");
         }
-        if (v.dim != d)
+        if (v.dim != d || v.absolute_temperature)
             throw InputError("", 0, 0, what,
                              "'" + p + "' has dimension " + units::to_string(v.dim) + ", expected " + units::to_string(d) +
                                  " (e.g. '" + example + "')");
