@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include "core/errors.hpp"
+#include "diagnosis/diagnose.hpp"
+#include "diagnosis/synth.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config.hpp"
 #include "io/reports.hpp"
@@ -63,6 +65,22 @@ double single_value(const std::string& text, const gearloss::units::Dimension& d
     const auto v = io::parse_value_list(text, d, what, ex);
     if (v.size() != 1) throw InputError("", 0, 0, what, "expected one value");
     return v[0];
+}
+
+// "0.4K", "0.4 degC": a temperature difference (the unit's offset removed).
+double temperature_difference(const std::string& text, const char* what) {
+    size_t u = 0;
+    while (u < text.size() && (std::isdigit(static_cast<unsigned char>(text[u])) || text[u] == '.' || text[u] == ' ' ||
+                               text[u] == '+' || text[u] == '-'))
+        ++u;
+    try {
+        const auto f = gearloss::units::parse_unit(text.substr(u));
+        const auto q = gearloss::units::parse_quantity(text);
+        if (f.dim != gearloss::units::dim::temperature) throw gearloss::units::UnitError("not a temperature difference");
+        return q.value - f.offset;
+    } catch (const gearloss::units::UnitError& e) {
+        throw InputError("", 0, 0, what, "'" + text + "': " + e.msg + " (expected e.g. '0.4K')");
+    }
 }
 
 void progress_line(size_t done, size_t total) {
@@ -164,6 +182,35 @@ int main(int argc, char** argv) {
     point->add_option("--torque", torque1, "input torque, e.g. 250Nm")->required();
     point->footer("Example: gearloss point configs/transfer-75W90.yaml --speed 800rpm --torque 250Nm");
 
+    // diagnose
+    std::string recordings, json_out, write_config, residuals_out;
+    int bootstrap = 24;
+    auto* diag = app.add_subcommand("diagnose", "compare recordings with the model, locate the mismatch, name the missing physics");
+    add_common(diag);
+    diag->add_option("recordings", recordings, "recordings CSV: steady points or a raw rig log (time_s column)")->required();
+    diag->add_option("--json", json_out, "write the diagnosis as JSON to this file");
+    diag->add_option("--write-config", write_config, "write the calibrated case file");
+    diag->add_option("--residuals", residuals_out, "write per-point residuals before/after (CSV, for scripts/plot-residuals.py)");
+    diag->add_option("--bootstrap", bootstrap, "bootstrap resamples for the stability check")->check(CLI::Range(4, 1000));
+    diag->add_option("--threads", threads, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+    diag->footer("Example: gearloss diagnose configs/transfer-box.yaml recordings.csv --json diag.json --write-config calibrated.yaml");
+
+    // synth
+    std::vector<std::string> effects;
+    std::string noise_loss = "1.5%", noise_temp = "0.4 K", format = "steady";
+    unsigned seed = 1;
+    auto* synth = app.add_subcommand("synth", "synthetic recordings from the model with concealed effects and noise");
+    add_common(synth);
+    synth->add_option("--effect", effects, "concealed effect NAME=VALUE (repeatable), e.g. windage=30W, torque_sensor_gain=1.03, unstabilised_test=2");
+    synth->add_option("--noise-loss", noise_loss, "loss noise, one standard deviation (e.g. 1.5%)");
+    synth->add_option("--noise-temp", noise_temp, "oil temperature noise (e.g. 0.4K)");
+    synth->add_option("--seed", seed, "random seed");
+    synth->add_option("--format", format, "steady (points) or log (0.5 Hz rig log)")->check(CLI::IsMember({"steady", "log"}));
+    synth->add_option("--speed", speeds, "override the input speeds");
+    synth->add_option("--torque", torques, "override the input torques");
+    synth->add_option("-o,--output", out, "output CSV ('-' = stdout)");
+    synth->footer("Example: gearloss synth configs/transfer-box.yaml --effect windage=25W --seed 3 -o rec.csv");
+
     auto* check = app.add_subcommand("check", "validate a case and print derived data (geometry, H_V, speeds, oil)");
     add_common(check);
     check->add_flag("--json", json, "print the derived data as JSON");
@@ -192,6 +239,52 @@ int main(int argc, char** argv) {
             const double T = single_value(torque1, gearloss::units::dim::torque, "--torque", "250Nm");
             const auto r = gearloss::solver::solve_point(k.model, w, T, true);
             std::fputs(io::point_report(k, r).c_str(), stdout);
+        } else if (diag->parsed()) {
+            io::Case k = load(common);
+            const auto rec = gearloss::diagnosis::read_recordings(recordings);
+            gearloss::diagnosis::DiagnoseOptions dopt;
+            dopt.bootstrap = bootstrap;
+            dopt.threads = threads;
+            gearloss::diagnosis::Diagnosis d;
+            try {
+                d = gearloss::diagnosis::diagnose(k.model, rec, dopt);
+            } catch (const std::invalid_argument& e) {
+                throw InputError(recordings, 0, 0, "", e.what());
+            }
+            std::fputs(gearloss::diagnosis::diagnosis_text(d).c_str(), stdout);
+            if (!json_out.empty()) {
+                io::AtomicFile f(json_out);
+                f.write(gearloss::diagnosis::diagnosis_json(d));
+                f.commit();
+            }
+            if (!residuals_out.empty()) {
+                io::AtomicFile f(residuals_out);
+                f.write(gearloss::diagnosis::residuals_csv(d));
+                f.commit();
+            }
+            if (!write_config.empty()) gearloss::diagnosis::write_calibrated_config(common.config, write_config, d);
+        } else if (synth->parsed()) {
+            io::Case k = load(common);
+            if (!speeds.empty())
+                k.grid.speeds = io::parse_value_list(speeds, gearloss::units::dim::angular_speed, "--speed", "600,700rpm");
+            if (!torques.empty())
+                k.grid.torques = io::parse_value_list(torques, gearloss::units::dim::torque, "--torque", "150,200Nm");
+            if ((!speeds.empty() || !torques.empty()) && !k.grid.is_grid)
+                throw InputError("", 0, 0, "--speed", "the case lists points; --speed/--torque need a speeds x torques grid");
+            gearloss::diagnosis::SynthOptions so;
+            for (const auto& e : effects) so.effects.push_back(gearloss::diagnosis::parse_effect_assignment(e));
+            const double nl = single_value(noise_loss, gearloss::units::dim::none, "--noise-loss", "1.5%");
+            const double nt = temperature_difference(noise_temp, "--noise-temp");
+            if (nl < 0 || nl > 0.5) throw InputError("", 0, 0, "--noise-loss", "must be between 0 and 50 %");
+            if (nt < 0 || nt > 20) throw InputError("", 0, 0, "--noise-temp", "must be between 0 and 20 K");
+            so.noise_loss = nl;
+            so.noise_temp = nt;
+            so.seed = seed;
+            so.raw_log = format == "log";
+            const std::string csv = gearloss::diagnosis::synthesize(k.model, k.grid, so);
+            io::AtomicFile f(out);
+            f.write(csv);
+            f.commit();
         } else if (check->parsed()) {
             io::Case k = load(common);
             std::fputs((json ? io::check_json(k) : io::check_report(k)).c_str(), stdout);

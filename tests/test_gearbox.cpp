@@ -90,6 +90,7 @@ TEST_CASE("energy balance at every point: P_out = P_in - sum of losses", "[solve
             for (double v : r.losses.churn_each) sum += v;
             for (double v : r.losses.bearing_each) sum += v;
             for (double v : r.losses.seal_each) sum += v;
+            sum += r.losses.windage + r.losses.auxiliary;
             CHECK(r.power_out == Approx(r.power_in - sum).epsilon(1e-9));
             // Output torque times output speed gives the same power (torque balance).
             CHECK(r.torque_out * std::abs(r.omega_out) == Approx(r.power_out).epsilon(1e-9));

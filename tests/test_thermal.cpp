@@ -62,7 +62,7 @@ TEST_CASE("stabilised points satisfy the heat balance; fixed mode skips the solv
         const auto [w, T] = c.grid.at(i);
         const auto r = solver::solve_point(m, w, T);
         REQUIRE(r.status == solver::PointStatus::ok);
-        const double Q = m.thermal.rejection.heat_flow(r.oil_temperature, r.ambient, w);
+        const double Q = m.heat_flow(r.oil_temperature, r.ambient, w);
         // Residual at the solution: the bracket is 1e-3 K wide, the conductance ~8 W/K.
         CHECK(std::abs(r.losses.total() - Q) < 0.05);
         CHECK(r.oil_temperature > r.ambient);

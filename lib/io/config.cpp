@@ -521,7 +521,11 @@ void load_options(const YamlNode& n, solver::LossOptions& o) {
 }
 
 void load_thermal(const YamlNode& n, solver::ThermalSettings& t) {
-    n.allow_keys({"mode", "oil_temperature", "ambient", "heat_rejection", "max_oil_temperature"});
+    n.allow_keys({"mode", "oil_temperature", "ambient", "heat_rejection", "max_oil_temperature", "heat_capacity"});
+    if (auto hc = n.get("heat_capacity")) {
+        t.heat_capacity = hc->as_quantity(units::dim::heat_capacity, "25 kJ/K");
+        if (!(t.heat_capacity > 0)) hc->fail("heat capacity must be positive");
+    }
     t.ambient = n.at("ambient").as_temperature();
     t.mode = n.has("mode") ? n.at("mode").as_enum<solver::ThermalMode>({{"stabilised", solver::ThermalMode::stabilised},
                                                                         {"stabilized", solver::ThermalMode::stabilised},
@@ -567,6 +571,32 @@ void load_thermal(const YamlNode& n, solver::ThermalSettings& t) {
     }
 }
 
+void load_calibration(const YamlNode& n, solver::Calibration& c) {
+    n.allow_keys({"windage", "churning_factor", "bearing_drag_f0", "seal_factor", "mesh_friction_factor",
+                  "viscosity_factor", "heat_rejection_factor", "cooling_per_1000rpm", "auxiliary", "note"});
+    auto factor = [&](const char* key, double& v, double lo, double hi) {
+        if (auto x = n.get(key)) {
+            v = x->as_number();
+            if (!(v >= lo && v <= hi)) x->fail(fmt::format("must be in [{}, {}]", lo, hi));
+        }
+    };
+    if (auto x = n.get("windage")) {
+        c.windage_W_at_1000rpm = x->as_quantity(units::dim::power, "12 W");
+        if (c.windage_W_at_1000rpm < 0) x->fail("windage loss at 1000 rpm cannot be negative");
+    }
+    if (auto x = n.get("auxiliary")) {
+        c.auxiliary_W = x->as_quantity(units::dim::power, "20 W");
+        if (c.auxiliary_W < 0) x->fail("auxiliary loss cannot be negative");
+    }
+    factor("churning_factor", c.churning_factor, 0, 100);
+    factor("bearing_drag_f0", c.bearing_drag_f0, 0, 100);
+    factor("seal_factor", c.seal_factor, 0, 100);
+    factor("mesh_friction_factor", c.mesh_friction_factor, 0.05, 20);
+    factor("viscosity_factor", c.viscosity_factor, 0.05, 20);
+    factor("heat_rejection_factor", c.heat_rejection_factor, 0.05, 20);
+    factor("cooling_per_1000rpm", c.cooling_per_1000rpm, -0.95, 50);
+}
+
 std::vector<double> load_axis(const YamlNode& n, const units::Dimension& d, const char* example) {
     std::vector<double> v;
     if (n.is_sequence()) {
@@ -591,7 +621,7 @@ Case load_case(const std::string& file, const std::optional<std::string>& ratio_
     c.file = file;
     const YamlNode root = YamlNode::load_file(file);
     root.allow_keys({"name", "description", "oil", "materials", "shafts", "gears", "meshes", "bearings", "seals",
-                     "housing", "thermal", "gearbox", "operating", "options"});
+                     "housing", "thermal", "gearbox", "operating", "options", "calibration"});
     auto& m = c.model;
     m.name = root.has("name") ? root.at("name").as_string() : fs::path(file).stem().string();
 
@@ -651,6 +681,7 @@ Case load_case(const std::string& file, const std::optional<std::string>& ratio_
 
     load_thermal(root.at("thermal"), m.thermal);
     if (auto o = root.get("options")) load_options(*o, m.options);
+    if (auto cal = root.get("calibration")) load_calibration(*cal, m.calibration);
 
     const YamlNode op = root.at("operating");
     op.allow_keys({"speeds", "torques", "points"});

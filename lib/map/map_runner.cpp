@@ -43,7 +43,7 @@ std::vector<solver::PointResult> run_map(const solver::Model& m, const io::Opera
 std::string csv_header(const solver::Model& m, bool detail) {
     std::string h =
         "speed_in_rpm,torque_in_Nm,power_in_W,ambient_temp_C,oil_temp_C,P_mesh_W,P_churn_W,P_bearing_W,P_seal_W,"
-        "P_total_W,power_out_W,torque_out_Nm,efficiency,lambda_min,status";
+        "P_aux_W,P_total_W,power_out_W,torque_out_Nm,efficiency,lambda_min,status";
     if (detail) {
         const auto& gb = m.gearbox;
         for (const auto& me : gb.meshes)
@@ -61,12 +61,12 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
                                 fixed(r.ambient - 273.15, 2));
     if (ok) {
         const auto& L = r.losses;
-        s += fmt::format("{},{},{},{},{},{},{},{},{},{},", fixed(r.oil_temperature - 273.15, 3), num(L.mesh),
-                         num(L.churning), num(L.bearings), num(L.seals), num(L.total()), num(r.power_out),
+        s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},", fixed(r.oil_temperature - 273.15, 3), num(L.mesh),
+                         num(L.churning), num(L.bearings), num(L.seals), num(L.auxiliary), num(L.total()), num(r.power_out),
                          num(r.torque_out), r.has_efficiency ? fmt::format("{:.6f}", r.efficiency) : std::string(),
                          L.has_lambda ? num(L.lambda_min) : std::string());
     } else {
-        s += ",,,,,,,,,,";
+        s += ",,,,,,,,,,,";
     }
     s += solver::to_string(r.status);
     if (detail) {

@@ -24,6 +24,22 @@ struct LossOptions {
     double gear_mu_bl = 0.10, gear_mu_ehl = 0.02;  // boundary / full-film pair of the mixed model
 };
 
+// Terms a calibration (`gearloss diagnose`) adds to the nominal physics; the
+// neutral values leave the model unchanged. Each is evaluated inside every loss
+// evaluation and every thermal solve, so an added loss also heats the oil.
+struct Calibration {
+    double windage_W_at_1000rpm = 0;  // air/oil-mist drag P = C (n_in/1000 rpm)^2.9
+    double churning_factor = 1;       // scales every churning loss
+    double bearing_drag_f0 = 0;       // Palmgren no-load moment M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm] per bearing
+    double seal_factor = 1;           // scales every seal loss
+    double mesh_friction_factor = 1;  // scales mu_mZ (an X_L error)
+    double viscosity_factor = 1;      // scales the kinematic viscosity at every temperature
+    double heat_rejection_factor = 1; // scales the heat flow to ambient
+    double cooling_per_1000rpm = 0;   // heat flow x (1 + a n_in/1000 rpm): forced convection from rotation
+    double auxiliary_W = 0;           // constant parasitic loss (pump, ...)
+    bool neutral() const;
+};
+
 enum class ThermalMode { stabilised, fixed };
 
 struct ThermalSettings {
@@ -32,6 +48,7 @@ struct ThermalSettings {
     double ambient = 298.15;          // K
     thermal::HeatRejection rejection;
     thermal::EquilibriumOptions equilibrium;
+    double heat_capacity = 0;         // J/K of oil + housing (transient warm-up); 0 = not given
 };
 
 struct Model {
@@ -41,9 +58,14 @@ struct Model {
     lubricant::Oil oil;
     LossOptions options;
     ThermalSettings thermal;
+    Calibration calibration;
     // Mean entrainment-independent data of each mesh computed once.
     std::vector<double> mesh_E_prime;  // Pa
     void finalise();  // derive layout and per-mesh constants; throws on bad topology
+    // Oil state with the calibration's viscosity factor applied.
+    lubricant::OilState oil_state(double T) const;
+    // Heat flow to ambient [W] with the calibration applied.
+    double heat_flow(double T_oil, double T_amb, double omega_in) const;
 };
 
 }  // namespace gearloss::solver

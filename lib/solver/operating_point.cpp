@@ -36,6 +36,9 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
     p.seal_power.assign(gb.seals.size(), 0.0);
     p.seal_total = 0.0;
     p.any_drag = false;
+    p.bearing_drag_coef.assign(gb.bearings.size(), 0.0);
+    const Calibration& cal = m.calibration;
+    p.windage = cal.windage_W_at_1000rpm * std::pow(std::abs(omega_in) * rad_s_to_rpm / 1000.0, 2.9);
     p.omega_in = omega_in;
     p.torque_in = torque_in;
     p.power_in = omega_in * torque_in;
@@ -112,12 +115,18 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
         const double Fr = T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]);
         const double Fa = T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]);
         p.bearings[i] = bearings::SkfAtPoint::make(gb.bearings[i].spec, Fr, Fa, w * rad_s_to_rpm);
+        if (cal.bearing_drag_f0 > 0.0) {
+            // Palmgren (1959) no-load moment M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm], P = M0 omega.
+            const double n = w * rad_s_to_rpm, dm = gb.bearings[i].spec.dm();
+            p.bearing_drag_coef[i] = 1e-7 * cal.bearing_drag_f0 * std::cbrt(n * n) * dm * dm * dm * 1e-3 * w;
+        }
         p.any_drag = p.any_drag || p.bearings[i].drag_b != 0.0;
     }
 
     if (opt.seals)
         for (size_t i = 0; i < gb.seals.size(); ++i) {
-            p.seal_power[i] = seals::radial_seal_power(gb.seals[i].diameter, L.seal_speed_ratio[i] * omega_in);
+            p.seal_power[i] = cal.seal_factor *
+                              seals::radial_seal_power(gb.seals[i].diameter, L.seal_speed_ratio[i] * omega_in);
             p.seal_total += p.seal_power[i];
         }
 }
@@ -146,14 +155,14 @@ LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubrica
     for (size_t i = 0; i < p.meshes.size(); ++i) {
         const auto& ms = p.meshes[i];
         if (ms.power == 0.0) continue;
-        double mu = ms.mu_prefactor * eta_factor;
+        double mu = ms.mu_prefactor * eta_factor * m.calibration.mesh_friction_factor;
         if (need_film) {
             const mesh::Film f =
                 mesh::line_contact_film(ms.contact, s.eta, s.alpha_p, s.beta_T, s.k, opt.film_correction);
             const double lambda = f.h_c / ms.sigma;
             if (opt.friction == mesh::FrictionModel::fernandes_mixed) {
                 const double xi = mesh::boundary_share_doleschel(lambda);
-                mu = xi * opt.gear_mu_bl + (1.0 - xi) * opt.gear_mu_ehl;
+                mu = (xi * opt.gear_mu_bl + (1.0 - xi) * opt.gear_mu_ehl) * m.calibration.mesh_friction_factor;
             }
             if (!has_lambda || lambda < lambda_min) lambda_min = lambda;
             has_lambda = true;
@@ -185,7 +194,7 @@ LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubrica
             const auto& c = p.churn[g];
             if (c.coef_low == 0.0 && c.coef_high == 0.0) continue;
             churning::Regime reg;
-            const double P = c.torque(s.rho, s.nu, nu021, &reg) * c.omega;
+            const double P = m.calibration.churning_factor * c.torque(s.rho, s.nu, nu021, &reg) * c.omega;
             r.churning += P;
             if (detail) {
                 r.churn_each[g] = P;
@@ -207,13 +216,33 @@ LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubrica
         }
     }
 
+    r.windage = p.windage;
+    r.churning += p.windage;
+    if (m.calibration.bearing_drag_f0 > 0.0) {
+        const double nu23 = std::cbrt(nu * nu);
+        for (size_t i = 0; i < p.bearing_drag_coef.size(); ++i) {
+            const double P = p.bearing_drag_coef[i] * nu23;
+            r.bearings += P;
+            if (detail) r.bearing_each[i] += P;
+        }
+    }
     r.seals = p.seal_total;
     if (detail) r.seal_each = p.seal_power;
+    if (p.omega_in != 0.0) r.auxiliary = m.calibration.auxiliary_W;
     return r;
 }
 
 double total_loss(const Model& m, const PointState& p, double T_oil) {
-    return evaluate_losses(m, p, m.oil.state(T_oil), false).total();
+    return evaluate_losses(m, p, m.oil_state(T_oil), false).total();
+}
+
+thermal::Equilibrium solve_temperature(const Model& m, const PointState& p, double ambient) {
+    auto F = [&](double Toil) { return total_loss(m, p, Toil) - m.heat_flow(Toil, ambient, p.omega_in); };
+    auto G = [&](double Toil) {
+        const double Tq = std::max(Toil, ambient + 0.5);
+        return m.heat_flow(Tq, ambient, p.omega_in) / (Tq - ambient);
+    };
+    return thermal::solve_equilibrium(F, G, ambient, m.thermal.equilibrium);
 }
 
 PointResult solve_point(const Model& m, double omega_in, double torque_in, bool detail, double ambient) {
@@ -229,13 +258,7 @@ PointResult solve_point(const Model& m, double omega_in, double torque_in, bool 
     if (m.thermal.mode == ThermalMode::fixed) {
         T = m.thermal.oil_temperature;
     } else {
-        const auto& rej = m.thermal.rejection;
-        auto F = [&](double Toil) { return total_loss(m, p, Toil) - rej.heat_flow(Toil, ambient, omega_in); };
-        auto G = [&](double Toil) {
-            const double Tq = std::max(Toil, ambient + 0.5);
-            return rej.heat_flow(Tq, ambient, omega_in) / (Tq - ambient);
-        };
-        const thermal::Equilibrium eq = thermal::solve_equilibrium(F, G, ambient, m.thermal.equilibrium);
+        const thermal::Equilibrium eq = solve_temperature(m, p, ambient);
         r.evaluations = eq.evaluations;
         r.thermal_residual = eq.residual;
         if (eq.status == thermal::EquilibriumStatus::no_equilibrium) {
@@ -246,7 +269,7 @@ PointResult solve_point(const Model& m, double omega_in, double torque_in, bool 
         T = eq.T;
     }
     r.oil_temperature = T;
-    r.losses = evaluate_losses(m, p, m.oil.state(T), detail, true);
+    r.losses = evaluate_losses(m, p, m.oil_state(T), detail, true);
     const double Ploss = r.losses.total();
     r.power_out = r.power_in - Ploss;
     r.omega_out = m.layout.ratio * omega_in;

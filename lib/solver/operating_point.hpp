@@ -27,6 +27,9 @@ struct PointState {
     std::vector<double> seal_power;                     // per seal, oil independent
     double seal_total = 0;
     bool any_drag = false;
+    // Calibration terms fixed by the point.
+    double windage = 0;                       // W
+    std::vector<double> bearing_drag_coef;    // W per (nu_cSt)^(2/3), per bearing
 };
 
 PointState prepare_point(const Model& m, double omega_in, double torque_in);
@@ -34,8 +37,9 @@ PointState prepare_point(const Model& m, double omega_in, double torque_in);
 void prepare_point(const Model& m, double omega_in, double torque_in, PointState& p);
 
 struct LossBreakdown {
-    double mesh = 0, churning = 0, bearings = 0, seals = 0;
-    double total() const { return mesh + churning + bearings + seals; }
+    double mesh = 0, churning = 0, bearings = 0, seals = 0, auxiliary = 0;  // churning includes windage
+    double windage = 0;  // part of `churning` from the calibration's windage term
+    double total() const { return mesh + churning + bearings + seals + auxiliary; }
     // Per component (filled only when detail is requested).
     std::vector<double> mesh_each, mesh_mu, mesh_lambda, mesh_hmin, mesh_hc;
     std::vector<double> churn_each, bearing_each, seal_each;
@@ -50,6 +54,9 @@ LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubrica
                               bool film = false);
 // Total loss only (the hot path of the thermal solve).
 double total_loss(const Model& m, const PointState& p, double T_oil);
+
+// Stabilised oil temperature of a prepared point (the thermal solve alone).
+thermal::Equilibrium solve_temperature(const Model& m, const PointState& p, double ambient_K);
 
 enum class PointStatus { ok, no_equilibrium };
 const char* to_string(PointStatus s);

@@ -1,0 +1,277 @@
+#include "diagnosis/recordings.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <map>
+#include <numbers>
+
+#include "core/errors.hpp"
+
+namespace gearloss::diagnosis {
+
+namespace {
+
+constexpr double rpm = std::numbers::pi / 30.0;
+
+std::vector<std::string> split_csv(const std::string& line) {
+    std::vector<std::string> out;
+    std::string cur;
+    bool quoted = false;
+    for (char c : line) {
+        if (c == '"') quoted = !quoted;
+        else if (c == ',' && !quoted) {
+            out.push_back(cur);
+            cur.clear();
+        } else if (c != '\r') cur += c;
+    }
+    out.push_back(cur);
+    for (auto& s : out) {
+        s.erase(0, s.find_first_not_of(" \t"));
+        s.erase(s.find_last_not_of(" \t") + 1);
+    }
+    return out;
+}
+
+// Column name -> (canonical key, scale to SI, offset).
+struct ColumnDef {
+    const char* name;
+    const char* key;
+    double scale, offset;
+};
+constexpr ColumnDef kColumns[] = {
+    {"speed_in_rpm", "speed_in", rpm, 0},     {"torque_in_Nm", "torque_in", 1, 0},
+    {"P_loss_W", "loss", 1, 0},               {"P_loss_kW", "loss", 1e3, 0},
+    {"oil_temp_C", "oil", 1, 273.15},         {"ambient_temp_C", "ambient", 1, 273.15},
+    {"room_temp_C", "ambient", 1, 273.15},    {"torque_out_Nm", "torque_out", 1, 0},
+    {"speed_out_rpm", "speed_out", rpm, 0},   {"time_s", "time", 1, 0},
+    {"time_min", "time", 60, 0},              {"wall_temp_C", "wall", 1, 273.15},
+    {"label", "label", 1, 0},
+};
+
+struct Table {
+    std::vector<std::string> header;
+    std::map<std::string, size_t> col;  // key -> column index
+    std::vector<std::vector<std::string>> rows;
+    std::vector<int> lines;
+};
+
+Table read_table(const std::string& file, std::vector<std::string>& warnings) {
+    std::ifstream in(file);
+    if (!in) throw InputError(file, 0, 0, "", "cannot open recordings file");
+    std::string line;
+    int ln = 0;
+    Table t;
+    std::vector<std::string> header;
+    while (std::getline(in, line)) {
+        ++ln;
+        if (line.empty() || line[0] == '#') continue;
+        if (line.size() >= 3 && static_cast<unsigned char>(line[0]) == 0xEF) line = line.substr(3);  // UTF-8 BOM
+        header = split_csv(line);
+        break;
+    }
+    if (header.empty()) throw InputError(file, ln, 0, "", "no header line");
+    t.header = header;
+    for (size_t i = 0; i < header.size(); ++i) {
+        const ColumnDef* def = nullptr;
+        for (const auto& c : kColumns)
+            if (header[i] == c.name) def = &c;
+        if (!def) {
+            warnings.push_back(fmt::format("{}:{}: unknown column '{}' ignored", file, ln, header[i]));
+            continue;
+        }
+        if (t.col.count(def->key))
+            throw InputError(file, ln, static_cast<int>(i + 1), header[i], "column duplicates another for the same quantity");
+        t.col[def->key] = i;
+    }
+    while (std::getline(in, line)) {
+        ++ln;
+        if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r,") == std::string::npos) continue;
+        auto cells = split_csv(line);
+        if (cells.size() != header.size())
+            throw InputError(file, ln, 0, "", fmt::format("row has {} cells, the header has {}", cells.size(), header.size()));
+        t.rows.push_back(std::move(cells));
+        t.lines.push_back(ln);
+    }
+    if (t.rows.empty()) throw InputError(file, ln, 0, "", "no data rows");
+    return t;
+}
+
+// Value of `key` in row r, converted to SI by the definition of its header.
+double cell(const std::string& file, const Table& t, size_t r, const std::string& key, bool* present = nullptr) {
+    const auto it = t.col.find(key);
+    if (it == t.col.end() || (present && t.rows[r][it->second].empty())) {
+        if (present) *present = false;
+        return 0;
+    }
+    const std::string& s = t.rows[r][it->second];
+    const std::string& name = t.header[it->second];
+    double v = 0;
+    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || p != s.data() + s.size() || !std::isfinite(v))
+        throw InputError(file, t.lines[r], static_cast<int>(it->second + 1), name, "'" + s + "' is not a number");
+    if (present) *present = true;
+    for (const auto& c : kColumns)
+        if (name == c.name) return v * c.scale + c.offset;
+    return v;
+}
+
+void require(const std::string& file, const Table& t, const char* key, const char* name) {
+    if (!t.col.count(key)) throw InputError(file, 1, 0, name, std::string("required column '") + name + "' is missing");
+}
+
+}  // namespace
+
+Recordings read_recordings(const std::string& file, const StabilisationCriterion& crit) {
+    Recordings rec;
+    rec.file = file;
+    Table t = read_table(file, rec.warnings);
+    auto get = [&](size_t r, const char* key, bool* present = nullptr) { return cell(file, t, r, key, present); };
+
+    require(file, t, "speed_in", "speed_in_rpm");
+    require(file, t, "torque_in", "torque_in_Nm");
+    if (!t.col.count("time")) {
+        if (!t.col.count("loss") && !(t.col.count("torque_out") && t.col.count("speed_out")))
+            throw InputError(file, 1, 0, "P_loss_W",
+                             "required column 'P_loss_W' is missing (or give torque_out_Nm and speed_out_rpm)");
+        for (size_t r = 0; r < t.rows.size(); ++r) {
+            RecordedPoint p;
+            p.row = static_cast<int>(r + 1);
+            p.line = t.lines[r];
+            p.speed_in = get(r, "speed_in");
+            p.torque_in = get(r, "torque_in");
+            bool has = false;
+            double v = get(r, "oil", &has);
+            if (has) p.oil_temp = v;
+            v = get(r, "ambient", &has);
+            if (has) p.ambient_temp = v;
+            v = get(r, "torque_out", &has);
+            if (has) p.torque_out = v;
+            v = get(r, "speed_out", &has);
+            if (has) p.speed_out = v;
+            v = get(r, "loss", &has);
+            if (has) p.loss = v;
+            else if (p.torque_out && p.speed_out)
+                p.loss = p.torque_in * p.speed_in - std::abs(*p.torque_out * *p.speed_out);
+            else
+                throw InputError(file, p.line, 0, "P_loss_W", "empty loss cell and no output torque and speed");
+            if (t.col.count("label")) p.label = t.rows[r][t.col["label"]];
+            if (p.speed_in < 0) throw InputError(file, p.line, 0, "speed_in_rpm", "negative speed");
+            if (p.oil_temp && *p.oil_temp <= 0) throw InputError(file, p.line, 0, "oil_temp_C", "below absolute zero");
+            rec.points.push_back(p);
+        }
+        return rec;
+    }
+
+    // Raw log: split into tests at set-point changes, keep the last 30 min of each.
+    rec.from_log = true;
+    for (const char* k : {"speed_out", "torque_out", "oil"})
+        if (!t.col.count(k))
+            throw InputError(file, 1, 0, k, std::string("a raw log needs the column for '") + k +
+                                                "' (speed_out_rpm, torque_out_Nm, oil_temp_C)");
+    require(file, t, "ambient", "room_temp_C");
+    struct Sample {
+        double time, n, T, n_out, T_out, oil, room;
+        int line;
+    };
+    std::vector<Sample> s;
+    for (size_t r = 0; r < t.rows.size(); ++r) {
+        Sample x{get(r, "time"), get(r, "speed_in"), get(r, "torque_in"), get(r, "speed_out"),
+                 get(r, "torque_out"), get(r, "oil"), get(r, "ambient"), t.lines[r]};
+        if (!s.empty() && !(x.time > s.back().time))
+            throw InputError(file, x.line, 0, "time_s", "time must increase from row to row");
+        s.push_back(x);
+    }
+    // A new test starts when speed or torque leaves the current set-point for
+    // 10 consecutive samples (20 s at 0.5 Hz); the set-point is the running mean.
+    std::vector<std::pair<size_t, size_t>> tests;
+    size_t start = 0, off = 0;
+    double sum_n = 0, sum_T = 0;
+    size_t count = 0;
+    for (size_t i = 0; i < s.size(); ++i) {
+        if (count > 0) {
+            const double n_ref = sum_n / count, T_ref = sum_T / count;
+            const bool away = std::abs(s[i].n - n_ref) > std::max(0.03 * std::abs(n_ref), 5 * rpm) ||
+                              std::abs(s[i].T - T_ref) > std::max(0.05 * std::abs(T_ref), 3.0);
+            off = away ? off + 1 : 0;
+            if (off >= 10) {
+                const size_t cut = i + 1 - off;
+                tests.push_back({start, cut});
+                start = cut;
+                sum_n = sum_T = 0;
+                count = 0;
+                for (size_t j = cut; j <= i; ++j) {
+                    sum_n += s[j].n;
+                    sum_T += s[j].T;
+                    ++count;
+                }
+                off = 0;
+                continue;
+            }
+            if (away) continue;
+        }
+        sum_n += s[i].n;
+        sum_T += s[i].T;
+        ++count;
+    }
+    tests.push_back({start, s.size()});
+    int number = 0;
+    for (const auto& [a, b] : tests) {
+        if (b - a < 2) continue;
+        ++number;
+        RecordedPoint p;
+        p.row = number;
+        p.line = s[a].line;
+        p.label = fmt::format("test {} (lines {}-{})", number, s[a].line, s[b - 1].line);
+        const double t_end = s[b - 1].time;
+        const double duration = t_end - s[a].time;
+        size_t w0 = a;
+        while (w0 < b && s[w0].time < t_end - crit.window_s) ++w0;
+        double n = 0, T = 0, no = 0, To = 0, oil = 0, room = 0, loss = 0;
+        for (size_t j = w0; j < b; ++j) {
+            n += s[j].n;
+            T += s[j].T;
+            no += s[j].n_out;
+            To += s[j].T_out;
+            oil += s[j].oil;
+            room += s[j].room;
+            loss += s[j].T * s[j].n - std::abs(s[j].T_out * s[j].n_out);
+        }
+        const double k = static_cast<double>(b - w0);
+        p.speed_in = n / k;
+        p.torque_in = T / k;
+        p.speed_out = no / k;
+        p.torque_out = To / k;
+        p.oil_temp = oil / k;
+        p.ambient_temp = room / k;
+        p.loss = loss / k;
+        // Criterion: 5-min block means of (T_oil - T_room) over the last 30 min vary < 0.5 K.
+        double lo = 1e300, hi = -1e300;
+        for (double b0 = t_end - crit.window_s; b0 < t_end - 1e-9; b0 += crit.block_s) {
+            double sum = 0;
+            int m = 0;
+            for (size_t j = w0; j < b; ++j)
+                if (s[j].time >= b0 && s[j].time < b0 + crit.block_s + 1e-9) {
+                    sum += s[j].oil - s[j].room;
+                    ++m;
+                }
+            if (m == 0) continue;
+            lo = std::min(lo, sum / m);
+            hi = std::max(hi, sum / m);
+        }
+        p.stabilisation_drift = hi - lo;
+        p.stabilised = duration >= crit.window_s - 1e-6 && p.stabilisation_drift < crit.max_variation;
+        if (!p.stabilised)
+            rec.warnings.push_back(fmt::format(
+                "{}: test {} at {:.0f} rpm / {:.0f} N m never stabilised ((T_oil - T_room) varied {:.2f} K over the "
+                "last {:.0f} min; criterion < {:.1f} K)",
+                file, number, p.speed_in / rpm, p.torque_in, p.stabilisation_drift,
+                std::min(duration, crit.window_s) / 60, crit.max_variation));
+        rec.points.push_back(p);
+    }
+    return rec;
+}
+
+}  // namespace gearloss::diagnosis

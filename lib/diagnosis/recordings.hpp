@@ -1,0 +1,42 @@
+#pragma once
+// Rig recordings: steady points, or a raw log split into tests and reduced by
+// the stabilisation criterion of seed 001 (Pereira 2017, §3.5.2).
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gearloss::diagnosis {
+
+struct RecordedPoint {
+    int row = 0;                  // data row in the source file (1 = first data line); tests: test number
+    int line = 0;                 // line in the file (for messages)
+    std::string label;
+    double speed_in = 0;          // rad/s
+    double torque_in = 0;         // N m (as recorded)
+    double loss = 0;              // W (as recorded)
+    std::optional<double> oil_temp;      // K
+    std::optional<double> ambient_temp; // K
+    std::optional<double> torque_out, speed_out;
+    bool stabilised = true;       // false: a log test that failed the criterion
+    double stabilisation_drift = 0;  // K over the last 30 min (log tests)
+};
+
+struct Recordings {
+    std::string file;
+    bool from_log = false;
+    std::vector<RecordedPoint> points;
+    std::vector<std::string> warnings;
+};
+
+struct StabilisationCriterion {
+    double window_s = 1800;      // 30 min
+    double block_s = 300;        // 5-min blocks averaged, then compared
+    double max_variation = 0.5;  // K of (T_oil - T_room) over the window
+};
+
+// Reads either format (a `time_s` column selects the raw log). Malformed rows
+// and missing columns are InputErrors with the file and line; unknown columns
+// become warnings.
+Recordings read_recordings(const std::string& file, const StabilisationCriterion& crit = {});
+
+}  // namespace gearloss::diagnosis

@@ -1,0 +1,146 @@
+#include "diagnosis/synth.hpp"
+
+#include <algorithm>
+#include <array>
+#include <boost/numeric/odeint.hpp>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+#include <random>
+
+#include "core/errors.hpp"
+#include "diagnosis/effects.hpp"
+#include "solver/operating_point.hpp"
+#include "units/units.hpp"
+
+namespace gearloss::diagnosis {
+
+namespace {
+constexpr double to_rpm = 30.0 / std::numbers::pi;
+}
+
+std::pair<std::string, double> parse_effect_assignment(const std::string& text) {
+    const auto eq = text.find('=');
+    if (eq == std::string::npos) throw InputError("", 0, 0, "--effect", "expected NAME=VALUE, got '" + text + "'");
+    const std::string name = text.substr(0, eq), value = text.substr(eq + 1);
+    const Effect* e = find_effect(name);
+    if (!e) {
+        std::string all;
+        for (const auto& x : effect_library()) all += (all.empty() ? "" : ", ") + x.id;
+        throw InputError("", 0, 0, "--effect", "unknown effect '" + name + "'; known: " + all);
+    }
+    units::Quantity q;
+    try {
+        q = units::parse_quantity(value);
+    } catch (const units::UnitError& err) {
+        throw InputError("", 0, 0, "--effect " + name, err.msg);
+    }
+    const units::Dimension want = e->unit == "W" ? units::dim::power : e->unit == "N*m" ? units::dim::torque : units::dim::none;
+    if (q.dim != want && !(q.dim == units::dim::none))
+        throw InputError("", 0, 0, "--effect " + name,
+                         "'" + value + "' has dimension " + units::to_string(q.dim) + ", expected " + units::to_string(want));
+    if (e->id == "unstabilised_test") {
+        if (q.value < 0 || q.value != std::floor(q.value))
+            throw InputError("", 0, 0, "--effect " + name, "the number of unstabilised points must be a whole number >= 0");
+    } else if (q.value < e->lower || q.value > e->upper) {
+        throw InputError("", 0, 0, "--effect " + name,
+                         fmt::format("{} outside the physical bounds [{}, {}]", q.value, e->lower, e->upper));
+    }
+    return {name, q.value};
+}
+
+std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& grid, const SynthOptions& opt) {
+    solver::Model m = model_in;
+    Hypothesis h;
+    int unstabilised = 0;
+    for (const auto& [id, v] : opt.effects) {
+        const Effect* e = find_effect(id);
+        if (!e) throw InputError("", 0, 0, "--effect", "unknown effect '" + id + "'");
+        if (id == "unstabilised_test") unstabilised = static_cast<int>(v);
+        else e->apply(h, v);
+    }
+    m.calibration = h.cal;
+    if (m.thermal.mode != solver::ThermalMode::stabilised)
+        throw InputError("", 0, 0, "thermal.mode", "synthetic recordings need a stabilised thermal model");
+    if (opt.raw_log && !(m.thermal.heat_capacity > 0))
+        throw InputError("", 0, 0, "thermal.heat_capacity", "a raw log needs the heat capacity of oil and housing (e.g. 25 kJ/K)");
+    const size_t n = grid.size();
+    if (unstabilised > static_cast<int>(n))
+        throw InputError("", 0, 0, "--effect unstabilised_test", "more unstabilised points than points in the grid");
+
+    std::mt19937_64 rng(opt.seed);
+    std::normal_distribution<double> gauss(0.0, 1.0);
+    std::vector<size_t> order(n);
+    for (size_t i = 0; i < n; ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<char> warming(n, 0);
+    for (int k = 0; k < unstabilised; ++k) warming[order[static_cast<size_t>(k)]] = 1;
+
+    const double Ta = m.thermal.ambient;
+    const double gain = h.art.torque_gain, offset = h.art.torque_offset;
+    std::string out;
+    solver::PointState p;
+
+    if (!opt.raw_log) {
+        out = "speed_in_rpm,torque_in_Nm,P_loss_W,oil_temp_C,ambient_temp_C,label\n";
+        for (size_t i = 0; i < n; ++i) {
+            const auto [w, T] = grid.at(i);
+            solver::prepare_point(m, w, T, p);
+            const auto eq = solver::solve_temperature(m, p, Ta);
+            if (eq.status != thermal::EquilibriumStatus::ok)
+                throw InputError("", 0, 0, "operating",
+                                 fmt::format("no thermal equilibrium at {:.0f} rpm / {:.0f} N*m: choose a smaller grid", w * to_rpm, T));
+            double T_oil = eq.T;
+            std::string label = "stabilised";
+            if (warming[i]) {
+                // Recorded at 70-88 % of the way to equilibrium: colder oil, higher loss.
+                const double f = 0.70 + 0.18 * std::uniform_real_distribution<double>(0, 1)(rng);
+                T_oil = Ta + f * (eq.T - Ta);
+                label = "warming";
+            }
+            const double loss = solver::total_loss(m, p, T_oil);
+            const double T_rec = gain * T + offset;
+            const double loss_rec = (loss + (T_rec - T) * w) * (1.0 + opt.noise_loss * gauss(rng));
+            const double T_oil_rec = T_oil + opt.noise_temp * gauss(rng);
+            out += fmt::format("{:.3f},{:.4f},{:.4f},{:.4f},{:.2f},{}\n", w * to_rpm, T_rec, loss_rec, T_oil_rec - 273.15,
+                               Ta - 273.15, label);
+        }
+        return out;
+    }
+
+    // Raw log: each test warms (or cools) from where the previous one ended,
+    // C dT/dt = P(T) - Q(T), integrated with Boost.Odeint; samples every 2 s.
+    namespace odeint = boost::numeric::odeint;
+    using State = std::array<double, 1>;
+    out = "time_s,speed_in_rpm,speed_out_rpm,torque_in_Nm,torque_out_Nm,oil_temp_C,wall_temp_C,room_temp_C\n";
+    const double C = m.thermal.heat_capacity, dt = 2.0;
+    State x{Ta};
+    double t = 0;
+    odeint::runge_kutta4<State> stepper;
+    for (size_t i = 0; i < n; ++i) {
+        const auto [w, T] = grid.at(i);
+        solver::prepare_point(m, w, T, p);
+        auto rhs = [&](const State& s, State& dxdt, double) {
+            dxdt[0] = (solver::total_loss(m, p, s[0]) - m.heat_flow(s[0], Ta, w)) / C;
+        };
+        const double duration = 60.0 * (warming[i] ? opt.short_test_minutes : opt.test_minutes);
+        // Test-level errors (sensor drift between tests) on top of per-sample noise.
+        const double e_loss = opt.noise_loss * gauss(rng), e_temp = opt.noise_temp * gauss(rng);
+        const double w_out = std::abs(m.layout.ratio) * w;
+        for (double s = 0; s < duration; s += dt) {
+            stepper.do_step(rhs, x, t, dt);
+            t += dt;
+            const double loss = solver::total_loss(m, p, x[0]);
+            const double T_rec = (gain * T + offset) * (1.0 + 0.002 * gauss(rng));
+            const double loss_rec = (loss + (gain * T + offset - T) * w) * (1.0 + e_loss) * (1.0 + 0.01 * gauss(rng));
+            const double T_out = (T_rec * w - loss_rec) / w_out;
+            const double oil = x[0] + e_temp + 0.05 * gauss(rng);
+            out += fmt::format("{:.0f},{:.2f},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}\n", t, w * to_rpm * (1 + 0.001 * gauss(rng)),
+                               w_out * to_rpm, T_rec, T_out, oil - 273.15, oil - 3.0 - 273.15,
+                               Ta - 273.15 + 0.05 * gauss(rng));
+        }
+    }
+    return out;
+}
+
+}  // namespace gearloss::diagnosis
