@@ -65,6 +65,12 @@ for case, c in cases.items():
             runs.append((case, eff, val, s))
     for s in range(4 if short else 3 * seeds):
         runs.append((case, None, None, s))
+    # Raw 0.5 Hz rig logs (split into tests, seed 001's stabilisation criterion),
+    # each with one extra test stopped before equilibrium that the criterion must flag.
+    log_effects = ["windage", "mesh_friction", "torque_sensor_gain"] if short else \
+        [e for e in c["effects"] if e != "unstabilised_test"]
+    for e in log_effects:
+        runs.append((case, e, c["effects"][e], "log"))
 
 def unit_value(v):
     num = "".join(ch for ch in v if ch in "0123456789.-+e")
@@ -75,14 +81,19 @@ t0 = time.time()
 with tempfile.TemporaryDirectory() as tmp:
     for case, eff, val, s in runs:
         c = cases[case]
-        speeds, torques = c["grids"][s % len(c["grids"])]
-        nl, nt = noise[s % len(noise)]
-        seed = 1000 * (1 + list(cases).index(case)) + 37 * s + (0 if eff is None else 1 + sorted(c["effects"]).index(eff))
+        log = s == "log"
+        si = 1 if log else s
+        speeds, torques = c["grids"][si % len(c["grids"])]
+        nl, nt = noise[si % len(noise)]
+        seed = 1000 * (1 + list(cases).index(case)) + 37 * si + (0 if eff is None else 1 + sorted(c["effects"]).index(eff)) \
+            + (500 if log else 0)
         rec, js = os.path.join(tmp, "rec.csv"), os.path.join(tmp, "d.json")
         cmd = [bin_, "synth", c["config"], "--speed", speeds, "--torque", torques, "--noise-loss", nl,
                "--noise-temp", nt, "--seed", str(seed), "-o", rec]
         if eff:
             cmd += ["--effect", f"{eff}={val}"]
+        if log:
+            cmd += ["--format", "log", "--effect", "unstabilised_test=1"]
         subprocess.run(cmd, check=True)
         subprocess.run([bin_, "diagnose", c["config"], rec, "--json", js], check=True, stdout=subprocess.DEVNULL)
         d = json.load(open(js))
@@ -92,10 +103,13 @@ with tempfile.TemporaryDirectory() as tmp:
             n_null += 1
             good = d["verdict"] == "no_significant_mismatch"
             ok_null += good
-            rows.append((case, npts, nl, "none", "-", top, "-", d["rmse_before"], d["rmse_after"], good))
+            rows.append((case, npts, nl, "none", "-", top, "-", d["rmse_before"], d["rmse_after"],
+                         d.get("temp_rmse_before", 0), d.get("temp_rmse_after", 0), good))
         else:
             n_eff += 1
             good = top == eff
+            if log:
+                good = good and any("never stabilised" in o["reason"] for o in d["outliers"])
             ok_eff += good
             err = "-"
             if good and eff != "unstabilised_test":
@@ -105,13 +119,14 @@ with tempfile.TemporaryDirectory() as tmp:
             elif good:
                 err = f"{len(d['findings'][0].get('rows', []))}/2 rows"
             f0 = d["findings"][0] if d["findings"] else None
-            rows.append((case, npts, nl, f"{eff}={val}", "", top, err,
-                         f0["rmse_before"] if f0 else d["rmse_before"], f0["rmse_after"] if f0 else d["rmse_after"], good))
+            rows.append((case + (" (log)" if log else ""), npts, nl, f"{eff}={val}", "", top, err,
+                         f0["rmse_before"] if f0 else d["rmse_before"], f0["rmse_after"] if f0 else d["rmse_after"],
+                         (f0 or d).get("temp_rmse_before", 0), (f0 or d).get("temp_rmse_after", 0), good))
 
-print("| case | points | noise | effect concealed | effect named | parameter error | loss RMSE before -> after [W] | ok |")
-print("|---|---|---|---|---|---|---|---|")
-for case, npts, nl, conc, _, top, err, rb, ra, good in rows:
-    print(f"| {case} | {npts} | {nl} | {conc} | {top} | {err} | {rb:.1f} -> {ra:.1f} | {'yes' if good else 'NO'} |")
+print("| case | points | noise | effect concealed | effect named | parameter error | loss RMSE before -> after [W] | oil temp. RMSE before -> after [K] | ok |")
+print("|---|---|---|---|---|---|---|---|---|")
+for case, npts, nl, conc, _, top, err, rb, ra, tb, ta, good in rows:
+    print(f"| {case} | {npts} | {nl} | {conc} | {top} | {err} | {rb:.1f} -> {ra:.1f} | {tb:.2f} -> {ta:.2f} | {'yes' if good else 'NO'} |")
 pe = ok_eff / n_eff if n_eff else 1.0
 pn = ok_null / n_null if n_null else 1.0
 print()

@@ -18,11 +18,11 @@ struct InputError : std::runtime_error {
 
     static std::string format(const std::string& f, int l, int c, const std::string& k, const std::string& m) {
         std::string s = f.empty() ? std::string("<input>") : f;
-        if (l > 0) s += ":" + std::to_string(l);
-        if (c > 0) s += ":" + std::to_string(c);
-        s += ": ";
-        if (!k.empty()) s += k + ": ";
-        return s + m;
+        if (l > 0) s.append(":").append(std::to_string(l));
+        if (c > 0) s.append(":").append(std::to_string(c));
+        s.append(": ");
+        if (!k.empty()) s.append(k).append(": ");
+        return s.append(m);
     }
 };
 

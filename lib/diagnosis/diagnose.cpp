@@ -27,7 +27,8 @@ constexpr double kFloorTemp = 0.05;   // K
 struct Obs {
     int row;
     double w, torque, loss, ambient, scale;
-    bool has_T;
+    bool has_T;        // measured oil temperature known: the loss is compared at it
+    bool T_evidence;   // the temperature is an equilibrium value: compared with the coupled solve
     double T_oil;
     bool stabilised;
     double drift;
@@ -65,7 +66,7 @@ public:
         for (const auto& o : obs_) {
             mean_loss_ += std::abs(o.loss) / obs_.size();
             mean_n29_ += std::pow(o.w * to_rpm / 1000.0, 2.9) / obs_.size();
-            n_T_ += o.has_T;
+            n_T_ += o.T_evidence;
         }
     }
     int threads() const { return threads_; }
@@ -103,7 +104,7 @@ public:
             const double eP = (o.loss - p.loss[i]) / o.scale;
             rP += eP * eP;
             ++s.nP;
-            if (o.has_T) {
+            if (o.T_evidence) {
                 // A point flagged unstabilised has its own temperature parameter: residual 0.
                 const bool own = !h.unstabilised.empty() && h.unstabilised[i];
                 const double eT = own ? 0.0 : o.T_oil - p.temp[i];
@@ -195,7 +196,7 @@ public:
         // z-score below -4 against the median/MAD of all temperature residuals.
         std::vector<std::pair<double, int>> resid;
         for (int i : uniq)
-            if (obs_[i].has_T && (base.unstabilised.empty() || !base.unstabilised[i]))
+            if (obs_[i].T_evidence && (base.unstabilised.empty() || !base.unstabilised[i]))
                 resid.push_back({obs_[i].T_oil - p.temp[i], i});
         if (resid.size() < 4) return f;
         std::vector<double> v;
@@ -206,9 +207,10 @@ public:
         for (double x : v) dev.push_back(std::abs(x - med));
         std::sort(dev.begin(), dev.end());
         const double scale = std::max(1.4826 * dev[dev.size() / 2], 2.0 * kFloorTemp);
+        // Still warming (colder) or still cooling (hotter) than the heat balance.
         std::vector<std::pair<double, int>> cold;
         for (const auto& r : resid)
-            if ((r.first - med) / scale < -4.0) cold.push_back(r);
+            if (std::abs(r.first - med) / scale > 4.0) cold.push_back({-std::abs(r.first - med), r.second});
         std::sort(cold.begin(), cold.end());
         // Each flagged point costs a parameter (ln N) and the choice of which point (ln n).
         const double penalty = std::log(static_cast<double>(idx.size() + n_T_)) + std::log(static_cast<double>(uniq.size()));
@@ -248,7 +250,7 @@ double delta_bic(double nll_base, const Fit& f, size_t n_obs) {
 
 size_t n_observations(const Engine& E, const std::vector<int>& idx) {
     size_t n = idx.size();
-    for (int i : idx) n += E.obs()[i].has_T;
+    for (int i : idx) n += E.obs()[i].T_evidence;
     return n;
 }
 
@@ -262,7 +264,7 @@ ChannelStats channel_rmse(const Engine& E, const Pred& p, const Hypothesis& h) {
     for (int i : E.all()) {
         const auto& o = E.obs()[i];
         s.rmse_loss += std::pow(o.loss - p.loss[i], 2);
-        if (o.has_T && (h.unstabilised.empty() || !h.unstabilised[i])) {
+        if (o.T_evidence && (h.unstabilised.empty() || !h.unstabilised[i])) {
             s.rmse_temp += std::pow(o.T_oil - p.temp[i], 2);
             ++nT;
         }
@@ -299,7 +301,7 @@ CvResult cross_validate(const Engine& E, const Effect* e, const Hypothesis& base
         eP[j] = eL[j] / o.scale;
         // A point the full fit calls unstabilised carries no temperature evidence.
         const bool flagged = !full_fit.unstabilised.empty() && full_fit.unstabilised[j];
-        if (o.has_T && !flagged) {
+        if (o.T_evidence && !flagged) {
             eT[j] = o.T_oil - p.temp[j];
             hasT[j] = 1;
         }
@@ -317,7 +319,7 @@ CvResult cross_validate(const Engine& E, const Effect* e, const Hypothesis& base
     }
     // Flagged points keep their (zero) residual in the count so both sides compare like with like.
     int nT_all = 0;
-    for (const auto& o : E.obs()) nT_all += o.has_T;
+    for (const auto& o : E.obs()) nT_all += o.T_evidence;
     r.nll = profiled(rP, static_cast<int>(n), kFloorLoss) + profiled(rT, nT_all, kFloorTemp);
     r.rmse_loss = std::sqrt(r.rmse_loss / n);
     r.rmse_temp = nT ? std::sqrt(rT / nT) : 0.0;
@@ -332,7 +334,7 @@ double structure_delta_bic(const Engine& E, const Pred& p, const Hypothesis& h, 
     auto design = [&](bool temp_only) {
         std::vector<int> rows;
         for (int i = 0; i < n; ++i)
-            if (!temp_only || (obs[i].has_T && (h.unstabilised.empty() || !h.unstabilised[i]))) rows.push_back(i);
+            if (!temp_only || (obs[i].T_evidence && (h.unstabilised.empty() || !h.unstabilised[i]))) rows.push_back(i);
         Eigen::MatrixXd X(rows.size(), 4);
         double mT = 0, mQ = 0, mO = 0;
         for (int i : rows) {
@@ -411,7 +413,7 @@ Location locate(const Engine& E, const Pred& p, const Hypothesis& h, const solve
         tq.push_back(o.torque);
         visc.push_back(std::log(model.oil.nu_mm2s(T)));
         dL.push_back(o.loss - p.loss[i]);
-        if (o.has_T && (h.unstabilised.empty() || !h.unstabilised[i])) {
+        if (o.T_evidence && (h.unstabilised.empty() || !h.unstabilised[i])) {
             dT.push_back(o.T_oil - p.temp[i]);
             lnnT.push_back(lnn.back());
             tqT.push_back(tq.back());
@@ -525,7 +527,9 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         o.loss = r.loss;
         o.ambient = r.ambient_temp ? *r.ambient_temp : model.thermal.ambient;
         o.scale = std::max({std::abs(r.loss), 0.05 * mean_abs, 1.0});
-        o.has_T = r.oil_temp.has_value() && model.thermal.mode == solver::ThermalMode::stabilised;
+        o.has_T = r.oil_temp.has_value();
+        // Tests the log criterion rejects carry no equilibrium temperature.
+        o.T_evidence = o.has_T && r.stabilised && model.thermal.mode == solver::ThermalMode::stabilised;
         o.T_oil = r.oil_temp ? *r.oil_temp : 0.0;
         o.stabilised = r.stabilised;
         o.drift = r.stabilisation_drift;
@@ -540,7 +544,9 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     const auto& all = E.all();
     const size_t N = n_observations(E, all);
 
+    // The baseline is the case as described, including any calibration it carries.
     Hypothesis neutral;
+    neutral.cal = model.calibration;
     Pred p0;
     E.predict(neutral, all, p0, 0);
     const ChannelStats s0 = channel_rmse(E, p0, neutral);
@@ -617,9 +623,18 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         const Effect& e = lib[chosen];
         // Equally good alternatives: within the ambiguity margin in BIC.
         double shared = stability;
+        // Without temperature evidence, effects that differ only in whether they
+        // heat the oil cannot be told apart by the data (only through second-order
+        // coupling inside the model), whatever their BIC difference.
+        auto unobservable_difference = [&](const Effect& a, const Effect& b) {
+            const Signature &x = a.sig, &y = b.sig;
+            return !E.has_temperature() && x.heats_oil != y.heats_oil && x.thermal_path == y.thermal_path &&
+                   x.load_dependent == y.load_dependent && x.viscosity_dependent == y.viscosity_dependent &&
+                   std::abs(x.speed_exponent - y.speed_exponent) < 0.4 && x.pointwise == y.pointwise;
+        };
         for (size_t k : order) {
             if (static_cast<int>(k) == chosen || dbic[k] < opt.bic_threshold) continue;
-            if (dbic[chosen] - dbic[k] <= opt.ambiguity_bic) {
+            if (dbic[chosen] - dbic[k] <= opt.ambiguity_bic || unobservable_difference(lib[chosen], lib[k])) {
                 f.equivalent.push_back(lib[k].id);
                 shared += static_cast<double>(wins[k]) / opt.bootstrap;
                 if (f.separating_measurement.empty()) f.separating_measurement = separating_measurement(e, lib[k]);
@@ -689,7 +704,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         for (int i : all) {
             const auto& o = E.obs()[i];
             eP.push_back((o.loss - pf.loss[i]) / o.scale);
-            if (o.has_T && (base.unstabilised.empty() || !base.unstabilised[i])) eT.push_back(o.T_oil - pf.temp[i]);
+            if (o.T_evidence && (base.unstabilised.empty() || !base.unstabilised[i])) eT.push_back(o.T_oil - pf.temp[i]);
         }
         auto robust = [](std::vector<double> v, double floor) {
             if (v.empty()) return std::make_pair(0.0, floor);
@@ -708,14 +723,15 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             if (!o.stabilised)
                 why.push_back(fmt::format("never stabilised: (T_oil - T_room) varied {:.2f} K over the last 30 min", o.drift));
             if (!base.unstabilised.empty() && base.unstabilised[i])
-                why.push_back(fmt::format("oil {:.1f} K colder than the heat balance of its measured loss: the test was "
-                                          "still warming up (unstabilised)",
-                                          pf.temp[i] - o.T_oil));
+                why.push_back(fmt::format("oil {:.1f} K {} than the heat balance of its measured loss: the test was still "
+                                          "{} (unstabilised)",
+                                          std::abs(pf.temp[i] - o.T_oil), o.T_oil < pf.temp[i] ? "colder" : "hotter",
+                                          o.T_oil < pf.temp[i] ? "warming up" : "cooling down"));
             const double zP = ((o.loss - pf.loss[i]) / o.scale - mP) / sP;
             if (std::abs(zP) > 4.5)
                 why.push_back(fmt::format("loss {:+.1f} W ({:+.1f} %) away from the model and its neighbours", o.loss - pf.loss[i],
                                           100 * (o.loss - pf.loss[i]) / o.scale));
-            if (o.has_T && (base.unstabilised.empty() || !base.unstabilised[i])) {
+            if (o.T_evidence && (base.unstabilised.empty() || !base.unstabilised[i])) {
                 const double zT = (o.T_oil - pf.temp[i] - mT) / sT;
                 if (std::abs(zT) > 4.5) {
                     const double dLz = zP;
@@ -752,7 +768,13 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             const auto& f = d.findings[k];
             if (k == 0) s += baseline_clause + " -> ";
             else s += "; then ";
-            s += fmt::format("{} was left out ({})", f.effect, f.description);
+            if (f.equivalent.empty()) {
+                s += fmt::format("{} was left out ({})", f.effect, f.description);
+            } else {
+                std::string eq;
+                for (const auto& x : f.equivalent) eq += " or " + x;
+                s += fmt::format("{}{} was left out — the data cannot tell which ({})", f.effect, eq, f.description);
+            }
             if (f.effect == "unstabilised_test") {
                 std::string rows;
                 for (int r : f.rows) rows += (rows.empty() ? "" : ", ") + std::to_string(r);
@@ -766,11 +788,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
                              f.cv_rmse_after);
             if (d.has_temperature)
                 s += fmt::format(", oil temperature RMSE {:.2f} K -> {:.2f} K", f.temp_rmse_before, f.temp_rmse_after);
-            if (!f.equivalent.empty()) {
-                std::string eq;
-                for (const auto& x : f.equivalent) eq += (eq.empty() ? "" : ", ") + x;
-                s += fmt::format(". {} explains the data equally well; to separate them: {}", eq, f.separating_measurement);
-            }
+            if (!f.equivalent.empty()) s += fmt::format(". To separate them: {}", f.separating_measurement);
         }
         d.summary = s + ".";
     } else if (d.verdict == "unexplained_mismatch") {

@@ -35,7 +35,7 @@ const std::vector<Effect>& effect_library() {
         {"torque_sensor_offset", "input torque sensor offset: the recorded loss carries T_0 omega, the oil is not heated",
          "offset", "N*m", -100, 100, 0, {false, false, false, false, 1.0, false},
          [](Hypothesis& h, double v) { h.art.torque_offset = v; }},
-        {"unstabilised_test", "some tests were recorded before thermal equilibrium: oil colder than its heat balance",
+        {"unstabilised_test", "some tests were recorded before thermal equilibrium: oil colder (warming) or hotter (cooling) than its heat balance",
          "points still warming", "", 0, 0, 0, {false, false, false, false, 0.0, true}, nullptr},
         {"constant_parasitic", "a constant parasitic loss (oil pump, drag of an auxiliary part), heating the oil",
          "P_aux", "W", 0, 20000, 0, {true, false, false, false, 0.0, false},

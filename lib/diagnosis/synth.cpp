@@ -52,6 +52,7 @@ std::pair<std::string, double> parse_effect_assignment(const std::string& text) 
 std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& grid, const SynthOptions& opt) {
     solver::Model m = model_in;
     Hypothesis h;
+    h.cal = model_in.calibration;  // concealed effects come on top of the case as described
     int unstabilised = 0;
     for (const auto& [id, v] : opt.effects) {
         const Effect* e = find_effect(id);
