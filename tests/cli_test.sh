@@ -70,5 +70,30 @@ check "interrupt exit 130" test $rc -eq 130
 check "interrupt leaves no file" test ! -e "$tmp/big.csv"
 check "interrupt leaves no temporary" bash -c "! ls '$tmp' | grep -q '\.tmp\.'"
 
+# synth -> diagnose -> JSON, calibrated config, residuals.
+"$bin" synth "$src/configs/transfer-box.yaml" --effect constant_parasitic=30W --seed 2 \
+    --speed 400,700,1000rpm --torque 100,200,300Nm -o "$tmp/rec.csv"
+check "synth exit 0" test $? -eq 0
+"$bin" diagnose "$src/configs/transfer-box.yaml" "$tmp/rec.csv" --json "$tmp/d.json" \
+    --write-config "$tmp/cal.yaml" --residuals "$tmp/res.csv" > "$tmp/d.txt"
+check "diagnose exit 0" test $? -eq 0
+check "diagnose json keys" python3 -c "
+import json; d = json.load(open('$tmp/d.json'))
+assert d['verdict'] == 'missing_physics', d['verdict']
+f = d['findings'][0]
+assert f['effect'] == 'constant_parasitic'
+for k in ('description', 'parameters', 'rmse_before', 'rmse_after', 'cv_rmse_before', 'cv_rmse_after'): assert k in f, k
+assert isinstance(d['outliers'], list)"
+check "calibrated config loads" "$bin" check "$tmp/cal.yaml"
+check "residuals written" test "$(wc -l < "$tmp/res.csv")" -eq 10
+# Malformed recordings: exit 2 naming the file and line.
+printf 'speed_in_rpm,torque_in_Nm,P_loss_W\n600,150,210\n700,150\n' > "$tmp/bad.csv"
+"$bin" diagnose "$src/configs/transfer-box.yaml" "$tmp/bad.csv" 2> "$tmp/err3.txt" > /dev/null
+check "bad recordings exit 2" test $? -eq 2
+check "bad recordings message" grep -q 'bad.csv:3: row has 2 cells' "$tmp/err3.txt"
+"$bin" synth "$src/configs/transfer-box.yaml" --effect windage=-5W -o "$tmp/x2.csv" 2> "$tmp/err4.txt"
+check "bad effect exit 2" test $? -eq 2
+check "bad effect message" grep -q 'outside the physical bounds' "$tmp/err4.txt"
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0
