@@ -59,10 +59,13 @@ check "check --json exit 0" test $? -eq 0
 check "check json valid" python3 -c "import json,sys; d=json.load(open('$tmp/check.json')); assert abs(d['meshes'][0]['centre_distance_mm']-91.5)<1e-6"
 
 # Interrupted run (SIGINT during a large map): exit 130, no output file.
-"$bin" map "$src/configs/transfer-box.yaml" --speed "$(python3 -c "print(','.join(str(300+i) for i in range(2000)))")rpm" \
-    --torque "$(python3 -c "print(','.join(str(10+i) for i in range(400)))")Nm" -o "$tmp/big.csv" &
+# The argument lists are expanded here, not in the background job: a signal
+# reaching a background subshell would run this script's EXIT trap there.
+big_speeds="$(python3 -c "print(','.join(str(300+i) for i in range(2000)))")rpm"
+big_torques="$(python3 -c "print(','.join(str(10+i) for i in range(400)))")Nm"
+"$bin" map "$src/configs/transfer-box.yaml" --speed "$big_speeds" --torque "$big_torques" -o "$tmp/big.csv" &
 pid=$!
-sleep 0.5
+sleep 1
 kill -INT $pid
 wait $pid
 rc=$?
