@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
+#include <sstream>
 #include <map>
 #include <numbers>
 
@@ -58,9 +59,7 @@ struct Table {
     std::vector<int> lines;
 };
 
-Table read_table(const std::string& file, std::vector<std::string>& warnings) {
-    std::ifstream in(file);
-    if (!in) throw InputError(file, 0, 0, "", "cannot open recordings file");
+Table read_table(const std::string& file, std::istream& in, std::vector<std::string>& warnings) {
     std::string line;
     int ln = 0;
     Table t;
@@ -125,9 +124,18 @@ void require(const std::string& file, const Table& t, const char* key, const cha
 }  // namespace
 
 Recordings read_recordings(const std::string& file, const StabilisationCriterion& crit) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw InputError(file, 0, 0, "", "cannot open recordings file");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return read_recordings_text(ss.str(), file, crit);
+}
+
+Recordings read_recordings_text(const std::string& text, const std::string& file, const StabilisationCriterion& crit) {
     Recordings rec;
     rec.file = file;
-    Table t = read_table(file, rec.warnings);
+    std::istringstream in(text);
+    Table t = read_table(file, in, rec.warnings);
     auto get = [&](size_t r, const char* key, bool* present = nullptr) { return cell(file, t, r, key, present); };
 
     require(file, t, "speed_in", "speed_in_rpm");

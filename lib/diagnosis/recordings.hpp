@@ -38,5 +38,7 @@ struct StabilisationCriterion {
 // and missing columns are InputErrors with the file and line; unknown columns
 // become warnings.
 Recordings read_recordings(const std::string& file, const StabilisationCriterion& crit = {});
+// Same from text; `name` appears in messages.
+Recordings read_recordings_text(const std::string& text, const std::string& name, const StabilisationCriterion& crit = {});
 
 }  // namespace gearloss::diagnosis

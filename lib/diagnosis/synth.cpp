@@ -119,7 +119,7 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
     double t = 0;
     odeint::runge_kutta4<State> stepper;
     for (size_t i = 0; i < n; ++i) {
-        const auto [w, T] = grid.at(i);
+        const double w = grid.at(i).first, T = grid.at(i).second;  // plain locals: captured below
         solver::prepare_point(m, w, T, p);
         auto rhs = [&](const State& s, State& dxdt, double) {
             dxdt[0] = (solver::total_loss(m, p, s[0]) - m.heat_flow(s[0], Ta, w)) / C;

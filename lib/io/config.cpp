@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <fmt/format.h>
 #include <map>
 #include <numbers>
@@ -617,9 +619,35 @@ std::vector<double> load_axis(const YamlNode& n, const units::Dimension& d, cons
 }  // namespace
 
 Case load_case(const std::string& file, const std::optional<std::string>& ratio_override) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw InputError(file, 0, 0, "", "cannot open file");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return load_case_text(ss.str(), file, fs::path(file).parent_path().string(), ratio_override);
+}
+
+namespace {
+Case load_case_impl(const std::string& text, const std::string& file, const std::string& base_dir,
+                    const std::optional<std::string>& ratio_override);
+}
+
+Case load_case_text(const std::string& text, const std::string& file, const std::string& base_dir,
+                    const std::optional<std::string>& ratio_override) {
+    try {
+        return load_case_impl(text, file, base_dir, ratio_override);
+    } catch (const YAML::Exception& e) {
+        // Any structural surprise inside yaml-cpp is still an input error with its position.
+        throw InputError(file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1, "",
+                         "unexpected YAML structure: " + e.msg);
+    }
+}
+
+namespace {
+Case load_case_impl(const std::string& text, const std::string& file, const std::string& base_dir,
+                    const std::optional<std::string>& ratio_override) {
     Case c;
     c.file = file;
-    const YamlNode root = YamlNode::load_file(file);
+    const YamlNode root = YamlNode::load_text(text, file);
     root.allow_keys({"name", "description", "oil", "materials", "shafts", "gears", "meshes", "bearings", "seals",
                      "housing", "thermal", "gearbox", "operating", "options", "calibration"});
     auto& m = c.model;
@@ -627,7 +655,7 @@ Case load_case(const std::string& file, const std::optional<std::string>& ratio_
 
     const YamlNode oil = root.at("oil");
     if (oil.is_scalar()) {
-        const fs::path p = fs::path(file).parent_path() / oil.as_string();
+        const fs::path p = fs::path(base_dir) / oil.as_string();
         if (!fs::exists(p)) oil.fail("oil file '" + p.string() + "' does not exist");
         m.oil = load_oil_file(p.string());
     } else {
@@ -707,5 +735,6 @@ Case load_case(const std::string& file, const std::optional<std::string>& ratio_
     }
     return c;
 }
+}  // namespace
 
 }  // namespace gearloss::io

@@ -32,6 +32,9 @@ struct Case {
 
 // Loads a case; `ratio` overrides gearbox.ratio.
 Case load_case(const std::string& file, const std::optional<std::string>& ratio = std::nullopt);
+// Same from text; `name` appears in messages, relative oil files resolve against `base_dir`.
+Case load_case_text(const std::string& text, const std::string& name, const std::string& base_dir,
+                    const std::optional<std::string>& ratio = std::nullopt);
 // Loads an oil from a YAML mapping (inline or a separate file).
 lubricant::Oil load_oil(const YamlNode& node);
 lubricant::Oil load_oil_file(const std::string& file);

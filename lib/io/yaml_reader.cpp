@@ -12,14 +12,20 @@ YamlNode::YamlNode(YAML::Node node, std::string file, std::string path)
     : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {}
 
 YamlNode YamlNode::load_file(const std::string& file) {
-    std::ifstream in(file);
+    std::ifstream in(file, std::ios::binary);
     if (!in) throw InputError(file, 0, 0, "", "cannot open file");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return load_text(ss.str(), file);
+}
+
+YamlNode YamlNode::load_text(const std::string& text, const std::string& name) {
     try {
-        YAML::Node n = YAML::Load(in);
-        if (!n.IsMap()) throw InputError(file, 1, 1, "", "expected a YAML mapping at the top level");
-        return YamlNode(n, file, "");
+        YAML::Node n = YAML::Load(text);
+        if (!n.IsMap()) throw InputError(name, 1, 1, "", "expected a YAML mapping at the top level");
+        return YamlNode(n, name, "");
     } catch (const YAML::Exception& e) {
-        throw InputError(file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1, "",
+        throw InputError(name, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1, "",
                          "YAML syntax error: " + e.msg);
     }
 }
@@ -57,11 +63,16 @@ std::vector<YamlNode> YamlNode::items() const {
     return v;
 }
 
+std::string YamlNode::key_name(const YAML::Node& key) const {
+    if (!key.IsScalar()) YamlNode(key, file_, path_).fail("keys must be plain names, not lists or mappings");
+    return key.Scalar();
+}
+
 std::vector<std::pair<std::string, YamlNode>> YamlNode::entries() const {
     if (!node_.IsMap()) fail("expected a mapping");
     std::vector<std::pair<std::string, YamlNode>> v;
     for (const auto& kv : node_) {
-        const std::string k = kv.first.as<std::string>();
+        const std::string k = key_name(kv.first);
         v.emplace_back(k, YamlNode(kv.second, file_, path_.empty() ? k : path_ + "." + k));
     }
     return v;
@@ -87,7 +98,7 @@ size_t edit_distance(const std::string& a, const std::string& b) {
 void YamlNode::allow_keys(std::initializer_list<const char*> allowed) const {
     if (!node_.IsMap()) fail("expected a mapping");
     for (const auto& kv : node_) {
-        const std::string k = kv.first.as<std::string>();
+        const std::string k = key_name(kv.first);
         if (std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return k == a; })) continue;
         std::string best;
         size_t bd = 99;

@@ -18,6 +18,8 @@ class YamlNode {
 public:
     YamlNode(YAML::Node node, std::string file, std::string path);
     static YamlNode load_file(const std::string& file);
+    // Parses `text`; `name` is the file name used in messages.
+    static YamlNode load_text(const std::string& text, const std::string& name);
 
     const std::string& file() const { return file_; }
     const std::string& path() const { return path_; }
@@ -68,6 +70,7 @@ public:
     double positive_quantity(const std::string& key, const units::Dimension& d, const char* example) const;
 
 private:
+    std::string key_name(const YAML::Node& key) const;
     YAML::Node node_;
     std::string file_;
     std::string path_;

@@ -165,6 +165,7 @@ private:
             size_t start = pos_;
             while (pos_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[pos_]))) ++pos_;
             if (start == pos_) fail("exponent after '^' must be an integer");
+            if (pos_ - start > 2) fail("exponent out of range");
             int p = std::stoi(std::string(s_.substr(start, pos_ - start))) * sign;
             if (p > 6 || p < -6) fail("exponent out of range");
             u = {std::pow(u.scale, p), mul(u.d, p)};
@@ -173,6 +174,7 @@ private:
             size_t start = pos_;
             while (pos_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[pos_]))) ++pos_;
             if (pos_ > start) {
+                if (pos_ - start > 2) fail("exponent out of range");
                 int p = std::stoi(std::string(s_.substr(start, pos_ - start)));
                 if (p > 6) fail("exponent out of range");
                 u = {std::pow(u.scale, p), mul(u.d, p)};

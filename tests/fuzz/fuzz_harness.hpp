@@ -1,0 +1,157 @@
+#pragma once
+// Bodies of the fuzz targets, shared by the libFuzzer executables (clang,
+// ASan + UBSan) and by the regression runner that replays the corpus and
+// every saved crash input in the ordinary test suite.
+//
+// Contract checked: bad input raises gearloss::InputError only; anything
+// else (another exception, a crash, a sanitizer report, NaN/inf in a result,
+// a negative loss, a broken energy balance) is a finding.
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <string>
+
+#include "core/errors.hpp"
+#include "diagnosis/recordings.hpp"
+#include "io/config.hpp"
+#include "io/reports.hpp"
+#include "map/map_runner.hpp"
+#include "solver/operating_point.hpp"
+
+namespace fuzz {
+
+[[noreturn]] inline void finding(const std::string& what) {
+    std::fprintf(stderr, "FUZZ FINDING: %s\n", what.c_str());
+    std::abort();
+}
+
+inline std::string configs_dir() { return std::string(GEARLOSS_SOURCE_DIR) + "/configs"; }
+
+// Every number a solved point reports must be finite, every loss non-negative,
+// and the energy balance must hold.
+inline void check_result(const gearloss::solver::Model& m, const gearloss::solver::PointResult& r) {
+    const std::string row = gearloss::map::csv_row(m, r, true);
+    if (row.find("nan") != std::string::npos || row.find("inf") != std::string::npos)
+        finding("non-finite cell in CSV row: " + row);
+    if (r.status != gearloss::solver::PointStatus::ok) return;
+    const auto& L = r.losses;
+    for (double v : {L.mesh, L.churning, L.bearings, L.seals, L.auxiliary, r.oil_temperature, r.power_out, r.torque_out})
+        if (!std::isfinite(v)) finding("non-finite result: " + row);
+    for (double v : {L.mesh, L.churning, L.bearings, L.seals, L.auxiliary})
+        if (v < 0) finding("negative loss: " + row);
+    if (std::abs(r.power_out - (r.power_in - L.total())) > 1e-9 * std::max(1.0, std::abs(r.power_in)))
+        finding("energy balance broken: " + row);
+    if (r.has_efficiency && !(r.efficiency >= 0 && r.efficiency <= 1)) finding("efficiency outside [0, 1]: " + row);
+}
+
+inline int config_one(const uint8_t* data, size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    try {
+        const auto c = gearloss::io::load_case_text(text, "fuzz.yaml", configs_dir());
+        (void)gearloss::io::check_report(c);
+        (void)gearloss::io::check_json(c);
+        if (c.grid.size() > 0) {
+            const auto [w, T] = c.grid.at(0);
+            check_result(c.model, gearloss::solver::solve_point(c.model, w, T, true));
+        }
+    } catch (const gearloss::InputError&) {
+    }
+    return 0;
+}
+
+inline int recordings_one(const uint8_t* data, size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    try {
+        const auto r = gearloss::diagnosis::read_recordings_text(text, "fuzz.csv");
+        for (const auto& p : r.points)
+            if (!std::isfinite(p.loss) || !std::isfinite(p.speed_in) || !std::isfinite(p.torque_in))
+                finding("non-finite recorded value");
+    } catch (const gearloss::InputError&) {
+    }
+    return 0;
+}
+
+// Arbitrary-but-valid cases: a shipped case with its numbers replaced by
+// values drawn from wide physical ranges, then solved at drawn points.
+class Draw {
+public:
+    Draw(const uint8_t* d, size_t n) : d_(d), n_(n) {}
+    double unit() {  // [0, 1]
+        uint16_t v = 0;
+        for (int i = 0; i < 2; ++i) v = static_cast<uint16_t>((v << 8) | next());
+        return v / 65535.0;
+    }
+    double range(double lo, double hi) { return lo + (hi - lo) * unit(); }
+    bool flag() { return next() & 1; }
+    int pick(int n) { return static_cast<int>(next() % n); }
+
+private:
+    uint8_t next() { return i_ < n_ ? d_[i_++] : 0; }
+    const uint8_t* d_;
+    size_t n_, i_ = 0;
+};
+
+inline int map_one(const uint8_t* data, size_t size) {
+    static const char* kCases[] = {"transfer-box.yaml", "fzg-c40-paor.yaml"};
+    Draw dr(data, size);
+    YAML::Node root = YAML::LoadFile(configs_dir() + "/" + kCases[dr.pick(2)]);
+    bool geometry_changed = false;
+    for (auto g : root["gears"]) {
+        if (dr.flag()) { g["teeth"] = 6 + dr.pick(140); geometry_changed = true; }
+        if (dr.flag()) { g["profile_shift"] = dr.range(-0.8, 1.6); geometry_changed = true; }
+        if (dr.flag()) g["face_width"] = fmt::format("{} mm", dr.range(0.5, 250));
+        if (dr.flag()) g["Ra"] = fmt::format("{} um", dr.range(0.02, 5));
+        if (dr.flag()) g["immersion"] = fmt::format("{} mm", dr.range(0, 400));
+    }
+    if (geometry_changed)
+        for (auto m : root["meshes"]) m.remove("centre_distance");
+    YAML::Node cal;
+    if (dr.flag()) cal["windage"] = fmt::format("{} W", dr.range(0, 500));
+    if (dr.flag()) cal["viscosity_factor"] = dr.range(0.05, 20);
+    if (dr.flag()) cal["heat_rejection_factor"] = dr.range(0.05, 20);
+    if (dr.flag()) cal["mesh_friction_factor"] = dr.range(0.05, 20);
+    if (dr.flag()) cal["churning_factor"] = dr.range(0, 100);
+    if (cal.size() > 0) root["calibration"] = cal;
+    if (dr.flag()) root["housing"]["oil_level"] = fmt::format("{} mm", dr.range(-600, 600));
+    if (dr.flag()) root["housing"]["oil_volume"] = fmt::format("{} L", dr.range(0.001, 200));
+    auto th = root["thermal"];
+    th["ambient"] = fmt::format("{} degC", dr.range(-50, 60));
+    if (dr.flag()) {
+        th["mode"] = "fixed";
+        th["oil_temperature"] = fmt::format("{} degC", dr.range(-45, 250));
+    }
+    if (dr.flag()) {
+        YAML::Node hr;
+        hr["resistance"] = fmt::format("{} K/W", dr.range(1e-4, 20));
+        th["heat_rejection"] = hr;
+    }
+    YAML::Node op;
+    YAML::Node pts;
+    const int n = 1 + dr.pick(6);
+    for (int i = 0; i < n; ++i) {
+        YAML::Node p;
+        const double speed = dr.flag() ? dr.range(0, 40000) : dr.range(0, 3);
+        p.push_back(fmt::format("{} rpm", speed));
+        p.push_back(fmt::format("{} N*m", dr.range(-5000, 5000)));
+        pts.push_back(p);
+    }
+    op["points"] = pts;
+    root["operating"] = op;
+    YAML::Emitter em;
+    em << root;
+    try {
+        const auto c = gearloss::io::load_case_text(em.c_str(), "fuzz-map.yaml", configs_dir());
+        for (size_t i = 0; i < c.grid.size(); ++i) {
+            const auto [w, T] = c.grid.at(i);
+            check_result(c.model, gearloss::solver::solve_point(c.model, w, T, true));
+        }
+    } catch (const gearloss::InputError&) {
+    }
+    return 0;
+}
+
+}  // namespace fuzz

@@ -1,0 +1,4 @@
+// libFuzzer target: see fuzz_harness.hpp.
+#include "fuzz_harness.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { return fuzz::map_one(data, size); }
