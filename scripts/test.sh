@@ -1,8 +1,15 @@
 #!/usr/bin/env bash
-# Builds gearloss with its tests and runs them all through ctest.
+# Builds gearloss with its tests and runs them all through ctest; then builds
+# again with AddressSanitizer + UndefinedBehaviorSanitizer (any report fails)
+# and runs the whole suite once more. `--quick` skips the sanitizer pass.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
-cd "${BUILD_DIR:-build}"
-ctest --output-on-failure -j "$(nproc)"
+(cd "${BUILD_DIR:-build}" && ctest --output-on-failure -j "$(nproc)")
+if [ "${1:-}" != "--quick" ]; then
+    echo "== again with AddressSanitizer + UBSan"
+    BUILD_DIR=build-asan BUILD_TYPE=RelWithDebInfo CMAKE_EXTRA="-DGEARLOSS_SANITIZE=ON" scripts/build.sh
+    (cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+        ctest --output-on-failure -j "$(nproc)")
+fi

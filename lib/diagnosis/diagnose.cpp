@@ -933,9 +933,11 @@ void write_calibrated_config(const std::string& config_in, const std::string& co
     YAML::Node root = YAML::LoadFile(config_in);
     // Keep the oil file reachable from the new location.
     if (root["oil"] && root["oil"].IsScalar()) {
-        const fs::path oil = fs::absolute(fs::path(config_in).parent_path() / root["oil"].as<std::string>());
-        const fs::path out_dir = fs::absolute(fs::path(config_out)).parent_path();
-        root["oil"] = fs::relative(oil, out_dir).string();
+        std::error_code ec;
+        const fs::path oil = fs::absolute(fs::path(config_in).parent_path() / root["oil"].as<std::string>(), ec);
+        const fs::path out_dir = fs::absolute(fs::path(config_out), ec).parent_path();
+        const fs::path rel = fs::relative(oil, out_dir, ec);
+        root["oil"] = (ec || rel.empty() ? oil : rel).string();
     }
     const auto& c = d.calibrated.cal;
     YAML::Node cal = root["calibration"] ? root["calibration"] : YAML::Node(YAML::NodeType::Map);

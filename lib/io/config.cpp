@@ -656,7 +656,8 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     const YamlNode oil = root.at("oil");
     if (oil.is_scalar()) {
         const fs::path p = fs::path(base_dir) / oil.as_string();
-        if (!fs::exists(p)) oil.fail("oil file '" + p.string() + "' does not exist");
+        std::error_code ec;  // non-throwing: a malformed name is an input error, not a crash
+        if (!fs::is_regular_file(p, ec)) oil.fail("oil file '" + p.string() + "' does not exist or is not a file");
         m.oil = load_oil_file(p.string());
     } else {
         m.oil = load_oil(oil);

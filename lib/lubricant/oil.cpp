@@ -47,8 +47,19 @@ std::pair<double, double> gold_constants(BaseOil b) {
 }
 
 double Oil::nu_mm2s(double T_K) const {
-    if (const auto* v = std::get_if<VogelLaw>(&viscosity)) return v->nu_mm2s(T_K - 273.15);
-    return std::get<WaltherLaw>(viscosity).nu_mm2s(T_K);
+    // Far outside the measured range the laws break down (Vogel has a pole at
+    // T = -c, D341 overflows): bounded to [0.5, 1e7] mm^2/s, beyond which the
+    // oil is practically solid or no longer a lubricant.
+    constexpr double nu_min = 0.5, nu_max = 1e7;
+    double nu;
+    if (const auto* v = std::get_if<VogelLaw>(&viscosity)) {
+        const double s = T_K - 273.15 + v->c_C;
+        nu = s <= 0.0 ? nu_max : v->nu_mm2s(T_K - 273.15);
+    } else {
+        nu = std::get<WaltherLaw>(viscosity).nu_mm2s(T_K);
+    }
+    if (!(nu < nu_max)) return nu_max;  // also catches inf/NaN from overflow
+    return std::max(nu, nu_min);
 }
 
 double Oil::density(double T_K) const { return rho15 * (1.0 - expansion * (T_K - 288.15)); }

@@ -1,0 +1,178 @@
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <random>
+#include <sstream>
+
+#include "io/config.hpp"
+#include "map/map_runner.hpp"
+#include "solver/operating_point.hpp"
+#include "test_support.hpp"
+
+using namespace gearloss;
+constexpr double rpm = std::numbers::pi / 30;
+
+namespace {
+const char* kCases[] = {"configs/transfer-box.yaml", "configs/fzg-c40-paor.yaml"};
+
+std::vector<std::string> split(std::string row) {
+    while (!row.empty() && row.back() == '\n') row.pop_back();
+    std::vector<std::string> cells;
+    std::stringstream ss(row);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    if (!row.empty() && row.back() == ',') cells.push_back("");
+    return cells;
+}
+
+// Every cell of a CSV row is empty or a finite number, except the status.
+void check_cells(const std::string& row, size_t expected_cells) {
+    std::string r = row;
+    while (!r.empty() && r.back() == '\n') r.pop_back();
+    std::stringstream ss(r);
+    std::string cell;
+    std::vector<std::string> cells;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    if (!r.empty() && r.back() == ',') cells.push_back("");
+    CHECK(cells.size() == expected_cells);
+    for (size_t i = 0; i < cells.size(); ++i) {
+        const std::string& c = cells[i];
+        if (c.empty() || c == "ok" || c == "no_equilibrium") continue;
+        INFO("cell " << i << " of " << row);
+        char* end = nullptr;
+        const double v = std::strtod(c.c_str(), &end);
+        CHECK(end == c.c_str() + c.size());
+        CHECK(std::isfinite(v));
+    }
+}
+}  // namespace
+
+TEST_CASE("property: no loss component is ever negative", "[properties]") {
+    for (const char* f : kCases) {
+        auto c = io::load_case(test_support::source_path(f));
+        for (double T_oil : {233.15, 313.15, 393.15})
+            for (double n : {0.0, 10.0, 500.0, 1500.0, 4000.0})
+                for (double T : {-300.0, 0.0, 50.0, 300.0}) {
+                    c.model.thermal.mode = solver::ThermalMode::fixed;
+                    c.model.thermal.oil_temperature = T_oil;
+                    const auto r = solver::solve_point(c.model, n * rpm, T, true);
+                    const auto& L = r.losses;
+                    INFO(f << " " << n << " rpm " << T << " N m " << T_oil << " K");
+                    CHECK(L.mesh >= 0);
+                    CHECK(L.churning >= 0);
+                    CHECK(L.bearings >= 0);
+                    CHECK(L.seals >= 0);
+                    for (double v : L.bearing_each) CHECK(v >= 0);
+                    for (double v : L.churn_each) CHECK(v >= 0);
+                    for (double v : L.mesh_each) CHECK(v >= 0);
+                }
+    }
+}
+
+TEST_CASE("property: total loss grows with torque at fixed speed and oil temperature", "[properties]") {
+    for (const char* f : kCases) {
+        auto c = io::load_case(test_support::source_path(f));
+        c.model.thermal.mode = solver::ThermalMode::fixed;
+        for (double T_oil : {293.15, 353.15, 413.15})
+            for (double n : {100.0, 1000.0, 3000.0}) {
+                c.model.thermal.oil_temperature = T_oil;
+                double prev = -1;
+                for (double T = 0; T <= 500; T += 20) {
+                    const double P = solver::solve_point(c.model, n * rpm, T).losses.total();
+                    INFO(f << " " << n << " rpm, " << T << " N m, " << T_oil << " K");
+                    CHECK(P > prev);
+                    prev = P;
+                }
+            }
+    }
+}
+
+TEST_CASE("property: results are independent of grid order and thread count", "[properties]") {
+    auto c = io::load_case(test_support::source_path("configs/fzg-c40-paor.yaml"));
+    io::OperatingGrid grid;
+    for (double n : {200.0, 700.0, 1300.0, 2100.0, 3000.0}) grid.speeds.push_back(n * rpm);
+    grid.torques = {0, 46.6, 132.5, 265, 378.3};
+    map::MapOptions one;
+    one.threads = 1;
+    one.detail = true;
+    const auto ref = map::run_map(c.model, grid, one);
+    std::map<std::pair<double, double>, std::string> by_point;
+    for (const auto& r : ref) by_point[{r.speed_in, r.torque_in}] = map::csv_row(c.model, r, true);
+    // The same points, shuffled into a point list, on 2 threads.
+    io::OperatingGrid shuffled;
+    shuffled.is_grid = false;
+    for (size_t i = 0; i < grid.size(); ++i) shuffled.points.push_back(grid.at(i));
+    std::mt19937 rng(7);
+    std::shuffle(shuffled.points.begin(), shuffled.points.end(), rng);
+    map::MapOptions two = one;
+    two.threads = 2;
+    const auto out = map::run_map(c.model, shuffled, two);
+    REQUIRE(out.size() == ref.size());
+    for (size_t i = 0; i < out.size(); ++i) {
+        CHECK(out[i].speed_in == shuffled.points[i].first);
+        CHECK(map::csv_row(c.model, out[i], true) == by_point.at({out[i].speed_in, out[i].torque_in}));
+    }
+}
+
+TEST_CASE("stress map: extreme but legal inputs give finite numbers or an explicit status", "[properties]") {
+    const std::vector<double> speeds = {0, 1e-3, 1, 100, 3000, 20000, 60000};
+    const std::vector<double> torques = {-2000, -1, 0, 1e-6, 1, 500, 5000};
+    struct Variant { const char* name; std::string from, to, from_fzg, to_fzg; };
+    // "Barely touching": the oil level 0.1 um above the lowest tip point of the
+    // lowest dipping wheel (transfer box wheel 4: tip radius 54.2145 mm at the input
+    // axis; FZG wheel: tip diameter 118.3647 mm, axes at the origin level).
+    const Variant variants[] = {
+        {"as shipped", "", "", "", ""},
+        {"cold ambient -40 degC", "ambient: 25 degC", "ambient: -40 degC", "ambient: 25 degC", "ambient: -40 degC"},
+        {"cold oil, fixed -40 degC", "mode: stabilised", "mode: fixed\n  oil_temperature: -40 degC  #", "mode: stabilised",
+         "mode: fixed\n  oil_temperature: -40 degC  #"},
+        {"hot oil, fixed 250 degC", "mode: stabilised", "mode: fixed\n  oil_temperature: 250 degC  #", "mode: stabilised",
+         "mode: fixed\n  oil_temperature: 250 degC  #"},
+        {"gear barely touching the oil", "oil_level: -30 mm", "oil_level: -54.2144 mm", "oil_level: 0 mm",
+         "oil_level: -59.18225 mm"},
+    };
+    size_t cells_rows = 0, no_eq = 0;
+    for (const char* f : kCases)
+        for (const auto& v : variants) {
+            std::string text = test_support::read_file(test_support::source_path(f));
+            const bool fzg = std::string(f).find("fzg") != std::string::npos;
+            if (!v.from.empty())
+                text = fzg ? test_support::replace_once(text, v.from_fzg, v.to_fzg) : test_support::replace_once(text, v.from, v.to);
+            test_support::TempConfig cfg(text);
+            auto c = io::load_case(cfg.path);
+            io::OperatingGrid g;
+            for (double n : speeds) g.speeds.push_back(n * rpm);
+            g.torques = torques;
+            map::MapOptions opt;
+            opt.detail = true;
+            const auto res = map::run_map(c.model, g, opt);
+            INFO(f << ": " << v.name);
+            const size_t columns = split(map::csv_header(c.model, true)).size();
+            for (const auto& r : res) {
+                const std::string row = map::csv_row(c.model, r, true);
+                check_cells(row, columns);
+                CHECK(row.find("nan") == std::string::npos);
+                CHECK(row.find("inf") == std::string::npos);
+                no_eq += r.status != solver::PointStatus::ok;
+                ++cells_rows;
+            }
+        }
+    CHECK(cells_rows == 2 * 5 * 49);
+    CHECK(no_eq > 0);  // the grid reaches powers no housing can reject
+}
+
+TEST_CASE("property: the heat balance holds at every stabilised point", "[properties]") {
+    for (const char* f : kCases) {
+        const auto c = io::load_case(test_support::source_path(f));
+        for (double n : {100.0, 800.0, 2000.0})
+            for (double T : {0.0, 100.0, 300.0}) {
+                const auto r = solver::solve_point(c.model, n * rpm, T);
+                if (r.status != solver::PointStatus::ok) continue;
+                const double Q = c.model.heat_flow(r.oil_temperature, r.ambient, n * rpm);
+                INFO(f << " " << n << " rpm " << T << " N m");
+                CHECK(std::abs(r.losses.total() - Q) < 0.05);
+            }
+    }
+}
