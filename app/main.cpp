@@ -144,6 +144,9 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
 int main(int argc, char** argv) {
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
+    // A file-size limit (or quota) must fail the write (EFBIG) so the partial
+    // temporary file is removed, rather than kill the process mid-write.
+    std::signal(SIGXFSZ, SIG_IGN);
 
     CLI::App app{"gearloss — where the power goes in a gearbox: mesh, churning, bearing and seal losses with the\n"
                  "thermally stabilised oil temperature, from a YAML description.\n\n"

@@ -73,6 +73,28 @@ check "interrupt exit 130" test $rc -eq 130
 check "interrupt leaves no file" test ! -e "$tmp/big.csv"
 check "interrupt leaves no temporary" bash -c "! ls '$tmp' | grep -q '\.tmp\.'"
 
+# SIGTERM: exit 143, no file.
+"$bin" map "$src/configs/transfer-box.yaml" --speed "$big_speeds" --torque "$big_torques" -o "$tmp/big2.csv" &
+pid=$!
+sleep 1
+kill -TERM $pid
+wait $pid
+rc=$?
+check "SIGTERM exit 143" test $rc -eq 143
+check "SIGTERM leaves no file" test ! -e "$tmp/big2.csv"
+
+# Disk full (simulated with a 64 KiB file-size limit): exit 3, the previous file
+# is left as it was and no temporary file remains.
+"$bin" map "$src/configs/transfer-box.yaml" -o "$tmp/full.csv"
+cp "$tmp/full.csv" "$tmp/full-before.csv"
+(ulimit -f 64; exec "$bin" map "$src/configs/transfer-box.yaml" --speed 300,400,500,600,700,800,900,1000rpm \
+    --torque "$(python3 -c "print(','.join(str(10+i) for i in range(300)))")Nm" --detail -o "$tmp/full.csv") 2> "$tmp/err5.txt"
+rc=$?
+check "disk full exit 3" test $rc -eq 3
+check "disk full message" grep -q "cannot write" "$tmp/err5.txt"
+check "disk full keeps previous file" cmp -s "$tmp/full.csv" "$tmp/full-before.csv"
+check "disk full leaves no temporary" bash -c "! ls '$tmp' | grep -q '\.tmp\.'"
+
 # synth -> diagnose -> JSON, calibrated config, residuals.
 "$bin" synth "$src/configs/transfer-box.yaml" --effect constant_parasitic=30W --seed 2 \
     --speed 400,700,1000rpm --torque 100,200,300Nm -o "$tmp/rec.csv"
@@ -87,7 +109,7 @@ f = d['findings'][0]
 assert f['effect'] == 'constant_parasitic'
 for k in ('description', 'parameters', 'rmse_before', 'rmse_after', 'cv_rmse_before', 'cv_rmse_after'): assert k in f, k
 assert isinstance(d['outliers'], list)"
-check "calibrated config loads" "$bin" check "$tmp/cal.yaml"
+check "calibrated config loads" bash -c "'$bin' check '$tmp/cal.yaml' > /dev/null"
 check "residuals written" test "$(wc -l < "$tmp/res.csv")" -eq 10
 # Malformed recordings: exit 2 naming the file and line.
 printf 'speed_in_rpm,torque_in_Nm,P_loss_W\n600,150,210\n700,150\n' > "$tmp/bad.csv"

@@ -73,6 +73,30 @@ TEST_CASE("bad input names file, line and key", "[config]") {
                   "expected 1/s"});
 }
 
+TEST_CASE("every remaining message class names file, line, key and what was expected", "[config]") {
+    // Choice from a list: the choices are listed.
+    expect_error({"mesh_friction: schlenk", "mesh_friction: coulomb", "mesh_friction: coulomb", "options.mesh_friction",
+                  "'coulomb' is not one of: schlenk, iso_6336_20, fernandes_mixed"});
+    // References to undefined names.
+    expect_error({"gears: [w2, w1], angle: 120 deg", "gears: [w2, w9], angle: 120 deg", "name: m12", "meshes[0].gears[1]",
+                  "unknown gear 'w9'"});
+    expect_error({"material: 15CrNi6, Ra: 0.5 um}\n  - {name: w2", "material: 16MnCr5, Ra: 0.5 um}\n  - {name: w2",
+                  "name: w1", "gears[0].material", "unknown material '16MnCr5'; define it under 'materials'"});
+    // A referenced oil file that is not there.
+    expect_error({"oil: oils/75W90-A.yaml", "oil: oils/missing.yaml", "oil: oils/missing.yaml", "oil",
+                  "does not exist"});
+    // Shaft statics: an axial load with no locating bearing; three support positions.
+    expect_error({"position: 130 mm, locating: true}\n  - {name: B3", "position: 130 mm}\n  - {name: B3", "input: III",
+                  "gearbox", "no bearing on it is marked 'locating: true'"});
+    expect_error({"shaft: II,  position: 130 mm, locating: true}", "shaft: II,  position: 140 mm, locating: true}\n"
+                  "  - {name: B9, type: tapered_roller, series: \"323\", d: 30 mm, D: 72 mm, B: 28.75 mm, Y: 1.9, shaft: II, "
+                  "position: 60 mm}", "input: III", "gearbox", "statically determinate"});
+    // Numbers where a number is expected.
+    expect_error({"teeth: 32,", "teeth: many,", "name: w1", "gears[0].teeth", "expected a whole number, got 'many'"});
+    expect_error({"emissivity: 0.9", "emissivity: 1.9", "emissivity: 1.9", "thermal.heat_rejection.housing.emissivity",
+                  "emissivity must be in [0, 1]"});
+}
+
 TEST_CASE("YAML syntax errors and missing files are input errors", "[config]") {
     TempConfig cfg(test_support::replace_once(base(), "shafts: [III, II, I]", "shafts: [III, II, I"));
     CHECK_THROWS_AS(io::load_case(cfg.path), InputError);

@@ -111,7 +111,11 @@ TEST_CASE("recordings: steady points, warnings and errors with line numbers", "[
         TempFile bad("speed_in_rpm,torque_in_Nm,P_loss_W\n600,150,210\n700,abc,240\n");
         CHECK_THROWS_WITH(diagnosis::read_recordings(bad.path), Catch::Contains(":3:2: torque_in_Nm: 'abc' is not a number"));
         TempFile miss("speed_in_rpm,P_loss_W\n600,210\n");
-        CHECK_THROWS_WITH(diagnosis::read_recordings(miss.path), Catch::Contains("torque_in_Nm"));
+        CHECK_THROWS_WITH(diagnosis::read_recordings(miss.path), Catch::Contains("required column 'torque_in_Nm' is missing"));
+        // A log whose time goes backwards.
+        TempFile back("time_s,speed_in_rpm,speed_out_rpm,torque_in_Nm,torque_out_Nm,oil_temp_C,room_temp_C\n"
+                      "0,600,261,150,340,40,25\n2,600,261,150,340,40,25\n1,600,261,150,340,40,25\n");
+        CHECK_THROWS_WITH(diagnosis::read_recordings(back.path), Catch::Contains(":4: time_s: time must increase"));
     }
 }
 
