@@ -62,9 +62,10 @@ TEST_CASE("bad input names file, line and key", "[config]") {
     // free: tip thickness -0.15 mm despite the tip shortening); the mesh line is named.
     expect_error({"profile_shift: 0.1817, face_width: 40 mm", "profile_shift: 1.9, face_width: 40 mm", "name: C40",
                   "meshes[0]", "pointed tooth", "fzg-c40-paor.yaml", ", centre_distance: 91.5 mm", ""});
-    // Too large a profile-shift sum at a fixed centre distance: the contact ratio falls below 1.
+    // Too large a profile-shift sum at a fixed centre distance: the tips are cut so far
+    // back that the path of contact no longer passes the pitch point.
     expect_error({"teeth: 23, module: 3.5 mm, profile_shift: 0.415", "teeth: 23, module: 3.5 mm, profile_shift: 2.4",
-                  "name: m12", "meshes[0]", "contact ratio"});
+                  "name: m12", "meshes[0]", "does not pass the pitch point"});
     expect_error({"type: needle_roller, d: 38 mm", "type: needle_rollr, d: 38 mm", "N_w4", "bearings[6].type",
                   "unknown bearing type 'needle_rollr'"});
     expect_error({"low:  {engage: [w5]", "low:  {engage: [w5, w4]", "input: III", "gearbox", "locked"});

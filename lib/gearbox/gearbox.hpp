@@ -14,6 +14,7 @@ namespace gearloss::gearbox {
 
 struct Shaft {
     std::string name;
+    bool fixed = false;         // held by the housing (e.g. a fixed ring gear's mounting)
 };
 
 struct Gear {
@@ -22,6 +23,9 @@ struct Gear {
     double position = 0;        // axial position along the shaft [m]
     bool free = false;          // runs on its own bearings, locked only when engaged
     std::optional<double> immersion;  // depth below the oil level [m]; else from the oil level
+    int carrier = -1;           // planet gear: the shaft (carrier) its pins sit on
+    int planets = 1;            // planet gear: number of identical, equally spaced planets
+    bool is_planet() const { return carrier >= 0; }
 };
 
 struct Mesh {
@@ -36,8 +40,9 @@ struct Bearing {
     bearings::BearingSpec spec;
     int shaft = -1;
     double position = 0;        // axial [m]
-    int under_gear = -1;        // >= 0: between this free gear and its shaft
+    int under_gear = -1;        // >= 0: between this free (or planet) gear and its shaft (or carrier)
     bool locating = false;      // takes the shaft's axial load
+    int multiplicity = 1;       // identical copies running alike (one per planet)
 };
 
 struct Seal {
@@ -72,7 +77,11 @@ struct Layout {
         double H_V_ohlendorf = 0, H_V_buckingham = 0, H_V_wimmer = 0;
         double L_min = 0;
         bool loaded = false;
-        int driver_forward = 0;  // gear index (0/1) that drives when the input power is positive
+        int carrier_body = -1;       // body the mesh turns with (planetary); -1 = housing
+        int planets = 1;             // load shared by this many identical meshes
+        double force_per_Nm = 0;     // tangential force at the working pitch circle, all planets, per N m input
+        double rolling_per_W = 0;    // |rolling power| (relative to the carrier) per W of input power
+        double relative_speed = 0;   // (omega_gear0 - omega_carrier) / omega_in
     };
     std::vector<int> body_of_gear, body_of_shaft;
     std::vector<double> body_speed_ratio;   // omega_body / omega_input (signed)
@@ -84,7 +93,10 @@ struct Layout {
     // Bearing radial and axial load [N] per N*m of input torque, for positive
     // and negative input torque (the radial separating force does not reverse).
     std::vector<double> bearing_Fr_pos, bearing_Fa_pos, bearing_Fr_neg, bearing_Fa_neg;
+    // Centrifugal load of planet bearings per (omega_in)^2 [N s^2].
+    std::vector<double> bearing_Fcf_per_w2;
     double ratio = 0;   // omega_out / omega_in (signed)
+    double output_torque_per_Nm = 0;  // ideal (lossless) output torque per N m input, signed
 };
 
 Layout analyse(const Gearbox& gb);

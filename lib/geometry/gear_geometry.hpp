@@ -25,6 +25,7 @@ struct GearSpec {
     Hand hand = Hand::spur;
     double ha_star = 1.0;   // addendum coefficient of the basic rack
     double hf_star = 1.25;  // dedendum coefficient
+    bool internal = false;  // internal (ring) gear: tip inside, mates turn the same way
     double Ra = 0.5e-6;     // arithmetic mean roughness of the flanks
     std::optional<double> Rq;  // rms roughness; ~1.25 Ra when absent (Gaussian)
     Material material;
@@ -40,9 +41,13 @@ double involute(double a);
 // Inverse of the involute function on [0, 1.5) rad.
 double inverse_involute(double inv);
 
-// Derived data of an external gear pair; index 0 = first gear named in the mesh.
+// Derived data of a gear pair; index 0 = first gear named in the mesh, which
+// is external; gear 1 may be internal (a ring). Lengths are magnitudes; the
+// path of contact uses ISO 21771's signed convention (T1T2 < 0 for internal).
 struct PairGeometry {
+    bool internal = false;   // gear 1 is an internal gear
     double u = 0;            // z2/z1 (>0)
+    double sign = 1;         // +1 external pair, -1 internal pair (u + sign appears in H_V)
     double alpha_t = 0, alpha_wt = 0, beta_b = 0;
     double a = 0, a_w = 0;   // reference and working centre distance
     double y = 0, k = 0;     // centre-distance modification and tip alteration coefficients
@@ -63,7 +68,9 @@ struct GeometryError : std::exception {
     std::string msg;
 };
 
-// Computes the pair geometry. With `a_w` given, the working pressure angle
+// Computes the pair geometry (gear 1 external; gear 2 external or internal,
+// internal gears with the ISO 21771 signed convention: z, d and a < 0 inside
+// the formulas, so that one set of formulas serves both). With `a_w` given, the working pressure angle
 // follows from it (the profile shifts stay as given and the tip alteration k
 // absorbs the difference). Throws GeometryError for an impossible pair.
 PairGeometry pair_geometry(const GearSpec& g1, const GearSpec& g2, std::optional<double> a_w = std::nullopt);

@@ -259,14 +259,16 @@ struct Loader {
         const YamlNode s = root.at("shafts");
         for (const auto& item : s.items()) {
             std::string name;
+            bool fixed = false;
             if (item.is_scalar()) name = item.as_string();
             else {
-                item.allow_keys({"name", "note"});
+                item.allow_keys({"name", "fixed", "note"});
                 name = item.at("name").as_string();
+                if (auto f = item.get("fixed")) fixed = f->as_bool();
             }
             if (shaft_index.count(name)) item.fail("duplicate shaft name '" + name + "'");
             shaft_index[name] = static_cast<int>(model.gearbox.shafts.size());
-            model.gearbox.shafts.push_back({name});
+            model.gearbox.shafts.push_back({name, fixed});
         }
         if (model.gearbox.shafts.size() < 2) s.fail("a gearbox needs at least two shafts");
     }
@@ -275,12 +277,25 @@ struct Loader {
         for (const auto& n : root.at("gears").items()) {
             n.allow_keys({"name", "shaft", "position", "teeth", "module", "profile_shift", "face_width", "pressure_angle",
                           "helix_angle", "hand", "material", "Ra", "Rq", "mount", "immersion", "addendum_coefficient",
-                          "dedendum_coefficient", "note"});
+                          "dedendum_coefficient", "internal", "carrier", "planets", "note"});
             gearbox::Gear g;
             auto& s = g.spec;
             s.name = n.at("name").as_string();
             if (gear_index.count(s.name)) n.at("name").fail("duplicate gear name '" + s.name + "'");
-            g.shaft = shaft_ref(n.at("shaft"));
+            if (auto c = n.get("carrier")) {
+                // A planet: it turns on pins of the carrier, N identical ones equally spaced.
+                g.carrier = shaft_ref(*c);
+                g.shaft = g.carrier;
+                if (n.has("shaft")) n.at("shaft").fail("a planet gear names its 'carrier', not a 'shaft'");
+                if (n.has("mount")) n.at("mount").fail("a planet gear always turns on its own bearings; drop 'mount'");
+                g.planets = n.has("planets") ? n.at("planets").as_int() : 1;
+                if (g.planets < 1 || g.planets > 12) n.at("planets").fail("number of planets must be 1..12");
+            } else {
+                if (n.has("planets")) n.at("planets").fail("'planets' needs a 'carrier'");
+                g.shaft = shaft_ref(n.at("shaft"));
+            }
+            if (auto in = n.get("internal")) s.internal = in->as_bool();
+            if (s.internal && g.is_planet()) n.at("internal").fail("a planet cannot be an internal gear");
             g.position = n.has("position") ? n.quantity("position", dim::length, "60 mm") : 0.0;
             const YamlNode zt = n.at("teeth");
             s.z = zt.as_int();
@@ -446,9 +461,13 @@ struct Loader {
             if (auto ug = n.get("under_gear")) {
                 b.under_gear = gear_ref(*ug);
                 const auto& g = model.gearbox.gears[b.under_gear];
-                if (!g.free) ug->fail("bearing under gear '" + g.spec.name + "', which is not 'mount: free'");
-                if (g.shaft != b.shaft) ug->fail("gear '" + g.spec.name + "' is not on shaft '" + n.at("shaft").as_string() + "'");
+                if (!g.free && !g.is_planet())
+                    ug->fail("bearing under gear '" + g.spec.name + "', which is neither 'mount: free' nor a planet");
+                if (g.shaft != b.shaft)
+                    ug->fail("gear '" + g.spec.name + "' is not on shaft '" + n.at("shaft").as_string() + "'" +
+                             (g.is_planet() ? " (a planet bearing names the carrier as its shaft)" : ""));
                 b.position = g.position;
+                if (g.is_planet()) b.multiplicity = g.planets;  // listed once, runs in every planet
             } else {
                 b.position = n.quantity("position", dim::length, "20 mm");
             }
@@ -464,14 +483,15 @@ struct Loader {
                 model.gearbox.bearings.push_back(bi);
             }
         }
-        // A free gear needs bearings under it (its speed differs from the shaft's).
+        // A free gear or a planet needs bearings under it (its speed differs from the shaft's).
         for (size_t g = 0; g < model.gearbox.gears.size(); ++g) {
-            if (!model.gearbox.gears[g].free) continue;
+            if (!model.gearbox.gears[g].free && !model.gearbox.gears[g].is_planet()) continue;
             bool any = false;
             for (const auto& b : model.gearbox.bearings) any = any || b.under_gear == static_cast<int>(g);
             if (!any)
                 root.at("gears").items()[g].fail("gear '" + model.gearbox.gears[g].spec.name +
-                                                 "' is 'mount: free' but no bearing has 'under_gear' naming it");
+                                                 "' turns on its own bearings ('mount: free' or a planet) but no bearing "
+                                                 "has 'under_gear' naming it");
         }
     }
 

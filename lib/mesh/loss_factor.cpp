@@ -8,12 +8,13 @@
 namespace gearloss::mesh {
 
 double loss_factor_ohlendorf(const geometry::PairGeometry& g, int z1) {
-    const double pre = std::numbers::pi * (g.u + 1.0) / (z1 * g.u * std::cos(g.beta_b));
+    // Internal pair: (u + 1) -> (u - 1).
+    const double pre = std::numbers::pi * (g.u + g.sign) / (z1 * g.u * std::cos(g.beta_b));
     return pre * (1.0 - g.eps_alpha + g.eps1 * g.eps1 + g.eps2 * g.eps2);
 }
 
 double loss_factor_buckingham(const geometry::PairGeometry& g, int z1) {
-    const double pre = std::numbers::pi * (g.u + 1.0) / (z1 * g.u * std::cos(g.beta_b));
+    const double pre = std::numbers::pi * (g.u + g.sign) / (z1 * g.u * std::cos(g.beta_b));
     return pre * (g.eps1 * g.eps1 + g.eps2 * g.eps2) / g.eps_alpha;
 }
 
@@ -64,7 +65,8 @@ ContactSweep sweep_contact_lines(const geometry::PairGeometry& g, int phases) {
     }
     ContactSweep r;
     // Friction power / (mu F_bt v_tb): F_bn = F_bt / cos(beta_b), v_g = (w1 + w2)|xi - C|.
-    r.H_V = (1.0 + 1.0 / g.u) * (sum_ratio / phases) / (cb * 0.5 * g.db[0]);
+    // Sliding speed (w1 -/+ w2)|xi - C|: w2/w1 = 1/u, same sense for an internal pair.
+    r.H_V = (1.0 + g.sign / g.u) * (sum_ratio / phases) / (cb * 0.5 * g.db[0]);
     r.L_min = L_min;
     r.L_mean = L_sum / phases;
     return r;

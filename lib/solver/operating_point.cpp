@@ -60,17 +60,20 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
             const double q0 = g0.Rq ? *g0.Rq : 1.25 * g0.Ra, q1 = g1.Rq ? *g1.Rq : 1.25 * g1.Ra;
             ms.sigma = std::sqrt(q0 * q0 + q1 * q1);
         }
-        const double w0 = L.body_speed_ratio[L.body_of_gear[gb.meshes[i].gear[0]]] * omega_in;
+        // Speeds relative to the carrier (the housing for an ordinary mesh).
+        const double w0 = md.relative_speed * omega_in;
         const double vt = std::abs(w0) * 0.5 * md.geom.dw[0];
         const double v_sum = 2.0 * vt * std::sin(md.geom.alpha_wt);
         ms.contact.u_e = 0.5 * v_sum;
         ms.contact.R = md.geom.rho_redC;
         ms.contact.E_prime = m.mesh_E_prime[i];
         ms.contact.SRR = 0.0;  // pitch point
-        if (!md.loaded || !opt.mesh || P == 0.0 || w0 == 0.0) continue;
-        ms.power = P;
-        const double T0 = P / std::abs(w0);
-        const double F_bt = T0 / (0.5 * md.geom.db[0]);
+        if (!md.loaded || !opt.mesh || torque_in == 0.0 || w0 == 0.0) continue;
+        // Mesh loss on the rolling power (relative to the carrier): P_VZP = mu H_V |P_roll|.
+        ms.power = std::abs(p.power_in) * md.rolling_per_W;
+        // Line load of one mesh (load shared by the planets of a set).
+        const double F_wt = std::abs(md.force_per_Nm * torque_in) / md.planets;
+        const double F_bt = F_wt / std::cos(md.geom.alpha_wt);
         const double w_Nmm = F_bt / (md.geom.b_eff * 1e3);
         const double rho_mm = md.geom.rho_redC * 1e3;
         const double Ra_um = 0.5 * (g0.Ra + g1.Ra) * 1e6;
@@ -112,7 +115,9 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
         const double w = L.bearing_speed_ratio[i] * std::abs(omega_in);
         p.bearing_omega[i] = w;
         if (!opt.bearings) continue;
-        const double Fr = T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]);
+        const double Fr_gear = T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]);
+        const double Fcf = L.bearing_Fcf_per_w2[i] * omega_in * omega_in;  // planet centrifugal load
+        const double Fr = Fcf > 0.0 ? std::hypot(Fr_gear, Fcf) : Fr_gear;
         const double Fa = T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]);
         p.bearings[i] = bearings::SkfAtPoint::make(gb.bearings[i].spec, Fr, Fa, w * rad_s_to_rpm);
         if (cal.bearing_drag_f0 > 0.0) {
@@ -210,7 +215,7 @@ LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubrica
         const double nu1379 = p.any_drag ? std::exp(1.379 * lnnu) : 0.0;
         for (size_t i = 0; i < p.bearings.size(); ++i) {
             const double M = p.bearings[i].moment(nu, nu06, nu064, nu14, nu1379);  // N*mm
-            const double P = M * 1e-3 * p.bearing_omega[i];
+            const double P = M * 1e-3 * p.bearing_omega[i] * gb.bearings[i].multiplicity;  // x planets
             r.bearings += P;
             if (detail) r.bearing_each[i] = P;
         }
@@ -221,7 +226,7 @@ LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubrica
     if (m.calibration.bearing_drag_f0 > 0.0) {
         const double nu23 = std::cbrt(nu * nu);
         for (size_t i = 0; i < p.bearing_drag_coef.size(); ++i) {
-            const double P = p.bearing_drag_coef[i] * nu23;
+            const double P = p.bearing_drag_coef[i] * nu23 * gb.bearings[i].multiplicity;
             r.bearings += P;
             if (detail) r.bearing_each[i] += P;
         }
