@@ -40,12 +40,14 @@ struct Common {
     std::string config;
     std::string ratio;
     std::string oil_temp;
+    std::string oil;
 };
 
 io::Case load(const Common& c) {
     std::optional<std::string> ratio;
     if (!c.ratio.empty()) ratio = c.ratio;
     io::Case k = io::load_case(c.config, ratio);
+    if (!c.oil.empty()) io::replace_oil(k, io::load_oil_file(c.oil));
     if (!c.oil_temp.empty()) {
         gearloss::units::Quantity q;
         try {
@@ -167,6 +169,7 @@ int main(int argc, char** argv) {
         s->add_option("config", common.config, "gearbox case (YAML)")->required();
         s->add_option("--ratio", common.ratio, "select a ratio defined under gearbox.ratios");
         s->add_option("--oil-temp", common.oil_temp, "fixed oil temperature (e.g. 70degC): no thermal solve");
+        s->add_option("--oil", common.oil, "replace the case's oil by this oil file (YAML)");
     };
 
     auto* map = app.add_subcommand("map", "all operating points of the grid to CSV (parallel, written atomically)");

@@ -214,6 +214,15 @@ std::vector<double> parse_value_list(const std::string& text, const units::Dimen
 
 namespace {
 
+// SKF sliding friction pair of a bearing from the oil (or the SKF defaults by type and base oil).
+void set_bearing_friction(bearings::BearingSpec& s, const lubricant::Oil& oil) {
+    const bool synthetic = oil.base != BaseOil::mineral && oil.base != BaseOil::transmission_fluid;
+    const auto& pair = bearings::is_roller(s.type) ? oil.bearing_roller : oil.bearing_ball;
+    s.mu_bl = pair.mu_bl;
+    s.mu_ehl = pair.mu_ehl ? *pair.mu_ehl
+                           : bearings::default_mu_ehl(s.type, synthetic, oil.base == BaseOil::transmission_fluid);
+}
+
 struct Loader {
     const YamlNode& root;
     solver::Model& model;
@@ -359,9 +368,6 @@ struct Loader {
 
     void load_bearings() {
         if (!root.has("bearings")) return;
-        const BaseOil base = model.oil.base;
-        const bool synthetic = base != BaseOil::mineral && base != BaseOil::transmission_fluid;
-        const bool atf = base == BaseOil::transmission_fluid;
         std::set<std::string> names;
         for (const auto& n : root.at("bearings").items()) {
             n.allow_keys({"name", "type", "series", "designation", "d", "D", "B", "C0", "Y", "shaft", "position",
@@ -417,9 +423,7 @@ struct Loader {
             if (auto l = n.get("lubrication"))
                 s.K_rs = l->as_enum<double>({{"splash", 3e-8}, {"oil_bath_low", 3e-8}, {"oil_jet", 3e-8},
                                             {"oil_bath", 0.0}, {"grease", 6e-8}, {"oil_air", 6e-8}});
-            const auto& pair = bearings::is_roller(s.type) ? model.oil.bearing_roller : model.oil.bearing_ball;
-            s.mu_bl = pair.mu_bl;
-            s.mu_ehl = pair.mu_ehl ? *pair.mu_ehl : bearings::default_mu_ehl(s.type, synthetic, atf);
+            set_bearing_friction(s, model.oil);
             if (auto se = n.get("seals")) {
                 const std::string st = se->as_string();
                 if (st != "none") {
@@ -637,6 +641,11 @@ std::vector<double> load_axis(const YamlNode& n, const units::Dimension& d, cons
 }
 
 }  // namespace
+
+void replace_oil(Case& c, const lubricant::Oil& oil) {
+    c.model.oil = oil;
+    for (auto& b : c.model.gearbox.bearings) set_bearing_friction(b.spec, oil);
+}
 
 Case load_case(const std::string& file, const std::optional<std::string>& ratio_override) {
     std::ifstream in(file, std::ios::binary);

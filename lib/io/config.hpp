@@ -38,6 +38,8 @@ Case load_case_text(const std::string& text, const std::string& name, const std:
 // Loads an oil from a YAML mapping (inline or a separate file).
 lubricant::Oil load_oil(const YamlNode& node);
 lubricant::Oil load_oil_file(const std::string& file);
+// Replaces the oil of a loaded case (bearing friction pairs follow the new oil).
+void replace_oil(Case& c, const lubricant::Oil& oil);
 
 // "600,700,800rpm" or "600 rpm, 700 rpm" -> SI values of the expected dimension.
 std::vector<double> parse_value_list(const std::string& text, const units::Dimension& d, const char* what,
