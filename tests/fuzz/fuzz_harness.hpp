@@ -96,9 +96,10 @@ private:
 };
 
 inline int map_one(const uint8_t* data, size_t size) {
-    static const char* kCases[] = {"transfer-box.yaml", "fzg-c40-paor.yaml"};
+    static const char* kCases[] = {"transfer-box.yaml", "fzg-c40-paor.yaml", "planetary-test.yaml",
+                                   "wind-turbine-2.5MW.yaml"};
     Draw dr(data, size);
-    YAML::Node root = YAML::LoadFile(configs_dir() + "/" + kCases[dr.pick(2)]);
+    YAML::Node root = YAML::LoadFile(configs_dir() + "/" + kCases[dr.pick(4)]);
     bool geometry_changed = false;
     for (auto g : root["gears"]) {
         if (dr.flag()) { g["teeth"] = 6 + dr.pick(140); geometry_changed = true; }
