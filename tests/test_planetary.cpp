@@ -144,3 +144,27 @@ options: {losses: {churning: false, bearings: false, seals: false}}
             CHECK(eta < std::min(e1, e2));
         }
 }
+
+TEST_CASE("wind-turbine gearbox: torque balance of every stage", "[planetary]") {
+    // Stage 1: carrier in, ring fixed, sun out: T_sun1 = T_in / (1 + 99/21).
+    // Stage 2: carrier (= sun 1 shaft) in: T_sun2 = T_sun1 / (1 + 90/24).
+    // Stage 3: wheel 91 -> pinion 24: T_out = T_sun2 * 24/91. Ideal (lossless) values.
+    const auto c = io::load_case(test_support::source_path("configs/wind-turbine-2.5MW.yaml"));
+    const auto& L = c.model.layout;
+    const double k1 = 1 + 99.0 / 21, k2 = 1 + 90.0 / 24, k3 = 91.0 / 24;
+    CHECK(std::abs(L.ratio) == Approx(k1 * k2 * k3).epsilon(1e-12));
+    // Sun torque of each stage = mesh force (all planets) x sun working radius.
+    CHECK(std::abs(L.meshes[0].force_per_Nm) * 0.5 * L.meshes[0].geom.dw[0] == Approx(1 / k1).epsilon(1e-10));
+    CHECK(std::abs(L.meshes[2].force_per_Nm) * 0.5 * L.meshes[2].geom.dw[0] == Approx(1 / (k1 * k2)).epsilon(1e-10));
+    // Planet: the sun and ring mesh forces are equal (torque balance of the planet).
+    CHECK(std::abs(L.meshes[0].force_per_Nm) == Approx(std::abs(L.meshes[1].force_per_Nm)).epsilon(1e-10));
+    CHECK(std::abs(L.meshes[2].force_per_Nm) == Approx(std::abs(L.meshes[3].force_per_Nm)).epsilon(1e-10));
+    // Output: power balance T_out omega_out = -T_in omega_in.
+    CHECK(std::abs(L.output_torque_per_Nm) == Approx(1 / (k1 * k2 * k3)).epsilon(1e-10));
+    // Rolling power of stage 1: sun mesh |P_roll| / P_in = 1 / k1 * (ratio sun-carrier relative speed) = 99/120.
+    CHECK(L.meshes[0].rolling_per_W == Approx(99.0 / 120).epsilon(1e-10));
+    // The full computation at rated power: 97-98 % class, losses positive.
+    const auto r = solver::solve_point(c.model, 16 * rpm, 1492.1e3, true);
+    CHECK(r.efficiency > 0.95);
+    CHECK(r.efficiency < 0.99);
+}
