@@ -42,7 +42,6 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
     p.omega_in = omega_in;
     p.torque_in = torque_in;
     p.power_in = omega_in * torque_in;
-    const double P = std::abs(p.power_in);
 
     for (size_t i = 0; i < gb.meshes.size(); ++i) {
         const auto& md = L.meshes[i];
