@@ -552,8 +552,9 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     const ChannelStats s0 = channel_rmse(E, p0, neutral);
     d.rmse_before = s0.rmse_loss;
     d.temp_rmse_before = s0.rmse_temp;
-    d.location = locate(E, p0, neutral, model).text;
-    const std::string baseline_clause = locate(E, p0, neutral, model).clause;
+    const Location baseline = locate(E, p0, neutral, model);
+    d.location = baseline.text;
+    const std::string& baseline_clause = baseline.clause;
 
     Hypothesis base = neutral;
     std::vector<std::string> used;
