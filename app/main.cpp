@@ -12,6 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "io/config.hpp"
 #include "io/reports.hpp"
+#include "map/compare.hpp"
 #include "map/map_runner.hpp"
 #include "units/units.hpp"
 
@@ -217,6 +218,21 @@ int main(int argc, char** argv) {
     synth->add_option("-o,--output", out, "output CSV ('-' = stdout)");
     synth->footer("Example: gearloss synth configs/transfer-box.yaml --effect windage=25W --seed 3 -o rec.csv");
 
+    // compare
+    std::vector<std::string> compare_oils;
+    Common cmp;
+    auto* compare = app.add_subcommand("compare", "the same map for two oils and their differences per point (B - A)");
+    compare->add_option("config", cmp.config, "gearbox case (YAML)")->required();
+    compare->add_option("--oil", compare_oils, "oil files A and B (give --oil twice)")->required();
+    compare->add_option("--ratio", cmp.ratio, "select a ratio defined under gearbox.ratios");
+    compare->add_option("--oil-temp", cmp.oil_temp, "fixed oil temperature (e.g. 70degC): no thermal solve");
+    compare->add_option("--speed", speeds, "override the input speeds");
+    compare->add_option("--torque", torques, "override the input torques");
+    compare->add_option("-o,--output", out, "output CSV ('-' = stdout)");
+    compare->add_option("--threads", threads, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+    compare->footer("Example: gearloss compare configs/transfer-box.yaml --oil configs/oils/75W90-A.yaml "
+                    "--oil configs/oils/75W140-A.yaml -o diff.csv");
+
     auto* check = app.add_subcommand("check", "validate a case and print derived data (geometry, H_V, speeds, oil)");
     add_common(check);
     check->add_flag("--json", json, "print the derived data as JSON");
@@ -291,6 +307,26 @@ int main(int argc, char** argv) {
             io::AtomicFile f(out);
             f.write(csv);
             f.commit();
+        } else if (compare->parsed()) {
+            if (compare_oils.size() != 2) throw InputError("", 0, 0, "--oil", "compare needs exactly two oils (--oil A --oil B)");
+            io::Case base = load(cmp);
+            if (!speeds.empty())
+                base.grid.speeds = io::parse_value_list(speeds, gearloss::units::dim::angular_speed, "--speed", "600,700rpm");
+            if (!torques.empty())
+                base.grid.torques = io::parse_value_list(torques, gearloss::units::dim::torque, "--torque", "150,200Nm");
+            io::Case a = base, b = base;
+            io::replace_oil(a, io::load_oil_file(compare_oils[0]));
+            io::replace_oil(b, io::load_oil_file(compare_oils[1]));
+            gearloss::map::MapOptions mo;
+            mo.threads = threads;
+            const auto ra = gearloss::map::run_map(a.model, a.grid, mo);
+            const auto rb = gearloss::map::run_map(b.model, b.grid, mo);
+            if (!io::g_interrupted) {
+                io::AtomicFile f(out);
+                f.write(gearloss::map::compare_header(a.model.oil.name, b.model.oil.name));
+                for (size_t i = 0; i < ra.size(); ++i) f.write(gearloss::map::compare_row(ra[i], rb[i]));
+                f.commit();
+            }
         } else if (check->parsed()) {
             io::Case k = load(common);
             std::fputs((json ? io::check_json(k) : io::check_report(k)).c_str(), stdout);

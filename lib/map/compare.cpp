@@ -1,0 +1,30 @@
+#include "map/compare.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+namespace gearloss::map {
+
+namespace {
+std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v == 0.0 ? 0.0 : v) : std::string(); }
+}  // namespace
+
+std::string compare_header(const std::string& a, const std::string& b) {
+    return fmt::format(
+        "speed_in_rpm,torque_in_Nm,P_total_{0}_W,P_total_{1}_W,dP_loss_W,oil_temp_{0}_C,oil_temp_{1}_C,dT_oil_K,"
+        "efficiency_{0},efficiency_{1},d_efficiency,status_{0},status_{1}\n",
+        a, b);
+}
+
+std::string compare_row(const solver::PointResult& a, const solver::PointResult& b) {
+    const bool oa = a.status == solver::PointStatus::ok, ob = b.status == solver::PointStatus::ok;
+    const double Pa = oa ? a.losses.total() : NAN, Pb = ob ? b.losses.total() : NAN;
+    const double Ta = oa ? a.oil_temperature - 273.15 : NAN, Tb = ob ? b.oil_temperature - 273.15 : NAN;
+    const double ea = oa && a.has_efficiency ? a.efficiency : NAN, eb = ob && b.has_efficiency ? b.efficiency : NAN;
+    return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(a.speed_in * 30 / std::numbers::pi),
+                       num(a.torque_in), num(Pa), num(Pb), num(Pb - Pa), num(Ta), num(Tb), num(Tb - Ta), num(ea), num(eb),
+                       num(eb - ea), solver::to_string(a.status), solver::to_string(b.status));
+}
+
+}  // namespace gearloss::map
