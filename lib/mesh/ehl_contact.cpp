@@ -1,0 +1,115 @@
+#include "mesh/ehl_contact.hpp"
+
+#include <algorithm>
+#include <array>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <cmath>
+#include <numbers>
+
+namespace gearloss::mesh {
+
+double roelands_viscosity(double eta0, double alpha, double p) {
+    constexpr double p_r = 1.96e8, ln_eta_inf = -9.67;
+    const double s = std::log(eta0) - ln_eta_inf;  // ln eta0 + 9.67
+    if (!(s > 0)) return eta0;
+    const double Z = alpha * p_r / s;
+    return eta0 * std::exp(s * (std::pow(1.0 + p / p_r, Z) - 1.0));
+}
+
+namespace {
+
+// 5-point Gauss-Legendre on [-1, 1].
+constexpr std::array<double, 5> kX = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                                      0.9061798459386640};
+constexpr std::array<double, 5> kW = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                                      0.2369268850561891};
+
+struct Traction {
+    double tau_mean = 0, p_mean = 0;
+};
+
+// Mean shear stress over the Hertz zone at film temperature T.
+Traction traction(const lubricant::Oil& oil, const Rheology& rh, double T, double p0, double gamma_dot) {
+    const lubricant::OilState s = oil.state(T);
+    Traction t;
+    double wsum = 0;
+    for (size_t i = 0; i < kX.size(); ++i) {
+        const double p = p0 * std::sqrt(1.0 - kX[i] * kX[i]);
+        const double eta = roelands_viscosity(s.eta, s.alpha_p, p);
+        const double tau_eyring = rh.eyring_stress * std::asinh(eta * gamma_dot / rh.eyring_stress);
+        const double tau = std::min(tau_eyring, rh.limiting_shear_0 + rh.limiting_shear_slope * p);
+        t.tau_mean += kW[i] * tau;
+        t.p_mean += kW[i] * p;
+        wsum += kW[i];
+    }
+    t.tau_mean /= wsum;
+    t.p_mean /= wsum;
+    return t;
+}
+
+}  // namespace
+
+EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oil, const Rheology& rh, const Solid& solid,
+                             bool heating) {
+    EhlContactResult r;
+    const double E_star = 0.5 * in.E_prime;
+    r.a = std::sqrt(4.0 * in.w_line * in.R / (std::numbers::pi * E_star));
+    r.p0 = hertz_pressure(in.w_line, in.R, in.E_prime);
+    const double u_e = 0.5 * (std::abs(in.u1) + std::abs(in.u2));
+    const double du = std::abs(in.u1 - in.u2);
+    LineContact lc{in.w_line, u_e, in.R, in.E_prime, u_e > 0 ? du / u_e : 0.0};
+    const lubricant::OilState s0 = oil.state(in.T_bulk);
+    const Film film = line_contact_film(lc, s0.eta, s0.alpha_p, s0.beta_T, s0.k, ThermalFilmCorrection::gupta);
+    r.h_c = film.h_c;
+    r.h_min = film.h_min;
+    r.lambda = in.sigma > 0 ? r.h_c / in.sigma : 0.0;
+    r.f_c = std::exp(-rh.mixed_B * std::pow(std::max(r.lambda, 0.0), rh.mixed_m));
+    if (r.h_c <= 0.0 || u_e <= 0.0) {
+        r.T_film = in.T_bulk;
+        r.mu = r.f_c * rh.mu_boundary;
+        return r;
+    }
+    const double gamma_dot = du / r.h_c;
+    // Film temperature F(T) produced by the traction at temperature T.
+    const double beta1 = std::sqrt(solid.density * solid.specific_heat * solid.conductivity * std::abs(in.u1));
+    const double beta2 = std::sqrt(solid.density * solid.specific_heat * solid.conductivity * std::abs(in.u2));
+    auto film_temperature = [&](double T, double* flash, double* shear) {
+        const Traction t = traction(oil, rh, T, r.p0, gamma_dot);
+        const double q = t.tau_mean * du;  // heat flux into the contact [W/m^2]
+        double dT1 = 0, dT2 = 0;
+        const double kap = solid.diffusivity();
+        if (beta1 + beta2 > 0) {
+            // Blok: equal flash temperatures; Jaeger mean rise of a moving band source.
+            const double q1 = q * beta1 / (beta1 + beta2), q2 = q - q1;
+            if (std::abs(in.u1) > 0) dT1 = 1.064 * q1 * std::sqrt(kap * r.a / std::abs(in.u1)) / solid.conductivity;
+            if (std::abs(in.u2) > 0) dT2 = 1.064 * q2 * std::sqrt(kap * r.a / std::abs(in.u2)) / solid.conductivity;
+        }
+        const double dTs = q * r.h_c / (12.0 * oil.state(T).k);  // Couette, mean through the film
+        if (flash) *flash = 0.5 * (dT1 + dT2);
+        if (shear) *shear = dTs;
+        return in.T_bulk + 0.5 * (dT1 + dT2) + dTs;
+    };
+    double T = in.T_bulk;
+    if (heating) {
+        // g(T) = T - F(T) rises monotonically (hotter oil, less traction): bracket and solve.
+        auto g = [&](double x) { return x - film_temperature(x, nullptr, nullptr); };
+        double lo = in.T_bulk, hi = in.T_bulk + 300.0;
+        const double glo = g(lo), ghi = g(hi);
+        if (glo >= 0) T = lo;
+        else if (ghi <= 0) T = hi;
+        else {
+            std::uintmax_t it = 60;
+            const auto [a, b] = boost::math::tools::toms748_solve(
+                g, lo, hi, glo, ghi, [](double x, double y) { return std::abs(y - x) < 0.01; }, it);
+            T = 0.5 * (a + b);
+        }
+        r.residual = std::abs(g(T));
+    }
+    r.T_film = heating ? film_temperature(T, &r.dT_flash, &r.dT_shear) : in.T_bulk;
+    const Traction t = traction(oil, rh, heating ? T : in.T_bulk, r.p0, gamma_dot);
+    r.mu_ehl = t.p_mean > 0 ? t.tau_mean / t.p_mean : 0.0;
+    r.mu = r.f_c * rh.mu_boundary + (1.0 - r.f_c) * r.mu_ehl;
+    return r;
+}
+
+}  // namespace gearloss::mesh

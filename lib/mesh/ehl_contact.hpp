@@ -1,0 +1,52 @@
+#pragma once
+// Thermal EHL traction of one line contact (bearings-ehl-oil.md §3, after
+// Olver & Spikes 1998 and Evans & Johnson 1986): Roelands viscosity at the film
+// temperature, Eyring shear capped by a limiting shear stress, integrated over
+// the Hertz pressure; flash temperature (Jaeger band source, Blok partition) and
+// Couette shear heating, converged by bracketing; mixed friction through Lambda.
+#include "lubricant/oil.hpp"
+#include "mesh/friction.hpp"
+
+namespace gearloss::mesh {
+
+struct Rheology {
+    double eyring_stress = 5e6;          // tau_E [Pa]
+    double limiting_shear_0 = 1e6;       // tau_L0 [Pa]
+    double limiting_shear_slope = 0.07;  // Lambda_L: tau_L = tau_L0 + Lambda_L p
+    double mu_boundary = 0.11;           // boundary friction (seed 000)
+    double mixed_B = 1.0, mixed_m = 2.0; // asperity share f_c = exp(-B Lambda^m)
+};
+
+struct Solid {
+    double density = 7850, specific_heat = 460, conductivity = 46;  // steel
+    double diffusivity() const { return conductivity / (density * specific_heat); }
+};
+
+struct EhlContactInput {
+    double w_line = 0;     // load per unit length [N/m]
+    double R = 0;          // reduced radius [m]
+    double u1 = 0, u2 = 0; // surface speeds along the rolling direction [m/s]
+    double E_prime = 0;    // [Pa]
+    double sigma = 0;      // composite roughness for Lambda [m]
+    double T_bulk = 0;     // oil / surface bulk temperature [K]
+};
+
+struct EhlContactResult {
+    double p0 = 0, a = 0;          // Hertz maximum pressure [Pa], half-width [m]
+    double h_c = 0, h_min = 0;     // film thickness (thermal inlet correction) [m]
+    double lambda = 0;
+    double T_film = 0;             // mean film temperature [K]
+    double dT_flash = 0, dT_shear = 0;
+    double mu_ehl = 0, f_c = 0, mu = 0;
+    double residual = 0;           // |T - F(T)| at the solution [K]
+};
+
+// `heating = false` gives the isothermal solution (film at T_bulk).
+EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oil, const Rheology& rh,
+                             const Solid& solid = {}, bool heating = true);
+
+// Roelands (1966): eta(p) = eta0 exp{(ln eta0 + 9.67)[(1 + p/p_r)^Z - 1]}, p_r = 1.96e8 Pa,
+// Z from the pressure-viscosity coefficient: Z = alpha p_r / (ln eta0 + 9.67).
+double roelands_viscosity(double eta0, double alpha, double p);
+
+}  // namespace gearloss::mesh

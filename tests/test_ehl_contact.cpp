@@ -1,0 +1,81 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+
+#include "io/config.hpp"
+#include "mesh/ehl_contact.hpp"
+#include "test_support.hpp"
+
+using namespace gearloss;
+using Approx = Catch::Detail::Approx;
+
+namespace {
+lubricant::Oil oil() { return io::load_oil_file(test_support::source_path("configs/oils/75W90-A.yaml")); }
+mesh::EhlContactInput contact(double w_N_per_mm, double u1, double u2) {
+    mesh::EhlContactInput in;
+    in.w_line = w_N_per_mm * 1e3;
+    in.R = 10e-3;
+    in.u1 = u1;
+    in.u2 = u2;
+    in.E_prime = 2 * 115.4e9;  // steel on steel
+    in.sigma = 0.1e-6;
+    in.T_bulk = 353.15;
+    return in;
+}
+}  // namespace
+
+TEST_CASE("EHL contact: Hertz half-width and pressure against the hand values", "[ehl]") {
+    // bearings-ehl-oil.md §3: E* 115.4 GPa, R' 10 mm, w 500 N/mm -> a = 234.9 um, p0 = 1.355 GPa.
+    const auto r = mesh::ehl_contact(contact(500, 5, 5), oil(), {}, {}, false);
+    CHECK(r.a == Approx(234.9e-6).epsilon(1e-3));
+    CHECK(r.p0 == Approx(1.355e9).epsilon(1e-3));
+    // Pure rolling: no sliding, no traction.
+    CHECK(r.mu_ehl == 0.0);
+}
+
+TEST_CASE("EHL contact: Newtonian limit at low stress (traction proportional to sliding)", "[ehl]") {
+    // Light load and tiny slide: eta * shear rate << tau_E, so tau = eta gamma_dot.
+    const auto o = oil();
+    const auto r1 = mesh::ehl_contact(contact(20, 5.0005, 4.9995), o, {}, {}, false);
+    const auto r2 = mesh::ehl_contact(contact(20, 5.001, 4.999), o, {}, {}, false);
+    REQUIRE(r1.mu_ehl > 0);
+    CHECK(r2.mu_ehl / r1.mu_ehl == Approx(2.0).epsilon(1e-3));
+}
+
+TEST_CASE("EHL contact: limiting shear plateau mu = Lambda_L", "[ehl]") {
+    // Heavy load, large slide, no heating, tau_L = Lambda_L p (tau_L0 = 0) low enough that every
+    // Gauss point is limited (at the outermost point, p = 0.42 p0, the Eyring stress is ~21 MPa
+    // against tau_L ~ 12 MPa): the mean traction is then Lambda_L times the mean pressure.
+    mesh::Rheology rh;
+    rh.eyring_stress = 50e6;
+    rh.limiting_shear_0 = 0;
+    rh.limiting_shear_slope = 0.02;
+    const auto r = mesh::ehl_contact(contact(500, 6, 4), oil(), rh, {}, false);
+    CHECK(r.mu_ehl == Approx(0.02).epsilon(1e-12));
+    // Raising the plateau above the Eyring stress lowers traction below the plateau.
+    rh.limiting_shear_slope = 0.2;
+    CHECK(mesh::ehl_contact(contact(500, 6, 4), oil(), rh, {}, false).mu_ehl < 0.2);
+}
+
+TEST_CASE("EHL contact: the thermal loop converges and heating lowers traction", "[ehl]") {
+    const auto o = oil();
+    const auto hot = mesh::ehl_contact(contact(500, 6, 4), o, {}, {}, true);
+    const auto iso = mesh::ehl_contact(contact(500, 6, 4), o, {}, {}, false);
+    CHECK(hot.residual < 0.05);
+    CHECK(hot.T_film > iso.T_film + 1.0);
+    CHECK(iso.T_film == 353.15);
+    CHECK(hot.mu_ehl < iso.mu_ehl);
+    // The film temperature is the bulk plus the flash and shear rises it reports.
+    CHECK(hot.T_film == Approx(353.15 + hot.dT_flash + hot.dT_shear).epsilon(1e-12));
+    // Typical gear contact: friction 0.01-0.1.
+    CHECK(hot.mu > 0.01);
+    CHECK(hot.mu < 0.1);
+}
+
+TEST_CASE("EHL contact: boundary friction when the film is thin against roughness", "[ehl]") {
+    auto in = contact(500, 6, 4);
+    in.sigma = 50e-6;  // Lambda -> 0
+    const auto r = mesh::ehl_contact(in, oil(), {}, {}, true);
+    CHECK(r.f_c == Approx(1.0).margin(1e-3));
+    CHECK(r.mu == Approx(0.11).margin(1e-3));
+}
