@@ -43,18 +43,19 @@ TEST_CASE("EHL contact: Newtonian limit at low stress (traction proportional to 
 }
 
 TEST_CASE("EHL contact: limiting shear plateau mu = Lambda_L", "[ehl]") {
-    // Heavy load, large slide, no heating, tau_L = Lambda_L p (tau_L0 = 0) low enough that every
-    // Gauss point is limited (at the outermost point, p = 0.42 p0, the Eyring stress is ~21 MPa
-    // against tau_L ~ 12 MPa): the mean traction is then Lambda_L times the mean pressure.
+    // Heavy load, large slide, cold oil, no heating, tau_L = Lambda_L p (tau_L0 = 0) low enough
+    // that every Gauss point is limited: the mean traction is then Lambda_L times the mean pressure.
     mesh::Rheology rh;
     rh.eyring_stress = 50e6;
     rh.limiting_shear_0 = 0;
     rh.limiting_shear_slope = 0.02;
-    const auto r = mesh::ehl_contact(contact(500, 6, 4), oil(), rh, {}, false);
+    auto in = contact(500, 9, 1);
+    in.T_bulk = 313.15;  // 40 degC: thick, viscous film
+    const auto r = mesh::ehl_contact(in, oil(), rh, {}, false);
     CHECK(r.mu_ehl == Approx(0.02).epsilon(1e-12));
     // Raising the plateau above the Eyring stress lowers traction below the plateau.
     rh.limiting_shear_slope = 0.2;
-    CHECK(mesh::ehl_contact(contact(500, 6, 4), oil(), rh, {}, false).mu_ehl < 0.2);
+    CHECK(mesh::ehl_contact(in, oil(), rh, {}, false).mu_ehl < 0.2);
 }
 
 TEST_CASE("EHL contact: the thermal loop converges and heating lowers traction", "[ehl]") {
