@@ -3,7 +3,9 @@
 #include <numbers>
 
 #include "io/config.hpp"
+#include "geometry/gear_geometry.hpp"
 #include "mesh/ehl_contact.hpp"
+#include "mesh/ehl_path.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;
@@ -79,4 +81,38 @@ TEST_CASE("EHL contact: boundary friction when the film is thin against roughnes
     const auto r = mesh::ehl_contact(in, oil(), {}, {}, true);
     CHECK(r.f_c == Approx(1.0).margin(1e-3));
     CHECK(r.mu == Approx(0.11).margin(1e-3));
+}
+
+TEST_CASE("EHL path: with a constant friction the path integral reproduces mu H_V P", "[ehl]") {
+    // Roughness far above the film makes mu = mu_boundary everywhere; then the integral of
+    // mu F v_slide over one base pitch must equal mu H_V F_bt v_tb (H_V by Ohlendorf for a
+    // spur pair with rigid load sharing). FZG type C geometry, 302 N m, 1500 rpm.
+    geometry::GearSpec p, w;
+    p.name = "pinion";
+    p.z = 16;
+    p.x = 0.1817;
+    w.name = "wheel";
+    w.z = 24;
+    w.x = 0.1715;
+    for (auto* g : {&p, &w}) {
+        g->mn = 4.5e-3;
+        g->b = 14e-3;
+        g->alpha_n = 20 * std::numbers::pi / 180;
+    }
+    const auto geo = geometry::pair_geometry(p, w);
+    const double w1 = 1500 * std::numbers::pi / 30, T1 = 302;
+    const double F_bt = T1 / (0.5 * geo.db[0]);
+    mesh::Rheology rh;
+    rh.mu_boundary = 0.08;
+    const auto prof = mesh::ehl_path(geo, 14e-3, w1, F_bt, 1, 2 * 115.4e9, 1e-3, 353.15, oil(), rh, 2000);
+    const double H_V = 0.1950;  // published test-vector value (gear-losses.md §1)
+    CHECK(prof.loss == Approx(0.08 * H_V * T1 * w1).epsilon(2e-3));
+    // Sliding vanishes at the pitch point: the local efficiency is highest there.
+    double best = 0, at = 1e9;
+    for (const auto& pt : prof.points)
+        if (pt.local_efficiency > best) {
+            best = pt.local_efficiency;
+            at = std::abs(pt.from_pitch);
+        }
+    CHECK(at < geo.p_bt / 100);
 }

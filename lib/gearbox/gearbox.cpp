@@ -355,6 +355,7 @@ Layout analyse(const Gearbox& gb) {
             const auto sweep = mesh::sweep_contact_lines(md.geom);
             md.H_V_wimmer = sweep.H_V;
             md.L_min = sweep.L_min;
+            md.L_mean = sweep.L_mean;
         } catch (const geometry::GeometryError& e) {
             throw TopologyError(fmt::format("mesh '{}': {}", mesh.name, e.msg));
         }

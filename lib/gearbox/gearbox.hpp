@@ -75,7 +75,7 @@ struct Layout {
     struct MeshData {
         geometry::PairGeometry geom;
         double H_V_ohlendorf = 0, H_V_buckingham = 0, H_V_wimmer = 0;
-        double L_min = 0;
+        double L_min = 0, L_mean = 0;
         bool loaded = false;
         int carrier_body = -1;       // body the mesh turns with (planetary); -1 = housing
         int planets = 1;             // load shared by this many identical meshes

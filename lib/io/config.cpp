@@ -53,7 +53,7 @@ lubricant::BearingFrictionPair parse_pair(const YamlNode& n) {
 
 lubricant::Oil load_oil(const YamlNode& n) {
     n.allow_keys({"name", "base", "viscosity", "density", "thermal_expansion", "piezoviscosity", "X_L",
-                  "thermal_conductivity", "specific_heat", "bearing_friction", "gear_friction", "note"});
+                  "thermal_conductivity", "specific_heat", "bearing_friction", "gear_friction", "traction", "note"});
     lubricant::Oil oil;
     oil.name = n.at("name").as_string();
     oil.base = parse_base(n.at("base"));
@@ -150,6 +150,20 @@ lubricant::Oil load_oil(const YamlNode& n) {
     }
     if (auto k = n.get("thermal_conductivity")) oil.k_fixed = k->as_quantity(dim::thermal_conductivity, "0.15 W/(m*K)");
     if (auto c = n.get("specific_heat")) oil.cp_fixed = c->as_quantity(dim::specific_heat, "2000 J/(kg*K)");
+    if (auto tr = n.get("traction")) {
+        tr->allow_keys({"eyring_stress", "limiting_shear_stress", "limiting_shear_slope", "boundary_friction", "mixed_B",
+                        "mixed_m"});
+        auto& t = oil.traction;
+        if (auto v = tr->get("eyring_stress")) t.eyring_stress = v->as_quantity(dim::pressure, "5 MPa");
+        if (auto v = tr->get("limiting_shear_stress")) t.limiting_shear_0 = v->as_quantity(dim::pressure, "1 MPa");
+        if (auto v = tr->get("limiting_shear_slope")) t.limiting_shear_slope = v->as_number();
+        if (auto v = tr->get("boundary_friction")) t.mu_boundary = v->as_number();
+        if (auto v = tr->get("mixed_B")) t.mixed_B = v->as_number();
+        if (auto v = tr->get("mixed_m")) t.mixed_m = v->as_number();
+        if (!(t.eyring_stress > 0 && t.limiting_shear_0 >= 0 && t.limiting_shear_slope >= 0 && t.limiting_shear_slope < 1 &&
+              t.mu_boundary > 0 && t.mu_boundary < 1 && t.mixed_B > 0 && t.mixed_m > 0))
+            tr->fail("traction properties out of range (Eyring stress > 0, 0 <= slope < 1, 0 < boundary friction < 1)");
+    }
     if (auto bf = n.get("bearing_friction")) {
         bf->allow_keys({"ball", "roller"});
         if (auto b = bf->get("ball")) oil.bearing_ball = parse_pair(*b);
@@ -529,7 +543,8 @@ void load_options(const YamlNode& n, solver::LossOptions& o) {
     if (auto v = n.get("mesh_friction"))
         o.friction = v->as_enum<mesh::FrictionModel>({{"schlenk", mesh::FrictionModel::schlenk},
                                                       {"iso_6336_20", mesh::FrictionModel::iso_6336_20},
-                                                      {"fernandes_mixed", mesh::FrictionModel::fernandes_mixed}});
+                                                      {"fernandes_mixed", mesh::FrictionModel::fernandes_mixed},
+                                                      {"ehl_local", mesh::FrictionModel::ehl_local}});
     if (auto v = n.get("film_thermal_correction"))
         o.film_correction = v->as_enum<mesh::ThermalFilmCorrection>({{"gupta", mesh::ThermalFilmCorrection::gupta},
                                                                      {"simplified", mesh::ThermalFilmCorrection::simplified},

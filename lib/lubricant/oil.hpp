@@ -19,6 +19,17 @@ struct BearingFrictionPair {
     std::optional<double> mu_ehl;  // full film; default by bearing type (see bearings/)
 };
 
+// Traction (rheology) properties for the local thermal-EHL friction model.
+// Defaults: typical gear-oil values (Eyring stress 5 MPa, limiting shear
+// 1 MPa + 0.07 p, boundary friction 0.11 as in seed 000); measure per oil.
+struct TractionProperties {
+    double eyring_stress = 5e6;          // tau_E [Pa]
+    double limiting_shear_0 = 1e6;       // tau_L0 [Pa]
+    double limiting_shear_slope = 0.07;  // Lambda_L: tau_L = tau_L0 + Lambda_L p
+    double mu_boundary = 0.11;           // boundary friction of the mesh
+    double mixed_B = 1.0, mixed_m = 2.0; // asperity share f_c = exp(-B Lambda^m)
+};
+
 // Properties at one temperature, SI units, with the powers of the kinematic
 // viscosity that several loss models share precomputed once.
 struct OilState {
@@ -46,6 +57,7 @@ public:
     std::optional<double> cp_fixed;  // J/(kg K); else Cragoe
     double X_L = 1.0;               // lubricant factor of the mean gear friction
     BearingFrictionPair bearing_ball, bearing_roller;
+    TractionProperties traction;
 
     OilState state(double T_K) const;
     double nu_mm2s(double T_K) const;

@@ -9,13 +9,7 @@
 
 namespace gearloss::mesh {
 
-struct Rheology {
-    double eyring_stress = 5e6;          // tau_E [Pa]
-    double limiting_shear_0 = 1e6;       // tau_L0 [Pa]
-    double limiting_shear_slope = 0.07;  // Lambda_L: tau_L = tau_L0 + Lambda_L p
-    double mu_boundary = 0.11;           // boundary friction (seed 000)
-    double mixed_B = 1.0, mixed_m = 2.0; // asperity share f_c = exp(-B Lambda^m)
-};
+using Rheology = lubricant::TractionProperties;
 
 struct Solid {
     double density = 7850, specific_heat = 460, conductivity = 46;  // steel

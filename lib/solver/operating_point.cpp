@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "mesh/ehl_path.hpp"
 #include "seals/radial_lip_seal.hpp"
 
 namespace gearloss::solver {
@@ -77,7 +78,10 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
         const double rho_mm = md.geom.rho_redC * 1e3;
         const double Ra_um = 0.5 * (g0.Ra + g1.Ra) * 1e6;
         ms.contact.w_line = F_bt / std::cos(md.geom.beta_b) / md.L_min;
+        ms.F_bn = F_bt / std::cos(md.geom.beta_b);
+        ms.omega_rel = w0;
         switch (opt.friction) {
+            case mesh::FrictionModel::ehl_local:
             case mesh::FrictionModel::schlenk:
             case mesh::FrictionModel::fernandes_mixed:
                 ms.mu_prefactor = mesh::mean_friction_schlenk(w_Nmm, v_sum, rho_mm, 1.0, Ra_um, m.oil.X_L);
@@ -176,7 +180,15 @@ LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubrica
                 r.mesh_hc[i] = f.h_c;
             }
         }
-        const double loss = ms.power * mu * ms.H_V;
+        double loss = ms.power * mu * ms.H_V;
+        if (opt.friction == mesh::FrictionModel::ehl_local) {
+            // Local thermal EHL along the path of contact at the oil temperature.
+            const auto& md = m.layout.meshes[i];
+            const auto prof = mesh::ehl_path(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime,
+                                             ms.sigma, s.T, m.oil, m.oil.traction, 15);
+            loss = prof.loss * m.calibration.mesh_friction_factor;
+            mu = ms.power * ms.H_V > 0 ? loss / (ms.power * ms.H_V) : 0.0;  // equivalent mean friction
+        }
         r.mesh += loss;
         if (detail) {
             r.mesh_each[i] = loss;

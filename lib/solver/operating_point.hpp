@@ -19,6 +19,8 @@ struct PointState {
         double H_V = 0;
         mesh::LineContact contact;
         double sigma = 0;         // roughness for Lambda [m]
+        double F_bn = 0;          // normal force of one mesh [N] (local EHL model)
+        double omega_rel = 0;     // speed of gear 0 relative to the carrier [rad/s]
     };
     std::vector<MeshState> meshes;
     std::vector<churning::ChurningAtSpeed> churn;      // per gear
