@@ -233,6 +233,18 @@ int main(int argc, char** argv) {
     compare->footer("Example: gearloss compare configs/transfer-box.yaml --oil configs/oils/75W90-A.yaml "
                     "--oil configs/oils/75W140-A.yaml -o diff.csv");
 
+    // mesh-profile
+    std::string mesh_name;
+    int positions = 41;
+    auto* profile = app.add_subcommand("mesh-profile", "local thermal-EHL state along the path of contact of one mesh (CSV)");
+    add_common(profile);
+    profile->add_option("--mesh", mesh_name, "mesh name (see `gearloss check`)")->required();
+    profile->add_option("--speed", speed1, "input speed, e.g. 1600rpm")->required();
+    profile->add_option("--torque", torque1, "input torque, e.g. 720Nm")->required();
+    profile->add_option("--positions", positions, "positions along the path")->check(CLI::Range(3, 2000));
+    profile->add_option("-o,--output", out, "output CSV ('-' = stdout)");
+    profile->footer("Example: gearloss mesh-profile configs/spur-seed000.yaml --mesh m --speed 1600rpm --torque 720Nm");
+
     auto* check = app.add_subcommand("check", "validate a case and print derived data (geometry, H_V, speeds, oil)");
     add_common(check);
     check->add_flag("--json", json, "print the derived data as JSON");
@@ -306,6 +318,16 @@ int main(int argc, char** argv) {
             const std::string csv = gearloss::diagnosis::synthesize(k.model, k.grid, so);
             io::AtomicFile f(out);
             f.write(csv);
+            f.commit();
+        } else if (profile->parsed()) {
+            io::Case k = load(common);
+            const double w = single_value(speed1, gearloss::units::dim::angular_speed, "--speed", "1600rpm");
+            const double T = single_value(torque1, gearloss::units::dim::torque, "--torque", "720Nm");
+            const auto r = gearloss::solver::solve_point(k.model, w, T);
+            if (r.status != gearloss::solver::PointStatus::ok)
+                throw InputError("", 0, 0, "--speed", "no thermal equilibrium at this point; give --oil-temp");
+            io::AtomicFile f(out);
+            f.write(io::mesh_profile_csv(k, mesh_name, w, T, r.oil_temperature, positions));
             f.commit();
         } else if (compare->parsed()) {
             if (compare_oils.size() != 2) throw InputError("", 0, 0, "--oil", "compare needs exactly two oils (--oil A --oil B)");

@@ -116,3 +116,27 @@ TEST_CASE("EHL path: with a constant friction the path integral reproduces mu H_
         }
     CHECK(at < geo.p_bt / 100);
 }
+
+TEST_CASE("EHL path: the 12-point piecewise Gauss loss equals the converged profile integral", "[ehl]") {
+    // Spur FZG C pair at 302 N m / 1500 rpm, real traction: the Gauss rule on the smooth
+    // segments A-B, B-C, C-D, D-E against 4000 midpoints of the profile.
+    geometry::GearSpec p, w;
+    p.name = "pinion";
+    p.z = 16;
+    p.x = 0.1817;
+    w.name = "wheel";
+    w.z = 24;
+    w.x = 0.1715;
+    for (auto* g : {&p, &w}) {
+        g->mn = 4.5e-3;
+        g->b = 14e-3;
+        g->alpha_n = 20 * std::numbers::pi / 180;
+    }
+    const auto geo = geometry::pair_geometry(p, w);
+    const double w1 = 1500 * std::numbers::pi / 30, F_bt = 302 / (0.5 * geo.db[0]);
+    const auto o = oil();
+    const mesh::Rheology rh;
+    const double fine = mesh::ehl_path(geo, 14e-3, w1, F_bt, 1, 2 * 115.4e9, 0.3e-6, 353.15, o, rh, 4000).loss;
+    const double gauss = mesh::ehl_mesh_loss(geo, 14e-3, w1, F_bt, 1, 2 * 115.4e9, 0.3e-6, 353.15, o, rh);
+    CHECK(gauss == Approx(fine).epsilon(2e-3));
+}

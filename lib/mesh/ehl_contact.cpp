@@ -28,9 +28,8 @@ struct Traction {
     double tau_mean = 0, p_mean = 0;
 };
 
-// Mean shear stress over the Hertz zone at film temperature T.
-Traction traction(const lubricant::Oil& oil, const Rheology& rh, double T, double p0, double gamma_dot) {
-    const lubricant::OilState s = oil.state(T);
+// Mean shear stress over the Hertz zone for the oil state at the film temperature.
+Traction traction(const lubricant::OilState& s, const Rheology& rh, double p0, double gamma_dot) {
     Traction t;
     double wsum = 0;
     for (size_t i = 0; i < kX.size(); ++i) {
@@ -74,7 +73,8 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
     const double beta1 = std::sqrt(solid.density * solid.specific_heat * solid.conductivity * std::abs(in.u1));
     const double beta2 = std::sqrt(solid.density * solid.specific_heat * solid.conductivity * std::abs(in.u2));
     auto film_temperature = [&](double T, double* flash, double* shear) {
-        const Traction t = traction(oil, rh, T, r.p0, gamma_dot);
+        const lubricant::OilState sT = oil.state(T);  // one property evaluation per iteration
+        const Traction t = traction(sT, rh, r.p0, gamma_dot);
         const double q = t.tau_mean * du;  // heat flux into the contact [W/m^2]
         double dT1 = 0, dT2 = 0;
         const double kap = solid.diffusivity();
@@ -84,7 +84,7 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
             if (std::abs(in.u1) > 0) dT1 = 1.064 * q1 * std::sqrt(kap * r.a / std::abs(in.u1)) / solid.conductivity;
             if (std::abs(in.u2) > 0) dT2 = 1.064 * q2 * std::sqrt(kap * r.a / std::abs(in.u2)) / solid.conductivity;
         }
-        const double dTs = q * r.h_c / (12.0 * oil.state(T).k);  // Couette, mean through the film
+        const double dTs = q * r.h_c / (12.0 * sT.k);  // Couette, mean through the film
         if (flash) *flash = 0.5 * (dT1 + dT2);
         if (shear) *shear = dTs;
         return in.T_bulk + 0.5 * (dT1 + dT2) + dTs;
@@ -100,13 +100,13 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
         else {
             std::uintmax_t it = 60;
             const auto [a, b] = boost::math::tools::toms748_solve(
-                g, lo, hi, glo, ghi, [](double x, double y) { return std::abs(y - x) < 0.01; }, it);
+                g, lo, hi, glo, ghi, [](double x, double y) { return std::abs(y - x) < 0.05; }, it);
             T = 0.5 * (a + b);
         }
         r.residual = std::abs(g(T));
     }
     r.T_film = heating ? film_temperature(T, &r.dT_flash, &r.dT_shear) : in.T_bulk;
-    const Traction t = traction(oil, rh, heating ? T : in.T_bulk, r.p0, gamma_dot);
+    const Traction t = traction(oil.state(heating ? T : in.T_bulk), rh, r.p0, gamma_dot);
     r.mu_ehl = t.p_mean > 0 ? t.tau_mean / t.p_mean : 0.0;
     r.mu = r.f_c * rh.mu_boundary + (1.0 - r.f_c) * r.mu_ehl;
     return r;

@@ -184,9 +184,9 @@ LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubrica
         if (opt.friction == mesh::FrictionModel::ehl_local) {
             // Local thermal EHL along the path of contact at the oil temperature.
             const auto& md = m.layout.meshes[i];
-            const auto prof = mesh::ehl_path(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime,
-                                             ms.sigma, s.T, m.oil, m.oil.traction, 15);
-            loss = prof.loss * m.calibration.mesh_friction_factor;
+            loss = mesh::ehl_mesh_loss(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime,
+                                       ms.sigma, s.T, m.oil, m.oil.traction) *
+                   m.calibration.mesh_friction_factor;
             mu = ms.power * ms.H_V > 0 ? loss / (ms.power * ms.H_V) : 0.0;  // equivalent mean friction
         }
         r.mesh += loss;
