@@ -115,5 +115,13 @@ check "bad recordings message" grep -q 'bad.csv:3: row has 2 cells' "$tmp/err3.t
 check "bad effect exit 2" test $? -eq 2
 check "bad effect message" grep -q 'outside the physical bounds' "$tmp/err4.txt"
 
+# mesh-profile: a CSV along the path; an unknown mesh is an input error.
+"$bin" mesh-profile "$src/configs/spur-seed000.yaml" --mesh m --speed 1600rpm --torque 720Nm --positions 9 -o "$tmp/prof.csv"
+check "mesh-profile exit 0" test $? -eq 0
+check "mesh-profile rows" test "$(wc -l < "$tmp/prof.csv")" -eq 10
+"$bin" mesh-profile "$src/configs/spur-seed000.yaml" --mesh nope --speed 1600rpm --torque 720Nm 2> "$tmp/err6.txt" > /dev/null
+check "mesh-profile unknown mesh exit 2" test $? -eq 2
+check "mesh-profile unknown mesh message" grep -q "unknown mesh 'nope'; meshes: m" "$tmp/err6.txt"
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0
