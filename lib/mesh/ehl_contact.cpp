@@ -91,11 +91,22 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
     };
     double T = in.T_bulk;
     if (heating) {
-        // g(T) = T - F(T) rises monotonically (hotter oil, less traction): bracket and solve.
+        // g(T) = T - F(T) rises monotonically (hotter oil, less traction). F is usually a
+        // contraction: a damped fixed-point iteration converges in a few steps; the
+        // bracketing solver takes over when it does not.
         auto g = [&](double x) { return x - film_temperature(x, nullptr, nullptr); };
+        bool converged = false;
+        double x = in.T_bulk;
+        for (int it = 0; it < 8 && !converged; ++it) {
+            const double fx = film_temperature(x, nullptr, nullptr);
+            const double next = x + 0.8 * (fx - x);
+            converged = std::abs(next - x) < 0.02;
+            x = next;
+        }
         double lo = in.T_bulk, hi = in.T_bulk + 300.0;
-        const double glo = g(lo), ghi = g(hi);
-        if (glo >= 0) T = lo;
+        const double glo = converged ? 0.0 : g(lo), ghi = converged ? 0.0 : g(hi);
+        if (converged) T = x;
+        else if (glo >= 0) T = lo;
         else if (ghi <= 0) T = hi;
         else {
             std::uintmax_t it = 60;
