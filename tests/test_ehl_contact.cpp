@@ -24,6 +24,22 @@ mesh::EhlContactInput contact(double w_N_per_mm, double u1, double u2) {
     in.T_bulk = 353.15;
     return in;
 }
+// FZG type C pair (z 16/24, m 4.5 mm, x 0.1817/0.1715, b 14 mm).
+geometry::PairGeometry fzg_c() {
+    geometry::GearSpec p, w;
+    p.name = "pinion";
+    p.z = 16;
+    p.x = 0.1817;
+    w.name = "wheel";
+    w.z = 24;
+    w.x = 0.1715;
+    for (auto* g : {&p, &w}) {
+        g->mn = 4.5e-3;
+        g->b = 14e-3;
+        g->alpha_n = 20 * std::numbers::pi / 180;
+    }
+    return geometry::pair_geometry(p, w);
+}
 }  // namespace
 
 TEST_CASE("EHL contact: Hertz half-width and pressure against the hand values", "[ehl]") {
@@ -87,19 +103,7 @@ TEST_CASE("EHL path: with a constant friction the path integral reproduces mu H_
     // Roughness far above the film makes mu = mu_boundary everywhere; then the integral of
     // mu F v_slide over one base pitch must equal mu H_V F_bt v_tb (H_V by Ohlendorf for a
     // spur pair with rigid load sharing). FZG type C geometry, 302 N m, 1500 rpm.
-    geometry::GearSpec p, w;
-    p.name = "pinion";
-    p.z = 16;
-    p.x = 0.1817;
-    w.name = "wheel";
-    w.z = 24;
-    w.x = 0.1715;
-    for (auto* g : {&p, &w}) {
-        g->mn = 4.5e-3;
-        g->b = 14e-3;
-        g->alpha_n = 20 * std::numbers::pi / 180;
-    }
-    const auto geo = geometry::pair_geometry(p, w);
+    const auto geo = fzg_c();
     const double w1 = 1500 * std::numbers::pi / 30, T1 = 302;
     const double F_bt = T1 / (0.5 * geo.db[0]);
     mesh::Rheology rh;
@@ -120,19 +124,7 @@ TEST_CASE("EHL path: with a constant friction the path integral reproduces mu H_
 TEST_CASE("EHL path: the 12-point piecewise Gauss loss equals the converged profile integral", "[ehl]") {
     // Spur FZG C pair at 302 N m / 1500 rpm, real traction: the Gauss rule on the smooth
     // segments A-B, B-C, C-D, D-E against 4000 midpoints of the profile.
-    geometry::GearSpec p, w;
-    p.name = "pinion";
-    p.z = 16;
-    p.x = 0.1817;
-    w.name = "wheel";
-    w.z = 24;
-    w.x = 0.1715;
-    for (auto* g : {&p, &w}) {
-        g->mn = 4.5e-3;
-        g->b = 14e-3;
-        g->alpha_n = 20 * std::numbers::pi / 180;
-    }
-    const auto geo = geometry::pair_geometry(p, w);
+    const auto geo = fzg_c();
     const double w1 = 1500 * std::numbers::pi / 30, F_bt = 302 / (0.5 * geo.db[0]);
     const auto o = oil();
     const mesh::Rheology rh;
