@@ -51,6 +51,24 @@ long = {t: max(rates(f"long-{t}.txt")[0]) for t in (1, 2)}
 print(f"300 x 300 map, best of 5: {long[1]:,.0f} -> {long[2]:,.0f} points/s, speed-up 1 -> 2 threads: {long[2] / long[1]:.2f}")
 PY
 
+# Local thermal-EHL mesh friction: 100 x 100 map of the seed 000 spur gearbox (200-1600 rpm x
+# 50-800 N m), coupled, best of 3 runs per thread count (target >= 10 000 points/s on 2 cores).
+speeds_e=$(python3 -c "print(','.join(f'{200+i*1400/99:.3f}' for i in range(100)))")rpm
+torques_e=$(python3 -c "print(','.join(f'{50+i*750/99:.3f}' for i in range(100)))")Nm
+for _ in 1 2 3; do
+    for threads in 1 2; do
+        build/app/gearloss map configs/spur-seed000.yaml --speed "$speeds_e" --torque "$torques_e" \
+            --threads "$threads" --stats -o "$tmp/ehl.csv" 2>> "$tmp/ehl-$threads.txt"
+    done
+done
+python3 - "$tmp" <<'PY'
+import re, sys
+d = sys.argv[1]
+best = {t: max(float(re.search(r"([0-9.]+) points/s", l).group(1)) for l in open(f"{d}/ehl-{t}.txt")) for t in (1, 2)}
+print(f"local thermal-EHL map (seed 000 spur, 100 x 100), best of 3: {best[1]:,.0f} -> {best[2]:,.0f} points/s "
+      f"(speed-up {best[2] / best[1]:.2f}; target >= 10,000 on 2 cores)")
+PY
+
 # Diagnosis of a 30-point campaign (6 speeds x 5 torques) with a concealed windage.
 build/app/gearloss synth configs/transfer-box.yaml --speed 400,550,700,850,1000,1150rpm --torque 100,160,220,280,340Nm \
     --effect windage=25W --seed 7 -o "$tmp/rec30.csv"
