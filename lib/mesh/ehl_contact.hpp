@@ -36,8 +36,10 @@ struct EhlContactResult {
 };
 
 // `heating = false` gives the isothermal solution (film at T_bulk).
+// `bulk` may pass the oil state at T_bulk when the caller already has it (many
+// contacts at one oil temperature).
 EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oil, const Rheology& rh,
-                             const Solid& solid = {}, bool heating = true);
+                             const Solid& solid = {}, bool heating = true, const lubricant::OilState* bulk = nullptr);
 
 // Roelands (1966): eta(p) = eta0 exp{(ln eta0 + 9.67)[(1 + p/p_r)^Z - 1]}, p_r = 1.96e8 Pa,
 // Z from the pressure-viscosity coefficient: Z = alpha p_r / (ln eta0 + 9.67).
