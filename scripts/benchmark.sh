@@ -14,23 +14,23 @@ speeds=$(python3 -c "print(','.join(f'{300+i*2700/99:.3f}' for i in range(100)))
 torques=$(python3 -c "print(','.join(f'{10+i*390/99:.3f}' for i in range(100)))")Nm
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-# 1- and 2-thread runs alternate so that drift of the machine's speed hits both alike.
-for _ in $(seq "$reps"); do
-    for threads in 1 2; do
-        build/app/gearloss map configs/transfer-box.yaml --speed "$speeds" --torque "$torques" \
-            --threads "$threads" --stats -o "$tmp/map.csv" 2>> "$tmp/stats-$threads.txt"
+# alternate CONFIG SPEEDS TORQUES RUNS PREFIX: RUNS x (1 thread, 2 threads) maps, the
+# --stats lines appended to $tmp/PREFIX-1.txt and $tmp/PREFIX-2.txt. Alternating runs
+# let drift of the machine's speed hit both thread counts alike.
+alternate() {
+    for _ in $(seq "$4"); do
+        for threads in 1 2; do
+            build/app/gearloss map "$1" --speed "$2" --torque "$3" --threads "$threads" --stats -o "$tmp/map.csv" \
+                2>> "$tmp/$5-$threads.txt"
+        done
     done
-done
+}
+alternate configs/transfer-box.yaml "$speeds" "$torques" "$reps" stats
 # The speed-up is also measured on a 300 x 300 grid (~0.5 s per run), long enough
 # that scheduling jitter of a shared machine does not dominate.
 speeds3=$(python3 -c "print(','.join(f'{300+i*2700/299:.3f}' for i in range(300)))")rpm
 torques3=$(python3 -c "print(','.join(f'{10+i*390/299:.3f}' for i in range(300)))")Nm
-for _ in $(seq 5); do
-    for threads in 1 2; do
-        build/app/gearloss map configs/transfer-box.yaml --speed "$speeds3" --torque "$torques3" \
-            --threads "$threads" --stats -o "$tmp/map3.csv" 2>> "$tmp/long-$threads.txt"
-    done
-done
+alternate configs/transfer-box.yaml "$speeds3" "$torques3" 5 long
 python3 - "$tmp" <<'PY'
 import re, statistics, sys
 d = sys.argv[1]
@@ -55,12 +55,7 @@ PY
 # 50-800 N m), coupled, best of 3 runs per thread count (target >= 10 000 points/s on 2 cores).
 speeds_e=$(python3 -c "print(','.join(f'{200+i*1400/99:.3f}' for i in range(100)))")rpm
 torques_e=$(python3 -c "print(','.join(f'{50+i*750/99:.3f}' for i in range(100)))")Nm
-for _ in 1 2 3; do
-    for threads in 1 2; do
-        build/app/gearloss map configs/spur-seed000.yaml --speed "$speeds_e" --torque "$torques_e" \
-            --threads "$threads" --stats -o "$tmp/ehl.csv" 2>> "$tmp/ehl-$threads.txt"
-    done
-done
+alternate configs/spur-seed000.yaml "$speeds_e" "$torques_e" 3 ehl
 python3 - "$tmp" <<'PY'
 import re, sys
 d = sys.argv[1]
