@@ -328,7 +328,7 @@ CvResult cross_validate(const Engine& E, const Effect* e, const Hypothesis& base
 
 // Is there structure a generic smooth model of the operating point explains?
 // Residuals regressed on [1, ln n, torque, oil temperature] per channel (OLS, Eigen).
-double structure_delta_bic(const Engine& E, const Pred& p, const Hypothesis& h, std::string* where) {
+double structure_delta_bic(const Engine& E, const Pred& p, const Hypothesis& h) {
     const auto& obs = E.obs();
     const int n = static_cast<int>(obs.size());
     auto design = [&](bool temp_only) {
@@ -380,7 +380,6 @@ double structure_delta_bic(const Engine& E, const Pred& p, const Hypothesis& h, 
             nobs += rows.size();
         }
     }
-    (void)where;
     return 2.0 * dnll - k * std::log(static_cast<double>(std::max<size_t>(nobs, 2)));
 }
 
@@ -659,7 +658,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         // A candidate must explain the bulk of the systematic residual: if the
         // structure it leaves (generic smooth fit, BIC) is more significant than
         // what it explained, it is only a partial match, not the explanation.
-        const double left = structure_delta_bic(E, pa, fits[chosen].h, nullptr);
+        const double left = structure_delta_bic(E, pa, fits[chosen].h);
         if (left > opt.bic_threshold && left >= dbic[chosen]) {
             partial = fmt::format("{} explains only part of it (delta BIC {:.1f}, loss RMSE {:.3g} -> {:.3g} W) and leaves "
                                   "a larger systematic residual (delta BIC {:.1f} for a generic fit)",
@@ -690,9 +689,9 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
 
     if (!d.findings.empty()) {
         d.verdict = "missing_physics";
-        if (structure_delta_bic(E, pf, base, nullptr) > opt.bic_threshold)
+        if (structure_delta_bic(E, pf, base) > opt.bic_threshold)
             d.remaining = "a systematic residual remains after the findings:\n" + locate(E, pf, base, model).text;
-    } else if (!partial.empty() || structure_delta_bic(E, p0, neutral, nullptr) > opt.bic_threshold) {
+    } else if (!partial.empty() || structure_delta_bic(E, p0, neutral) > opt.bic_threshold) {
         d.verdict = "unexplained_mismatch";
         d.remaining = d.location;
     } else {

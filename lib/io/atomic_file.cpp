@@ -2,26 +2,11 @@
 
 #include <cerrno>
 #include <cstring>
-#include <mutex>
-#include <set>
 #include <unistd.h>
 
 namespace gearloss::io {
 
 std::atomic<bool> g_interrupted{false};
-
-namespace {
-std::mutex g_mutex;
-std::set<std::string>& pending() {
-    static std::set<std::string> s;
-    return s;
-}
-}  // namespace
-
-void remove_pending_temporaries() noexcept {
-    // Best effort; unlink is async-signal-safe, the set is only read here.
-    for (const auto& p : pending()) ::unlink(p.c_str());
-}
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
     if (path_ == "-") {
@@ -32,8 +17,6 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
     tmp_ = path_ + ".tmp." + std::to_string(::getpid());
     f_ = std::fopen(tmp_.c_str(), "wb");
     if (!f_) throw IoError("cannot write '" + path_ + "': " + std::strerror(errno));
-    std::lock_guard<std::mutex> lk(g_mutex);
-    pending().insert(tmp_);
 }
 
 AtomicFile::~AtomicFile() {
@@ -41,8 +24,6 @@ AtomicFile::~AtomicFile() {
     if (!committed_) {
         if (f_) std::fclose(f_);
         ::unlink(tmp_.c_str());
-        std::lock_guard<std::mutex> lk(g_mutex);
-        pending().erase(tmp_);
     }
 }
 
@@ -70,8 +51,6 @@ void AtomicFile::commit() {
     if (std::rename(tmp_.c_str(), path_.c_str()) != 0)
         throw IoError("cannot rename into '" + path_ + "': " + std::strerror(errno));
     committed_ = true;
-    std::lock_guard<std::mutex> lk(g_mutex);
-    pending().erase(tmp_);
 }
 
 }  // namespace gearloss::io

@@ -34,7 +34,5 @@ struct IoError : std::exception {
 
 // Set by the signal handler: long loops stop and outputs are discarded.
 extern std::atomic<bool> g_interrupted;
-// Removes any temporary file still open (called from the signal path).
-void remove_pending_temporaries() noexcept;
 
 }  // namespace gearloss::io

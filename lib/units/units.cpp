@@ -250,9 +250,5 @@ Quantity parse_quantity(std::string_view text) {
     return q;
 }
 
-double from_si(double value_si, std::string_view expr) {
-    UnitFactor f = parse_unit(expr);
-    return (value_si - f.offset) / f.scale;
-}
 
 }  // namespace gearloss::units

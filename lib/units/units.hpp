@@ -52,7 +52,4 @@ struct UnitError : std::exception {
     std::string msg;
 };
 
-// Converts an SI value to the unit named by expr (for CSV/report output).
-double from_si(double value_si, std::string_view expr);
-
 }  // namespace gearloss::units
