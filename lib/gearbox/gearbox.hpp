@@ -9,6 +9,7 @@
 
 #include "bearings/skf_model.hpp"
 #include "geometry/gear_geometry.hpp"
+#include "mesh/loss_factor.hpp"
 
 namespace gearloss::gearbox {
 
@@ -82,6 +83,14 @@ struct Layout {
         double force_per_Nm = 0;     // tangential force at the working pitch circle, all planets, per N m input
         double rolling_per_W = 0;    // |rolling power| (relative to the carrier) per W of input power
         double relative_speed = 0;   // (omega_gear0 - omega_carrier) / omega_in
+        double loss_factor(mesh::LossFactorModel model) const {
+            switch (model) {
+                case mesh::LossFactorModel::buckingham: return H_V_buckingham;
+                case mesh::LossFactorModel::wimmer: return H_V_wimmer;
+                case mesh::LossFactorModel::ohlendorf: break;
+            }
+            return H_V_ohlendorf;
+        }
     };
     std::vector<int> body_of_gear, body_of_shaft;
     std::vector<double> body_speed_ratio;   // omega_body / omega_input (signed)

@@ -42,9 +42,7 @@ std::string point_report(const Case& c, const solver::PointResult& r) {
     s += "meshes                 H_V     mu_mZ   P [W]     Lambda   h_c [um]  h_min [um]\n";
     for (size_t i = 0; i < gb.meshes.size(); ++i) {
         const auto& md = L.meshes[i];
-        const double H = m.options.loss_factor == mesh::LossFactorModel::ohlendorf   ? md.H_V_ohlendorf
-                         : m.options.loss_factor == mesh::LossFactorModel::buckingham ? md.H_V_buckingham
-                                                                                      : md.H_V_wimmer;
+        const double H = md.loss_factor(m.options.loss_factor);
         if (Lo.mesh_each[i] > 0)
             s += fmt::format("  {:<18} {:7.4f} {:7.4f} {:9.2f} {:8.3f} {:9.3f} {:11.3f}\n", gb.meshes[i].name, H,
                              Lo.mesh_mu[i], Lo.mesh_each[i], Lo.mesh_lambda[i], Lo.mesh_hc[i] * 1e6, Lo.mesh_hmin[i] * 1e6);

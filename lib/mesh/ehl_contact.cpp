@@ -8,12 +8,17 @@
 
 namespace gearloss::mesh {
 
-double roelands_viscosity(double eta0, double alpha, double p) {
-    constexpr double p_r = 1.96e8, ln_eta_inf = -9.67;
-    const double s = std::log(eta0) - ln_eta_inf;  // ln eta0 + 9.67
+namespace {
+constexpr double kRoelandsPr = 1.96e8, kLnEtaInf = -9.67;
+}
+
+RoelandsLaw::RoelandsLaw(double eta0_, double alpha) : eta0(eta0_), s(std::log(eta0_) - kLnEtaInf) {
+    Z = s > 0 ? alpha * kRoelandsPr / s : 0.0;
+}
+
+double RoelandsLaw::viscosity(double p) const {
     if (!(s > 0)) return eta0;
-    const double Z = alpha * p_r / s;
-    return eta0 * std::exp(s * (std::pow(1.0 + p / p_r, Z) - 1.0));
+    return eta0 * std::exp(s * (std::pow(1.0 + p / kRoelandsPr, Z) - 1.0));
 }
 
 namespace {
@@ -32,13 +37,10 @@ struct Traction {
 Traction traction(const lubricant::OilState& s, const Rheology& rh, double p0, double gamma_dot) {
     Traction t;
     double wsum = 0;
-    // Roelands exponent terms are constant over the contact (ln eta0 + 9.67 and Z).
-    constexpr double p_r = 1.96e8;
-    const double sR = std::log(s.eta) + 9.67;
-    const double Z = sR > 0 ? s.alpha_p * p_r / sR : 0.0;
+    const RoelandsLaw roelands(s.eta, s.alpha_p);
     for (size_t i = 0; i < kX.size(); ++i) {
         const double p = p0 * std::sqrt(1.0 - kX[i] * kX[i]);
-        const double eta = sR > 0 ? s.eta * std::exp(sR * (std::pow(1.0 + p / p_r, Z) - 1.0)) : s.eta;
+        const double eta = roelands.viscosity(p);
         const double tau_eyring = rh.eyring_stress * std::asinh(eta * gamma_dot / rh.eyring_stress);
         const double tau = std::min(tau_eyring, rh.limiting_shear_0 + rh.limiting_shear_slope * p);
         t.tau_mean += kW[i] * tau;

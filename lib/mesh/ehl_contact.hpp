@@ -42,7 +42,12 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
                              const Solid& solid = {}, bool heating = true, const lubricant::OilState* bulk = nullptr);
 
 // Roelands (1966): eta(p) = eta0 exp{(ln eta0 + 9.67)[(1 + p/p_r)^Z - 1]}, p_r = 1.96e8 Pa,
-// Z from the pressure-viscosity coefficient: Z = alpha p_r / (ln eta0 + 9.67).
-double roelands_viscosity(double eta0, double alpha, double p);
+// Z from the pressure-viscosity coefficient: Z = alpha p_r / (ln eta0 + 9.67). The terms
+// fixed by eta0 and alpha are computed once for evaluation at many pressures.
+struct RoelandsLaw {
+    RoelandsLaw(double eta0, double alpha);
+    double viscosity(double p) const;
+    double eta0, s, Z;  // s = ln eta0 + 9.67
+};
 
 }  // namespace gearloss::mesh

@@ -49,11 +49,7 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
         auto& ms = p.meshes[i];
         const auto& g0 = gb.gears[gb.meshes[i].gear[0]].spec;
         const auto& g1 = gb.gears[gb.meshes[i].gear[1]].spec;
-        switch (opt.loss_factor) {
-            case mesh::LossFactorModel::ohlendorf: ms.H_V = md.H_V_ohlendorf; break;
-            case mesh::LossFactorModel::buckingham: ms.H_V = md.H_V_buckingham; break;
-            case mesh::LossFactorModel::wimmer: ms.H_V = md.H_V_wimmer; break;
-        }
+        ms.H_V = md.loss_factor(opt.loss_factor);
         if (opt.lambda_roughness == LambdaRoughness::average_Ra) {
             ms.sigma = 0.5 * (g0.Ra + g1.Ra);
         } else {
