@@ -37,12 +37,17 @@ io::OperatingGrid campaign_grid() {
     return g;
 }
 
-diagnosis::Diagnosis run(const io::Case& c, std::vector<std::pair<std::string, double>> effects, unsigned seed) {
+// A synthetic campaign on the standard grid, through the recordings reader.
+diagnosis::Recordings campaign(const io::Case& c, std::vector<std::pair<std::string, double>> effects, unsigned seed) {
     diagnosis::SynthOptions so;
     so.effects = std::move(effects);
     so.seed = seed;
     TempFile f(diagnosis::synthesize(c.model, campaign_grid(), so));
-    return diagnosis::diagnose(c.model, diagnosis::read_recordings(f.path));
+    return diagnosis::read_recordings(f.path);
+}
+
+diagnosis::Diagnosis run(const io::Case& c, std::vector<std::pair<std::string, double>> effects, unsigned seed) {
+    return diagnosis::diagnose(c.model, campaign(c, std::move(effects), seed));
 }
 }  // namespace
 
@@ -198,11 +203,7 @@ TEST_CASE("unstabilised points are found and listed as outliers", "[diagnosis]")
 TEST_CASE("a residual no candidate has the shape of is reported as unexplained", "[diagnosis]") {
     // +30 W (T/250 N m)(600 rpm/n): falls with speed, grows with torque, does not heat the oil.
     const auto c = transfer();
-    diagnosis::SynthOptions so;
-    so.seed = 5;
-    const std::string csv = diagnosis::synthesize(c.model, campaign_grid(), so);
-    TempFile f0(csv);
-    auto rec = diagnosis::read_recordings(f0.path);
+    auto rec = campaign(c, {}, 5);
     for (auto& p : rec.points) p.loss += 30 * (p.torque_in / 250) * (600 * rpm / p.speed_in);
     const auto d = diagnosis::diagnose(c.model, rec);
     CHECK(d.verdict == "unexplained_mismatch");
@@ -211,11 +212,7 @@ TEST_CASE("a residual no candidate has the shape of is reported as unexplained",
 
 TEST_CASE("without temperatures, heat-free and heating look-alikes are named together", "[diagnosis]") {
     const auto c = transfer();
-    diagnosis::SynthOptions so;
-    so.seed = 8;
-    so.effects = {{"seal_friction", 3}};
-    TempFile f(diagnosis::synthesize(c.model, campaign_grid(), so));
-    auto rec = diagnosis::read_recordings(f.path);
+    auto rec = campaign(c, {{"seal_friction", 3}}, 8);
     for (auto& p : rec.points) p.oil_temp.reset();
     const auto d = diagnosis::diagnose(c.model, rec);
     REQUIRE(d.verdict == "missing_physics");
@@ -230,11 +227,7 @@ TEST_CASE("the calibrated config reproduces the recordings", "[diagnosis]") {
     // Diagnose, write the calibrated case, reload it: diagnosing the same recordings
     // against it finds nothing left to explain.
     const auto c = transfer();
-    diagnosis::SynthOptions so;
-    so.seed = 12;
-    so.effects = {{"constant_parasitic", 30.0}};
-    TempFile f(diagnosis::synthesize(c.model, campaign_grid(), so));
-    const auto rec = diagnosis::read_recordings(f.path);
+    const auto rec = campaign(c, {{"constant_parasitic", 30.0}}, 12);
     const auto d = diagnosis::diagnose(c.model, rec);
     REQUIRE(d.findings.at(0).effect == "constant_parasitic");
     const std::string out = (std::filesystem::temp_directory_path() / "gearloss-calibrated-test.yaml").string();
