@@ -132,3 +132,27 @@ TEST_CASE("EHL path: the 12-point piecewise Gauss loss equals the converged prof
     const double gauss = mesh::ehl_mesh_loss(geo, 14e-3, w1, F_bt, 1, 2 * 115.4e9, 0.3e-6, 353.15, o, rh);
     CHECK(gauss == Approx(fine).epsilon(2e-3));
 }
+
+TEST_CASE("Roelands law from a given pressure index and from alpha", "[ehl]") {
+    // eta0 10 mPa s, Z 0.6, p 1 GPa: s = ln(0.01) + 9.67 = 5.06483, (1 + 1e9/1.96e8)^0.6 = 2.95995,
+    // eta = 0.01 exp(5.06483 x 1.95995) = 204.72 Pa s (hand calculation).
+    CHECK(mesh::RoelandsLaw::with_index(0.01, 0.6).viscosity(1e9) == Approx(204.72).epsilon(1e-4));
+    // From alpha: Z = alpha p_r / s, so the initial slope d ln(eta)/dp at p = 0 equals alpha.
+    const mesh::RoelandsLaw law(0.01, 15e-9);
+    const double dp = 1e3;
+    CHECK(std::log(law.viscosity(dp) / law.viscosity(0)) / dp == Approx(15e-9).epsilon(1e-4));
+}
+
+TEST_CASE("Traction defaults by base oil and the roelands_index key", "[ehl][config]") {
+    const auto pao = lubricant::default_traction(lubricant::BaseOil::pao);
+    const auto tf = lubricant::default_traction(lubricant::BaseOil::traction_fluid);
+    CHECK(tf.limiting_shear_slope > pao.limiting_shear_slope);
+    // Oil A of seed 000 gives Z; a higher Z raises the in-contact viscosity and so the traction.
+    auto a = io::load_oil_file(test_support::source_path("configs/oils/75W90-syn-A.yaml"));
+    CHECK(a.traction.roelands_Z == Approx(0.70));
+    auto in = contact(500, 6, 4);
+    const double mu_z = mesh::ehl_contact(in, a, a.traction, {}, false).mu_ehl;
+    auto rh = a.traction;
+    rh.roelands_Z = 0.5;
+    CHECK(mesh::ehl_contact(in, a, rh, {}, false).mu_ehl < mu_z);
+}

@@ -11,19 +11,18 @@
 using namespace gearloss;
 
 TEST_CASE("seed 000 trends along the path of contact and for the gearbox", "[ehl][seed000]") {
-    // Published trends (seed 000): friction zero-ish at the pitch point and peaking towards
-    // the ends of the path; h_min nearly constant; temperature minimal at the pitch point;
-    // local efficiency 98-100 %; overall efficiency ~99 %.
+    // Published trends (seed 000, oil A, 90 % of 800 N m at 1600 rpm, oil at 70 degC):
+    // friction zero-ish at the pitch point and peaking (~0.06) towards the ends of the path;
+    // h_min nearly constant; film temperature minimal at the pitch point; local efficiency
+    // 98-100 %; gearbox efficiency ~99 % (99-99.15 % in the seed); the thermally coupled
+    // oil temperature "almost double" the uncoupled 70 degC.
     const auto c = io::load_case(test_support::source_path("configs/spur-seed000.yaml"));
     const auto& m = c.model;
-    const double w = 1600 * std::numbers::pi / 30, T = 720;
-    const auto r = solver::solve_point(m, w, T);
-    REQUIRE(r.status == solver::PointStatus::ok);
+    const double w = 1600 * std::numbers::pi / 30, T = 720, T70 = 273.15 + 70;
     const auto p = solver::prepare_point(m, w, T);
     const auto& md = m.layout.meshes[0];
     const auto prof = mesh::ehl_path(md.geom, md.L_mean, p.meshes[0].omega_rel, p.meshes[0].F_bn, 1,
-                                     p.meshes[0].contact.E_prime, p.meshes[0].sigma, r.oil_temperature, m.oil,
-                                     m.oil.traction, 41);
+                                     p.meshes[0].contact.E_prime, p.meshes[0].sigma, T70, m.oil, m.oil.traction, 41);
     const auto& pts = prof.points;
     const auto pitch = std::min_element(pts.begin(), pts.end(), [](const auto& a, const auto& b) {
         return std::abs(a.from_pitch) < std::abs(b.from_pitch);
@@ -37,15 +36,25 @@ TEST_CASE("seed 000 trends along the path of contact and for the gearbox", "[ehl
         eff_min = std::min(eff_min, pt.local_efficiency);
     }
     CHECK(pitch->c.mu < 0.2 * mu_max);                               // zero-ish at the pitch point
-    CHECK((pts.front().c.mu > 0.5 * mu_max || pts.back().c.mu > 0.5 * mu_max));  // peaks towards the ends
-    CHECK(mu_max < 0.1);
+    CHECK((pts.front().c.mu > 0.7 * mu_max || pts.back().c.mu > 0.7 * mu_max));  // high towards the ends
+    CHECK(mu_max > 0.035);                                           // seed: peak 0.0593
+    CHECK(mu_max < 0.08);
     CHECK(h_hi / h_lo < 1.6);                                        // nearly constant
     CHECK(pitch->c.T_film == Catch::Detail::Approx(T_min).margin(0.5));  // coolest at the pitch point
     CHECK(eff_min > 0.98);                                           // local efficiency 98-100 %
-    CHECK(r.efficiency > 0.99);                                      // overall ~99 %
-    CHECK(r.efficiency < 0.997);
-    // Not asserted: seed 000's "coupled oil temperature well above the uncoupled one". With the
-    // assumed traction data the losses here fall as the oil warms (viscous traction, churning and
-    // bearing drag), so the coupled rise stays below the rise the cold-oil losses would cause;
-    // reproducing that trend needs the oils' measured rheology.
+
+    solver::Model fixed = m;
+    fixed.thermal.mode = solver::ThermalMode::fixed;
+    fixed.thermal.oil_temperature = T70;
+    const auto r70 = solver::solve_point(fixed, w, T);
+    REQUIRE(r70.status == solver::PointStatus::ok);
+    CHECK(r70.efficiency > 0.985);                                   // ~99 %
+    CHECK(r70.efficiency < 0.995);
+
+    // Coupled: the losses heat the oil well above the uncoupled 70 degC (seed: almost double).
+    const auto r = solver::solve_point(m, w, T);
+    REQUIRE(r.status == solver::PointStatus::ok);
+    CHECK(r.oil_temperature - 273.15 > 1.5 * 70.0);
+    // and the heat balance closes there: losses = heat rejected.
+    CHECK(std::abs(r.thermal_residual) < 0.05);
 }

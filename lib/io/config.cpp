@@ -150,9 +150,10 @@ lubricant::Oil load_oil(const YamlNode& n) {
     }
     if (auto k = n.get("thermal_conductivity")) oil.k_fixed = k->as_quantity(dim::thermal_conductivity, "0.15 W/(m*K)");
     if (auto c = n.get("specific_heat")) oil.cp_fixed = c->as_quantity(dim::specific_heat, "2000 J/(kg*K)");
+    oil.traction = lubricant::default_traction(oil.base);
     if (auto tr = n.get("traction")) {
         tr->allow_keys({"eyring_stress", "limiting_shear_stress", "limiting_shear_slope", "boundary_friction", "mixed_B",
-                        "mixed_m"});
+                        "mixed_m", "roelands_index"});
         auto& t = oil.traction;
         if (auto v = tr->get("eyring_stress")) t.eyring_stress = v->as_quantity(dim::pressure, "5 MPa");
         if (auto v = tr->get("limiting_shear_stress")) t.limiting_shear_0 = v->as_quantity(dim::pressure, "1 MPa");
@@ -160,6 +161,10 @@ lubricant::Oil load_oil(const YamlNode& n) {
         if (auto v = tr->get("boundary_friction")) t.mu_boundary = v->as_number();
         if (auto v = tr->get("mixed_B")) t.mixed_B = v->as_number();
         if (auto v = tr->get("mixed_m")) t.mixed_m = v->as_number();
+        if (auto v = tr->get("roelands_index")) {
+            t.roelands_Z = v->as_number();
+            if (!(t.roelands_Z > 0.1 && t.roelands_Z < 1.5)) v->fail("Roelands index must be in (0.1, 1.5) (typical 0.4-0.8)");
+        }
         if (!(t.eyring_stress > 0 && t.limiting_shear_0 >= 0 && t.limiting_shear_slope >= 0 && t.limiting_shear_slope < 1 &&
               t.mu_boundary > 0 && t.mu_boundary < 1 && t.mixed_B > 0 && t.mixed_m > 0))
             tr->fail("traction properties out of range (Eyring stress > 0, 0 <= slope < 1, 0 < boundary friction < 1)");

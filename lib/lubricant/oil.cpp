@@ -34,6 +34,21 @@ std::optional<double> default_XL(BaseOil b) {
     return std::nullopt;
 }
 
+TractionProperties default_traction(BaseOil b) {
+    TractionProperties t;  // mineral gear oil: tau_E 5 MPa, tau_L = 1 MPa + 0.07 p, mu_bl 0.11 (seed 000)
+    switch (b) {
+        case BaseOil::mineral:
+        case BaseOil::transmission_fluid: break;
+        case BaseOil::pao: t.eyring_stress = 4e6; t.limiting_shear_slope = 0.065; break;
+        case BaseOil::ester:
+        case BaseOil::phosphate_ester: t.eyring_stress = 3e6; t.limiting_shear_slope = 0.055; break;
+        case BaseOil::pag:
+        case BaseOil::pag_water_soluble: t.eyring_stress = 3e6; t.limiting_shear_slope = 0.05; break;
+        case BaseOil::traction_fluid: t.eyring_stress = 10e6; t.limiting_shear_slope = 0.10; break;
+    }
+    return t;
+}
+
 std::pair<double, double> gold_constants(BaseOil b) {
     // Gold et al. (2001), J. Synth. Lubr. 18; s [1/Pa], t [-].
     switch (b) {

@@ -20,15 +20,21 @@ struct BearingFrictionPair {
 };
 
 // Traction (rheology) properties for the local thermal-EHL friction model.
-// Defaults: typical gear-oil values (Eyring stress 5 MPa, limiting shear
-// 1 MPa + 0.07 p, boundary friction 0.11 as in seed 000); measure per oil.
+// Defaults come per base oil from default_traction(); measure per oil.
 struct TractionProperties {
     double eyring_stress = 5e6;          // tau_E [Pa]
     double limiting_shear_0 = 1e6;       // tau_L0 [Pa]
     double limiting_shear_slope = 0.07;  // Lambda_L: tau_L = tau_L0 + Lambda_L p
     double mu_boundary = 0.11;           // boundary friction of the mesh
     double mixed_B = 1.0, mixed_m = 2.0; // asperity share f_c = exp(-B Lambda^m)
+    // Roelands pressure index Z of the in-contact viscosity; 0: derived from the
+    // pressure-viscosity coefficient, Z = alpha p_r / (ln eta0 + 9.67).
+    double roelands_Z = 0;
 };
+
+// Typical traction properties by base oil (assumed order-of-magnitude values, documented in
+// docs/config.md): traction fluids shear hardest, esters and PAGs least.
+TractionProperties default_traction(BaseOil b);
 
 // Properties at one temperature, SI units, with the powers of the kinematic
 // viscosity that several loss models share precomputed once.

@@ -16,6 +16,12 @@ RoelandsLaw::RoelandsLaw(double eta0_, double alpha) : eta0(eta0_), s(std::log(e
     Z = s > 0 ? alpha * kRoelandsPr / s : 0.0;
 }
 
+RoelandsLaw RoelandsLaw::with_index(double eta0, double Z) {
+    RoelandsLaw law(eta0, 0.0);
+    law.Z = law.s > 0 ? Z : 0.0;
+    return law;
+}
+
 double RoelandsLaw::viscosity(double p) const {
     if (!(s > 0)) return eta0;
     return eta0 * std::exp(s * (std::pow(1.0 + p / kRoelandsPr, Z) - 1.0));
@@ -37,7 +43,8 @@ struct Traction {
 Traction traction(const lubricant::OilState& s, const Rheology& rh, double p0, double gamma_dot) {
     Traction t;
     double wsum = 0;
-    const RoelandsLaw roelands(s.eta, s.alpha_p);
+    const RoelandsLaw roelands =
+        rh.roelands_Z > 0 ? RoelandsLaw::with_index(s.eta, rh.roelands_Z) : RoelandsLaw(s.eta, s.alpha_p);
     for (size_t i = 0; i < kX.size(); ++i) {
         const double p = p0 * std::sqrt(1.0 - kX[i] * kX[i]);
         const double eta = roelands.viscosity(p);

@@ -46,6 +46,8 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
 // fixed by eta0 and alpha are computed once for evaluation at many pressures.
 struct RoelandsLaw {
     RoelandsLaw(double eta0, double alpha);
+    // With a given pressure index Z (> 0) instead of alpha.
+    static RoelandsLaw with_index(double eta0, double Z);
     double viscosity(double p) const;
     double eta0, s, Z;  // s = ln eta0 + 9.67
 };
