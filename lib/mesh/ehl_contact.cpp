@@ -29,33 +29,60 @@ double RoelandsLaw::viscosity(double p) const {
 
 namespace {
 
-// 5-point Gauss-Legendre on [-1, 1].
-constexpr std::array<double, 5> kX = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
-                                      0.9061798459386640};
-constexpr std::array<double, 5> kW = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
-                                      0.2369268850561891};
+// 5-point Gauss-Legendre on [-1, 1]. The Hertz pressure is even in x, so the five nodes
+// give three distinct pressures: the centre and two symmetric pairs (weights doubled).
+constexpr std::array<double, 3> kX = {0.0, 0.5384693101056831, 0.9061798459386640};
+constexpr std::array<double, 3> kW = {0.5688888888888889, 2 * 0.4786286704993665, 2 * 0.2369268850561891};
 
 struct Traction {
     double tau_mean = 0, p_mean = 0;
 };
 
-// Mean shear stress over the Hertz zone for the oil state at the film temperature.
-Traction traction(const lubricant::OilState& s, const Rheology& rh, double p0, double gamma_dot) {
+// What the traction at the Gauss nodes needs that does not depend on the film temperature:
+// the pressures, ln(1 + p/p_r) of the Roelands law, the limiting shear stress, and the
+// Eyring argument above which the limiting shear caps the stress (tau_E sinh(tau_L/tau_E)),
+// so that a capped node costs no asinh.
+struct HertzNodes {
+    std::array<double, 3> p{}, ln_q{}, tau_L{}, ln_cap{};
+    double p_mean = 0;
+    HertzNodes(double p0, const Rheology& rh) {
+        double wsum = 0;
+        for (size_t i = 0; i < kX.size(); ++i) {
+            p[i] = p0 * std::sqrt(1.0 - kX[i] * kX[i]);
+            ln_q[i] = std::log1p(p[i] / kRoelandsPr);
+            tau_L[i] = rh.limiting_shear_0 + rh.limiting_shear_slope * p[i];
+            // ln(tau_E sinh(r)) without overflow for large r = tau_L / tau_E.
+            const double r = tau_L[i] / rh.eyring_stress;
+            ln_cap[i] = std::log(rh.eyring_stress) + (r > 20 ? r - std::log(2.0) : std::log(std::sinh(r)));
+            p_mean += kW[i] * p[i];
+            wsum += kW[i];
+        }
+        p_mean /= wsum;
+    }
+};
+
+// Mean shear stress over the Hertz zone for the oil state at the film temperature:
+// Roelands viscosity, Eyring stress capped by the limiting shear stress.
+Traction traction(const lubricant::OilState& s, const Rheology& rh, const HertzNodes& nodes, double gamma_dot) {
     Traction t;
-    double wsum = 0;
+    t.p_mean = nodes.p_mean;
+    if (!(gamma_dot > 0)) return t;
     const RoelandsLaw roelands =
         rh.roelands_Z > 0 ? RoelandsLaw::with_index(s.eta, rh.roelands_Z) : RoelandsLaw(s.eta, s.alpha_p);
+    const double ln_eta0 = std::log(s.eta), ln_gd = std::log(gamma_dot);
+    double wsum = 0;
     for (size_t i = 0; i < kX.size(); ++i) {
-        const double p = p0 * std::sqrt(1.0 - kX[i] * kX[i]);
-        const double eta = roelands.viscosity(p);
-        const double tau_eyring = rh.eyring_stress * std::asinh(eta * gamma_dot / rh.eyring_stress);
-        const double tau = std::min(tau_eyring, rh.limiting_shear_0 + rh.limiting_shear_slope * p);
+        // ln(eta(p) gamma_dot), eta(p) = eta0 exp{s[(1 + p/p_r)^Z - 1]}
+        const double ln_eta = roelands.s > 0 ? ln_eta0 + roelands.s * (std::exp(roelands.Z * nodes.ln_q[i]) - 1.0)
+                                             : ln_eta0;
+        const double ln_arg = ln_eta + ln_gd;
+        const double tau = ln_arg >= nodes.ln_cap[i]
+                               ? nodes.tau_L[i]
+                               : std::min(nodes.tau_L[i], rh.eyring_stress * std::asinh(std::exp(ln_arg) / rh.eyring_stress));
         t.tau_mean += kW[i] * tau;
-        t.p_mean += kW[i] * p;
         wsum += kW[i];
     }
     t.tau_mean /= wsum;
-    t.p_mean /= wsum;
     return t;
 }
 
@@ -82,12 +109,13 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
         return r;
     }
     const double gamma_dot = du / r.h_c;
+    const HertzNodes nodes(r.p0, rh);
     // Film temperature F(T) produced by the traction at temperature T.
     const double beta1 = std::sqrt(solid.density * solid.specific_heat * solid.conductivity * std::abs(in.u1));
     const double beta2 = std::sqrt(solid.density * solid.specific_heat * solid.conductivity * std::abs(in.u2));
     auto film_temperature = [&](double T, double* flash, double* shear) {
         const lubricant::OilState sT = oil.state(T);  // one property evaluation per iteration
-        const Traction t = traction(sT, rh, r.p0, gamma_dot);
+        const Traction t = traction(sT, rh, nodes, gamma_dot);
         const double q = t.tau_mean * du;  // heat flux into the contact [W/m^2]
         double dT1 = 0, dT2 = 0;
         const double kap = solid.diffusivity();
@@ -109,7 +137,7 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
         // bracketing solver takes over when it does not.
         auto g = [&](double x) { return x - film_temperature(x, nullptr, nullptr); };
         bool converged = false;
-        double x = in.T_bulk;
+        double x = in.T_bulk + std::max(in.film_rise_guess, 0.0);
         for (int it = 0; it < 8 && !converged; ++it) {
             const double fx = film_temperature(x, nullptr, nullptr);
             const double next = x + 0.8 * (fx - x);
@@ -130,7 +158,7 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
         r.residual = std::abs(g(T));
     }
     r.T_film = heating ? film_temperature(T, &r.dT_flash, &r.dT_shear) : in.T_bulk;
-    const Traction t = traction(oil.state(heating ? T : in.T_bulk), rh, r.p0, gamma_dot);
+    const Traction t = traction(heating ? oil.state(T) : s0, rh, nodes, gamma_dot);
     r.mu_ehl = t.p_mean > 0 ? t.tau_mean / t.p_mean : 0.0;
     r.mu = r.f_c * rh.mu_boundary + (1.0 - r.f_c) * r.mu_ehl;
     return r;

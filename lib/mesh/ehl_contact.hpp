@@ -23,6 +23,7 @@ struct EhlContactInput {
     double E_prime = 0;    // [Pa]
     double sigma = 0;      // composite roughness for Lambda [m]
     double T_bulk = 0;     // oil / surface bulk temperature [K]
+    double film_rise_guess = 0;  // start of the film-temperature loop above T_bulk [K] (warm start)
 };
 
 struct EhlContactResult {

@@ -33,7 +33,10 @@ PathProfile ehl_path(const geometry::PairGeometry& g, double L_mean, double omeg
 // Mesh friction power only, integrated piecewise over the smooth segments of the
 // path (A-B, B-C, C-D, D-E for a spur pair: load-share jumps at B and D, sliding
 // kink at the pitch point C) with 3-point Gauss-Legendre: 12 contact solutions.
+// `film_rise` (optional, in/out): the film temperature rise of each node from the previous
+// call, used to start its thermal loop (successive calls of a thermal solve differ little).
 double ehl_mesh_loss(const geometry::PairGeometry& g, double L_mean, double omega_rel, double F_bn, int planets,
-                     double E_prime, double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh);
+                     double E_prime, double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh,
+                     std::vector<double>* film_rise = nullptr);
 
 }  // namespace gearloss::mesh

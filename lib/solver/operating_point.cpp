@@ -47,6 +47,7 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
     for (size_t i = 0; i < gb.meshes.size(); ++i) {
         const auto& md = L.meshes[i];
         auto& ms = p.meshes[i];
+        ms.ehl_film_rise.clear();  // no warm start carried over from another point
         const auto& g0 = gb.gears[gb.meshes[i].gear[0]].spec;
         const auto& g1 = gb.gears[gb.meshes[i].gear[1]].spec;
         ms.H_V = md.loss_factor(opt.loss_factor);
@@ -181,7 +182,7 @@ LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubrica
             // Local thermal EHL along the path of contact at the oil temperature.
             const auto& md = m.layout.meshes[i];
             loss = mesh::ehl_mesh_loss(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime,
-                                       ms.sigma, s.T, m.oil, m.oil.traction) *
+                                       ms.sigma, s.T, m.oil, m.oil.traction, &ms.ehl_film_rise) *
                    m.calibration.mesh_friction_factor;
             mu = ms.power * ms.H_V > 0 ? loss / (ms.power * ms.H_V) : 0.0;  // equivalent mean friction
         }

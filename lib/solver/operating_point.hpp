@@ -21,6 +21,9 @@ struct PointState {
         double sigma = 0;         // roughness for Lambda [m]
         double F_bn = 0;          // normal force of one mesh [N] (local EHL model)
         double omega_rel = 0;     // speed of gear 0 relative to the carrier [rad/s]
+        // Film temperature rises of the local EHL nodes at the last oil temperature tried:
+        // the warm start of the next evaluation of this point's thermal solve.
+        mutable std::vector<double> ehl_film_rise;
     };
     std::vector<MeshState> meshes;
     std::vector<churning::ChurningAtSpeed> churn;      // per gear
