@@ -42,6 +42,8 @@ void expect_error(const Expect& e) {
 
 TEST_CASE("bad input names file, line and key", "[config]") {
     // Each class of bad input from the issue, one mutation each.
+    expect_error({"options:\n", "options:\n  mesh_friction: ehl_local\n", "mesh_friction: schlenk", "options.mesh_friction",
+                  "duplicate key"});
     expect_error({"teeth: 32,", "teeth: -3,", "name: w1", "gears[0].teeth", "at least 5"});
     expect_error({"module: 3.5 mm, profile_shift: 0.381", "module: 3.5 furlong, profile_shift: 0.381", "name: w1",
                   "gears[0].module", "unknown unit 'furlong'"});

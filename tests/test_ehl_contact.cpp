@@ -6,6 +6,8 @@
 #include "geometry/gear_geometry.hpp"
 #include "mesh/ehl_contact.hpp"
 #include "mesh/ehl_path.hpp"
+#include "mesh/loss_factor.hpp"
+#include <vector>
 #include "test_support.hpp"
 
 using namespace gearloss;
@@ -155,4 +157,80 @@ TEST_CASE("Traction defaults by base oil and the roelands_index key", "[ehl][con
     auto rh = a.traction;
     rh.roelands_Z = 0.5;
     CHECK(mesh::ehl_contact(in, a, rh, {}, false).mu_ehl < mu_z);
+}
+
+namespace {
+// FZG C proportions made helical: beta 15 deg, b 20 mm (eps_beta ~ 0.37, a non-integer
+// overlap, so the total contact length varies over the mesh cycle).
+geometry::PairGeometry helical_c() {
+    geometry::GearSpec p, w;
+    p.name = "pinion";
+    p.z = 16;
+    p.hand = geometry::Hand::left;
+    w.name = "wheel";
+    w.z = 24;
+    w.hand = geometry::Hand::right;
+    for (auto* g : {&p, &w}) {
+        g->mn = 4.5e-3;
+        g->b = 20e-3;
+        g->beta = 15 * std::numbers::pi / 180;
+        g->x = 0.15;
+    }
+    return geometry::pair_geometry(p, w);
+}
+}  // namespace
+
+TEST_CASE("EHL helical: contact lines across the face with a constant friction give mu H_V P (Wimmer sweep)",
+          "[ehl]") {
+    // Roughness far above the film: mu = mu_boundary on every line. The phase-averaged
+    // integral of mu w v_slide over the contact lines must then equal mu H_V T1 omega1 with
+    // H_V from the independent contact-line sweep of loss_factor.cpp (2000 phases).
+    const auto geo = helical_c();
+    REQUIRE(geo.eps_beta > 0.1);
+    const auto sweep = mesh::sweep_contact_lines(geo);
+    const double w1 = 1500 * std::numbers::pi / 30, T1 = 302;
+    const double F_bn = T1 / (0.5 * geo.db[0]) / std::cos(geo.beta_b);
+    mesh::Rheology rh;
+    rh.mu_boundary = 0.08;
+    const double loss = mesh::ehl_mesh_loss(geo, sweep.L_mean, w1, F_bn, 1, 2 * 115.4e9, 1e-3, 353.15, oil(), rh);
+    CHECK(loss == Approx(0.08 * sweep.H_V * T1 * w1).epsilon(3e-3));
+}
+
+TEST_CASE("EHL helical: interpolated loss equals a brute-force sweep of contact lines", "[ehl]") {
+    // Real traction. Reference: 120 phases; on each, every contact line in the field split
+    // into 150 midpoints with its own contact solution at the phase's line load F_bn / L(s).
+    const auto geo = helical_c();
+    const auto o = oil();
+    const mesh::Rheology rh;
+    const double w1 = 1500 * std::numbers::pi / 30, E_prime = 2 * 115.4e9, sigma = 0.3e-6, Tb = 353.15;
+    const double F_bn = 302 / (0.5 * geo.db[0]) / std::cos(geo.beta_b);
+    const double t = std::tan(geo.beta_b), cb = std::cos(geo.beta_b), b = geo.b_eff;
+    const int phases = 120, per_line = 150;
+    double mean = 0;
+    for (int j = 0; j < phases; ++j) {
+        const double s = geo.T1A + (j + 0.5) / phases * geo.p_bt;
+        std::vector<std::pair<double, double>> y;  // face extent of each line
+        double L = 0;
+        for (int k = -20; k <= 20; ++k) {
+            const double xi0 = s + k * geo.p_bt;
+            const double y0 = std::max(0.0, (geo.T1A - xi0) / t), y1 = std::min(b, (geo.T1E - xi0) / t);
+            if (y1 <= y0) continue;
+            y.push_back({xi0 + t * y0, xi0 + t * y1});
+            L += (y1 - y0) / cb;
+        }
+        double P = 0;
+        for (const auto& [xa, xb] : y)
+            for (int q = 0; q < per_line; ++q) {
+                const double xi = xa + (xb - xa) * (q + 0.5) / per_line;
+                const double rho1 = xi / cb, rho2 = (geo.T1T2 - xi) / cb;
+                mesh::EhlContactInput in{F_bn / L, rho1 * rho2 / (rho1 + rho2), w1 * xi, w1 / geo.u * (geo.T1T2 - xi),
+                                         E_prime, sigma, Tb};
+                const double v_slide = std::abs(in.u1 - in.u2);
+                const double dl = (xb - xa) / per_line / (t * cb);
+                P += mesh::ehl_contact(in, o, rh).mu * (F_bn / L) * v_slide * dl;
+            }
+        mean += P / phases;
+    }
+    const double fast = mesh::ehl_mesh_loss(geo, 0.0, w1, F_bn, 1, E_prime, sigma, Tb, o, rh);
+    CHECK(fast == Approx(mean).epsilon(5e-3));
 }

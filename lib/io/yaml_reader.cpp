@@ -19,10 +19,38 @@ YamlNode YamlNode::load_file(const std::string& file) {
     return load_text(ss.str(), file);
 }
 
+namespace {
+// yaml-cpp keeps the first of two equal keys and drops the second without a word; a
+// repeated key in a case file is almost always an edit that did not take effect.
+void reject_duplicate_keys(const YAML::Node& n, const std::string& file, const std::string& path, int depth = 0) {
+    if (depth > 64) return;  // the reader's own nesting limits apply further down
+    if (n.IsMap()) {
+        std::vector<std::string> seen;
+        for (const auto& kv : n) {
+            const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : std::string();
+            const std::string p = path.empty() ? k : path + "." + k;
+            if (kv.first.IsScalar()) {
+                if (std::find(seen.begin(), seen.end(), k) != seen.end()) {
+                    const YAML::Mark m = kv.first.Mark();
+                    throw InputError(file, m.is_null() ? 0 : m.line + 1, m.is_null() ? 0 : m.column + 1, p,
+                                     "duplicate key '" + k + "' (an earlier one in the same mapping would win)");
+                }
+                seen.push_back(k);
+            }
+            reject_duplicate_keys(kv.second, file, p, depth + 1);
+        }
+    } else if (n.IsSequence()) {
+        size_t i = 0;
+        for (const auto& item : n) reject_duplicate_keys(item, file, path + "[" + std::to_string(i++) + "]", depth + 1);
+    }
+}
+}  // namespace
+
 YamlNode YamlNode::load_text(const std::string& text, const std::string& name) {
     try {
         YAML::Node n = YAML::Load(text);
         if (!n.IsMap()) throw InputError(name, 1, 1, "", "expected a YAML mapping at the top level");
+        reject_duplicate_keys(n, name, "");
         return YamlNode(n, name, "");
     } catch (const YAML::Exception& e) {
         throw InputError(name, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1, "",

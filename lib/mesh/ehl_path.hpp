@@ -30,9 +30,10 @@ PathProfile ehl_path(const geometry::PairGeometry& g, double L_mean, double omeg
                      double E_prime, double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh,
                      int positions = 21, bool heating = true);
 
-// Mesh friction power only, integrated piecewise over the smooth segments of the
-// path (A-B, B-C, C-D, D-E for a spur pair: load-share jumps at B and D, sliding
-// kink at the pitch point C) with 3-point Gauss-Legendre: 12 contact solutions.
+// Mesh friction power only. Spur pair: the path split at the load-share jumps B, D and the
+// sliding kink C, 3-point Gauss-Legendre per segment (12 contact solutions). Helical pair:
+// the contact lines across the face swept over one base pitch with the line load
+// F_bn / L(t) of each phase (16 contact solutions, interpolated along the lines).
 // `film_rise` (optional, in/out): the film temperature rise of each node from the previous
 // call, used to start its thermal loop (successive calls of a thermal solve differ little).
 double ehl_mesh_loss(const geometry::PairGeometry& g, double L_mean, double omega_rel, double F_bn, int planets,
