@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 #include <cstdio>
 #include <fmt/format.h>
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include "diagnosis/synth.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config.hpp"
+#include "io/cycle_report.hpp"
 #include "io/reports.hpp"
 #include "map/compare.hpp"
 #include "map/map_runner.hpp"
@@ -62,6 +64,19 @@ io::Case load(const Common& c) {
         k.model.thermal.oil_temperature = q.value;
     }
     return k;
+}
+
+// "-10degC", "263.15 K": an absolute temperature [K].
+double absolute_temperature(const std::string& text, const char* what) {
+    gearloss::units::Quantity q;
+    try {
+        q = gearloss::units::parse_quantity(text);
+    } catch (const gearloss::units::UnitError& e) {
+        throw InputError("", 0, 0, what, e.msg + " (expected e.g. '-10degC')");
+    }
+    if (!q.absolute_temperature || !(q.value > 0))
+        throw InputError("", 0, 0, what, "'" + text + "' is not a temperature (e.g. '-10degC')");
+    return q.value;
 }
 
 double single_value(const std::string& text, const gearloss::units::Dimension& d, const char* what, const char* ex) {
@@ -245,6 +260,26 @@ int main(int argc, char** argv) {
     profile->add_option("-o,--output", out, "output CSV ('-' = stdout)");
     profile->footer("Example: gearloss mesh-profile configs/spur-seed000.yaml --mesh m --speed 1600rpm --torque 720Nm");
 
+    // cycle
+    std::string cycle_out, cycle_name, start_temp, ambient_temp, prewarm_temp, heater = "100W", warm_temp = "90degC", cycle_json;
+    auto* cyc = app.add_subcommand("cycle", "transient warm-up over a drive cycle from a cold start, against a warm start "
+                                            "and (optionally) after pre-warming");
+    cyc->add_option("config", common.config, "gearbox case with a 'vehicle' block (YAML)")->required();
+    cyc->add_option("--oil", common.oil, "replace the case's oil by this oil file (YAML)");
+    cyc->add_option("--cycle", cycle_name, "nedc, wltc, artemis, artemis-urban, artemis-rural, artemis-motorway-130, "
+                                           "artemis-motorway-150, or a CSV file (time_s,speed_kmh[,gear])")->required();
+    cyc->add_option("--start-temp", start_temp, "temperature of the whole transmission at the start (e.g. -10degC)")->required();
+    cyc->add_option("--ambient", ambient_temp, "ambient temperature (default: the start temperature, a cold soak)");
+    cyc->add_option("--prewarm", prewarm_temp, "pre-warm the oil to this temperature before the cycle (e.g. 90degC)");
+    cyc->add_option("--heater", heater, "pre-warming heater power (default 100W)");
+    cyc->add_option("--warm-temp", warm_temp, "temperature of the warm-start reference run (default 90degC)");
+    cyc->add_option("-o,--output", cycle_out, "time series CSV of the run from the start temperature ('-' = stdout, "
+                                              "after the summary)");
+    cyc->add_option("--json", cycle_json, "write the summary as JSON to this file");
+    cyc->add_flag("--stats", stats, "print the simulation time of one cycle run to stderr");
+    cyc->footer("Example: gearloss cycle configs/automatic-6speed.yaml --cycle nedc --start-temp -10degC --prewarm 90degC "
+                "--heater 1kW -o trace.csv");
+
     auto* check = app.add_subcommand("check", "validate a case and print derived data (geometry, H_V, speeds, oil)");
     add_common(check);
     check->add_flag("--json", json, "print the derived data as JSON");
@@ -347,6 +382,39 @@ int main(int argc, char** argv) {
                 io::AtomicFile f(out);
                 f.write(gearloss::map::compare_header(a.model.oil.name, b.model.oil.name));
                 for (size_t i = 0; i < ra.size(); ++i) f.write(gearloss::map::compare_row(ra[i], rb[i]));
+                f.commit();
+            }
+        } else if (cyc->parsed()) {
+            io::Case k = io::load_case(common.config);
+            const auto pt = io::load_powertrain(k, common.oil.empty() ? std::nullopt : std::optional<std::string>(common.oil));
+            std::vector<std::string> dirs = {(std::filesystem::path(common.config).parent_path() / "cycles").string(),
+                                             GEARLOSS_CYCLES_DIR};
+            const auto dc = gearloss::cycle::resolve_cycle(cycle_name, dirs);
+            io::CycleStudyOptions so;
+            so.start_temperature = absolute_temperature(start_temp, "--start-temp");
+            so.ambient = ambient_temp.empty() ? so.start_temperature : absolute_temperature(ambient_temp, "--ambient");
+            so.warm_temperature = absolute_temperature(warm_temp, "--warm-temp");
+            if (!prewarm_temp.empty()) {
+                so.prewarm_target = absolute_temperature(prewarm_temp, "--prewarm");
+                if (*so.prewarm_target <= so.start_temperature)
+                    throw InputError("", 0, 0, "--prewarm", "the pre-warm target must be above the start temperature");
+            }
+            so.heater_power = single_value(heater, gearloss::units::dim::power, "--heater", "100W");
+            if (!(so.heater_power > 0)) throw InputError("", 0, 0, "--heater", "heater power must be positive");
+            const auto study = io::run_cycle_study(pt, dc, so);
+            if (io::g_interrupted) return kInterrupted;
+            std::fputs(io::cycle_summary_text(pt, study, so).c_str(), stdout);
+            if (stats)
+                std::fprintf(stderr, "cycle %s: %zu steps simulated in %.2f ms\n", dc.name.c_str(), dc.time.size() - 1,
+                             1e3 * study.seconds_per_run);
+            if (!cycle_json.empty()) {
+                io::AtomicFile f(cycle_json);
+                f.write(io::cycle_summary_json(pt, study, so));
+                f.commit();
+            }
+            if (!cycle_out.empty()) {
+                io::AtomicFile f(cycle_out);
+                f.write(io::cycle_trace_csv(pt, study.cold));
                 f.commit();
             }
         } else if (check->parsed()) {

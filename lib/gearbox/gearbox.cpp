@@ -434,6 +434,12 @@ Layout analyse(const Gearbox& gb) {
             L.bearing_speed_ratio[i] = std::abs(ws);
         }
     }
+    L.clutch_slip_ratio.resize(gb.clutches.size());
+    for (size_t i = 0; i < gb.clutches.size(); ++i) {
+        const int g = gb.clutches[i].gear;
+        L.clutch_slip_ratio[i] = std::abs(L.body_speed_ratio[L.body_of_gear[g]] -
+                                          L.body_speed_ratio[L.body_of_shaft[gb.gears[g].shaft]]);
+    }
     L.seal_speed_ratio.resize(gb.seals.size());
     for (size_t i = 0; i < gb.seals.size(); ++i)
         L.seal_speed_ratio[i] = std::abs(L.body_speed_ratio[L.body_of_shaft[gb.seals[i].shaft]]);

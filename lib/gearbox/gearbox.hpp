@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bearings/skf_model.hpp"
+#include "clutch/wet_clutch.hpp"
 #include "geometry/gear_geometry.hpp"
 #include "mesh/loss_factor.hpp"
 
@@ -52,12 +53,20 @@ struct Seal {
     double diameter = 0;        // m
 };
 
+// Wet multi-plate clutch that locks a free gear to its shaft; open (dragging) in every
+// ratio that does not engage that gear.
+struct ClutchPack {
+    clutch::WetClutchPack pack;
+    int gear = -1;
+};
+
 struct Gearbox {
     std::vector<Shaft> shafts;
     std::vector<Gear> gears;
     std::vector<Mesh> meshes;
     std::vector<Bearing> bearings;
     std::vector<Seal> seals;
+    std::vector<ClutchPack> clutches;
     int input_shaft = -1, output_shaft = -1;
     std::vector<int> engaged;   // free gears locked to their shaft in the selected ratio
     std::optional<double> oil_level;  // y of the oil surface in the housing frame [m]
@@ -99,6 +108,7 @@ struct Layout {
     std::vector<double> gear_immersion;     // m (0 = not dipping)
     std::vector<double> bearing_speed_ratio;  // relative ring speed / omega_input (magnitude)
     std::vector<double> seal_speed_ratio;
+    std::vector<double> clutch_slip_ratio;  // |omega_gear - omega_shaft| / omega_input of each pack
     // Bearing radial and axial load [N] per N*m of input torque, for positive
     // and negative input torque (the radial separating force does not reverse).
     std::vector<double> bearing_Fr_pos, bearing_Fa_pos, bearing_Fr_neg, bearing_Fa_neg;

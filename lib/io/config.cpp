@@ -529,6 +529,34 @@ struct Loader {
             model.gearbox.seals.push_back(s);
         }
     }
+
+    void load_clutches() {
+        if (!root.has("clutches")) return;
+        for (const auto& n : root.at("clutches").items()) {
+            n.allow_keys({"name", "engages", "interfaces", "r_inner", "r_outer", "clearance", "roughness", "oil_supply",
+                          "note"});
+            gearbox::ClutchPack c;
+            c.pack.name = n.at("name").as_string();
+            c.gear = gear_ref(n.at("engages"));
+            if (!model.gearbox.gears[c.gear].free)
+                n.at("engages").fail("a clutch engages a 'mount: free' gear (it locks that gear to its shaft)");
+            c.pack.interfaces = n.at("interfaces").as_int();
+            if (c.pack.interfaces < 1 || c.pack.interfaces > 100) n.at("interfaces").fail("must be 1-100");
+            c.pack.r_inner = n.positive_quantity("r_inner", dim::length, "55 mm");
+            c.pack.r_outer = n.positive_quantity("r_outer", dim::length, "72 mm");
+            if (c.pack.r_outer <= c.pack.r_inner) n.at("r_outer").fail("r_outer must exceed r_inner");
+            c.pack.clearance = n.positive_quantity("clearance", dim::length, "0.15 mm");
+            if (auto r = n.get("roughness")) c.pack.roughness = r->as_quantity(dim::length, "1 um");
+            if (c.pack.roughness > 0 && c.pack.clearance / c.pack.roughness < 3)
+                n.at("clearance").fail("clearance below 3x the roughness: the open-pack drag model (full film, "
+                                       "Patir & Cheng shear factor for H >= 3) does not apply");
+            if (auto q = n.get("oil_supply")) {
+                c.pack.oil_supply = q->as_quantity(units::make_dim(3, 0, -1, 0), "0.4 L/min");
+                if (c.pack.oil_supply < 0) q->fail("must not be negative");
+            }
+            model.gearbox.clutches.push_back(c);
+        }
+    }
 };
 
 void load_options(const YamlNode& n, solver::LossOptions& o) {
@@ -567,10 +595,33 @@ void load_options(const YamlNode& n, solver::LossOptions& o) {
 }
 
 void load_thermal(const YamlNode& n, solver::ThermalSettings& t) {
-    n.allow_keys({"mode", "oil_temperature", "ambient", "heat_rejection", "max_oil_temperature", "heat_capacity"});
+    n.allow_keys({"mode", "oil_temperature", "ambient", "heat_rejection", "max_oil_temperature", "heat_capacity",
+                  "network"});
+    if (auto net = n.get("network")) {
+        if (n.has("heat_capacity")) net->fail("give either 'heat_capacity' (one node) or 'network', not both");
+        net->allow_keys({"oil", "housing", "oil_to_housing", "clutch_packs", "clutch_to_oil", "note"});
+        auto& w = t.network;
+        w.C_oil = net->positive_quantity("oil", units::dim::heat_capacity, "2 kJ/K");
+        const auto conductance = units::make_dim(2, 1, -3, -1);
+        if (net->has("housing")) {
+            w.C_housing = net->positive_quantity("housing", units::dim::heat_capacity, "5 kJ/K");
+            w.G_oil_housing = net->positive_quantity("oil_to_housing", conductance, "30 W/K");
+        } else if (net->has("oil_to_housing")) {
+            net->at("oil_to_housing").fail("'oil_to_housing' needs a 'housing' node");
+        }
+        if (net->has("clutch_packs")) {
+            w.C_clutch = net->positive_quantity("clutch_packs", units::dim::heat_capacity, "1 kJ/K");
+            w.G_clutch_oil = net->positive_quantity("clutch_to_oil", conductance, "40 W/K");
+        } else if (net->has("clutch_to_oil")) {
+            net->at("clutch_to_oil").fail("'clutch_to_oil' needs a 'clutch_packs' node");
+        }
+        t.heat_capacity = w.total_capacity();
+    }
     if (auto hc = n.get("heat_capacity")) {
         t.heat_capacity = hc->as_quantity(units::dim::heat_capacity, "25 kJ/K");
         if (!(t.heat_capacity > 0)) hc->fail("heat capacity must be positive");
+        t.network = {};
+        t.network.C_oil = t.heat_capacity;
     }
     t.ambient = n.at("ambient").as_temperature();
     t.mode = n.has("mode") ? n.at("mode").as_enum<solver::ThermalMode>({{"stabilised", solver::ThermalMode::stabilised},
@@ -698,7 +749,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     c.file = file;
     const YamlNode root = YamlNode::load_text(text, file);
     root.allow_keys({"name", "description", "oil", "materials", "shafts", "gears", "meshes", "bearings", "seals",
-                     "housing", "thermal", "gearbox", "operating", "options", "calibration"});
+                     "clutches", "housing", "thermal", "gearbox", "operating", "options", "calibration", "vehicle"});
     auto& m = c.model;
     m.name = root.has("name") ? root.at("name").as_string() : fs::path(file).stem().string();
 
@@ -719,6 +770,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     L.load_meshes();
     L.load_bearings();
     L.load_seals();
+    L.load_clutches();
 
     const YamlNode gbn = root.at("gearbox");
     gbn.allow_keys({"input", "output", "ratio", "ratios"});
@@ -776,6 +828,13 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     } else {
         c.grid.speeds = load_axis(op.at("speeds"), units::dim::angular_speed, "800 rpm");
         c.grid.torques = load_axis(op.at("torques"), units::dim::torque, "250 N*m");
+    }
+
+    if (auto v = root.get("vehicle")) {
+        load_vehicle(*v, c);
+        for (size_t i = 0; i < c.vehicle->gears.size(); ++i)
+            if (std::find(c.ratio_names.begin(), c.ratio_names.end(), c.vehicle->gears[i]) == c.ratio_names.end())
+                v->at("gears").items()[i].fail("'" + c.vehicle->gears[i] + "' is not one of gearbox.ratios");
     }
 
     try {

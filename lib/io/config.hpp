@@ -7,6 +7,8 @@
 
 #include "io/yaml_reader.hpp"
 #include "solver/model.hpp"
+#include "torque_converter/torque_converter.hpp"
+#include "vehicle/vehicle.hpp"
 
 namespace gearloss::io {
 
@@ -28,7 +30,12 @@ struct Case {
     OperatingGrid grid;
     std::vector<std::string> ratio_names;
     std::string ratio;
+    std::optional<vehicle::Vehicle> vehicle;  // for `gearloss cycle`
+    std::optional<torque_converter::TorqueConverter> torque_converter;
 };
+
+// The `vehicle` block (docs/config.md) into c.vehicle (and c.torque_converter).
+void load_vehicle(const YamlNode& n, Case& c);
 
 // Loads a case; `ratio` overrides gearbox.ratio.
 Case load_case(const std::string& file, const std::optional<std::string>& ratio = std::nullopt);

@@ -68,8 +68,15 @@ std::string point_report(const Case& c, const solver::PointResult& r) {
         for (size_t i = 0; i < gb.seals.size(); ++i)
             s += fmt::format("  {:<18} {:7.1f} {:8.2f}\n", gb.seals[i].name, gb.seals[i].diameter * 1e3, Lo.seal_each[i]);
     }
-    s += fmt::format("\ntotals [W]: mesh {:.2f}, churning {:.2f}, bearings {:.2f}, seals {:.2f}, total {:.2f}\n", Lo.mesh,
-                     Lo.churning, Lo.bearings, Lo.seals, Lo.total());
+    if (!gb.clutches.empty()) {
+        s += "clutch packs          slip [rpm]   P [W]\n";
+        for (size_t i = 0; i < gb.clutches.size(); ++i)
+            s += fmt::format("  {:<18} {:10.1f} {:8.2f}{}\n", gb.clutches[i].pack.name,
+                             L.clutch_slip_ratio[i] * std::abs(r.speed_in) * rpm, Lo.clutch_each[i],
+                             L.clutch_slip_ratio[i] == 0.0 ? "  (engaged)" : "");
+    }
+    s += fmt::format("\ntotals [W]: mesh {:.2f}, churning {:.2f}, bearings {:.2f}, seals {:.2f}, clutches {:.2f}, total {:.2f}\n",
+                     Lo.mesh, Lo.churning, Lo.bearings, Lo.seals, Lo.clutches, Lo.total());
     if (r.has_efficiency) s += fmt::format("efficiency {:.4f} %\n", 100.0 * r.efficiency);
     if (Lo.has_lambda) s += fmt::format("minimum specific film thickness Lambda {:.3f}\n", Lo.lambda_min);
     return s;

@@ -1,5 +1,7 @@
 #include "map/compare.hpp"
 
+#include "io/csv_format.hpp"
+
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -7,7 +9,7 @@
 namespace gearloss::map {
 
 namespace {
-std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v == 0.0 ? 0.0 : v) : std::string(); }
+std::string num(double v) { return io::csv_number(v); }
 }  // namespace
 
 std::string compare_header(const std::string& a, const std::string& b) {

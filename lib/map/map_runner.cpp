@@ -1,5 +1,7 @@
 #include "map/map_runner.hpp"
 
+#include "io/csv_format.hpp"
+
 #include <atomic>
 #include <fmt/format.h>
 #include <numbers>
@@ -11,11 +13,9 @@ namespace gearloss::map {
 
 namespace {
 constexpr double rpm = 30.0 / std::numbers::pi;
-std::string num(double v) {
-    if (!std::isfinite(v)) return {};
-    return fmt::format("{:.6g}", v == 0.0 ? 0.0 : v);  // no "-0" in a spreadsheet
-}
-std::string fixed(double v, int d) { return std::isfinite(v) ? fmt::format("{:.{}f}", v, d) : std::string(); }
+using io::csv_number;
+std::string num(double v) { return csv_number(v); }
+std::string fixed(double v, int d) { return io::csv_fixed(v, d); }
 }  // namespace
 
 std::vector<solver::PointResult> run_map(const solver::Model& m, const io::OperatingGrid& grid, const MapOptions& opt) {
@@ -48,7 +48,7 @@ std::vector<solver::PointResult> run_map(const solver::Model& m, const io::Opera
 std::string csv_header(const solver::Model& m, bool detail) {
     std::string h =
         "speed_in_rpm,torque_in_Nm,power_in_W,ambient_temp_C,oil_temp_C,P_mesh_W,P_churn_W,P_bearing_W,P_seal_W,"
-        "P_aux_W,P_total_W,power_out_W,torque_out_Nm,efficiency,lambda_min,status";
+        "P_clutch_W,P_aux_W,P_total_W,power_out_W,torque_out_Nm,efficiency,lambda_min,status";
     if (detail) {
         const auto& gb = m.gearbox;
         for (const auto& me : gb.meshes)
@@ -56,6 +56,7 @@ std::string csv_header(const solver::Model& m, bool detail) {
         for (const auto& g : gb.gears) h += fmt::format(",P_churn_{}_W", g.spec.name);
         for (const auto& b : gb.bearings) h += fmt::format(",P_bearing_{}_W", b.name);
         for (const auto& s : gb.seals) h += fmt::format(",P_seal_{}_W", s.name);
+        for (const auto& c : gb.clutches) h += fmt::format(",P_clutch_{}_W", c.pack.name);
     }
     return h + "\n";
 }
@@ -66,12 +67,12 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
                                 fixed(r.ambient - 273.15, 2));
     if (ok) {
         const auto& L = r.losses;
-        s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},", fixed(r.oil_temperature - 273.15, 3), num(L.mesh),
-                         num(L.churning), num(L.bearings), num(L.seals), num(L.auxiliary), num(L.total()), num(r.power_out),
+        s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},", fixed(r.oil_temperature - 273.15, 3), num(L.mesh),
+                         num(L.churning), num(L.bearings), num(L.seals), num(L.clutches), num(L.auxiliary), num(L.total()), num(r.power_out),
                          num(r.torque_out), r.has_efficiency ? fmt::format("{:.6f}", r.efficiency) : std::string(),
                          L.has_lambda ? num(L.lambda_min) : std::string());
     } else {
-        s += ",,,,,,,,,,,";
+        s += ",,,,,,,,,,,,";
     }
     s += solver::to_string(r.status);
     if (detail) {
@@ -91,6 +92,7 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
         list(L.churn_each, gb.gears.size());
         list(L.bearing_each, gb.bearings.size());
         list(L.seal_each, gb.seals.size());
+        list(L.clutch_each, gb.clutches.size());
     }
     return s + "\n";
 }

@@ -1,5 +1,7 @@
 #include "solver/model.hpp"
 
+#include <algorithm>
+#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 
 namespace gearloss::solver {
@@ -22,10 +24,25 @@ lubricant::OilState Model::oil_state(double T) const {
     return s;
 }
 
-double Model::heat_flow(double T_oil, double T_amb, double omega_in) const {
+double Model::surface_heat_flow(double T_surface, double T_amb, double omega_in) const {
     const double n_k = std::abs(omega_in) * 30.0 / 3.14159265358979323846 / 1000.0;
-    return thermal.rejection.heat_flow(T_oil, T_amb, omega_in) * calibration.heat_rejection_factor *
+    return thermal.rejection.heat_flow(T_surface, T_amb, omega_in) * calibration.heat_rejection_factor *
            (1.0 + calibration.cooling_per_1000rpm * n_k);
+}
+
+double Model::heat_flow(double T_oil, double T_amb, double omega_in) const {
+    const auto& net = thermal.network;
+    if (!net.has_housing()) return surface_heat_flow(T_oil, T_amb, omega_in);
+    // Steady state: G (T_oil - T_h) = Q_surface(T_h) for T_h between ambient and T_oil;
+    // the left side falls and the right side rises with T_h.
+    auto f = [&](double Th) { return net.G_oil_housing * (T_oil - Th) - surface_heat_flow(Th, T_amb, omega_in); };
+    double lo = std::min(T_amb, T_oil), hi = std::max(T_amb, T_oil);
+    if (hi - lo < 1e-9) return surface_heat_flow(T_oil, T_amb, omega_in);
+    std::uintmax_t it = 60;
+    const auto [a, b] = boost::math::tools::toms748_solve(
+        f, lo, hi, [](double x, double y) { return std::abs(y - x) < 1e-7; }, it);
+    const double Th = 0.5 * (a + b);
+    return net.G_oil_housing * (T_oil - Th);
 }
 
 void Model::finalise() {

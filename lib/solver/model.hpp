@@ -10,6 +10,7 @@
 #include "mesh/loss_factor.hpp"
 #include "thermal/equilibrium.hpp"
 #include "thermal/heat_rejection.hpp"
+#include "thermal/network.hpp"
 
 namespace gearloss::solver {
 
@@ -49,6 +50,8 @@ struct ThermalSettings {
     thermal::HeatRejection rejection;
     thermal::EquilibriumOptions equilibrium;
     double heat_capacity = 0;         // J/K of oil + housing (transient warm-up); 0 = not given
+    // Lumped network for transients (a single oil node of heat_capacity unless a network is given).
+    thermal::Network network;
 };
 
 struct Model {
@@ -64,8 +67,11 @@ struct Model {
     void finalise();  // derive layout and per-mesh constants; throws on bad topology
     // Oil state with the calibration's viscosity factor applied.
     lubricant::OilState oil_state(double T) const;
-    // Heat flow to ambient [W] with the calibration applied.
+    // Steady heat flow to ambient [W] at oil temperature T_oil, with the calibration applied;
+    // through the housing node's conductance in series when the network has one.
     double heat_flow(double T_oil, double T_amb, double omega_in) const;
+    // Heat flow [W] leaving the rejecting surface (housing node, or the oil) at T_surface.
+    double surface_heat_flow(double T_surface, double T_amb, double omega_in) const;
 };
 
 }  // namespace gearloss::solver

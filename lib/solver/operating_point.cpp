@@ -36,6 +36,8 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
     p.bearing_omega.assign(gb.bearings.size(), 0.0);
     p.seal_power.assign(gb.seals.size(), 0.0);
     p.seal_total = 0.0;
+    p.clutch_slip.assign(gb.clutches.size(), 0.0);
+    for (size_t i = 0; i < gb.clutches.size(); ++i) p.clutch_slip[i] = L.clutch_slip_ratio[i] * std::abs(omega_in);
     p.any_drag = false;
     p.bearing_drag_coef.assign(gb.bearings.size(), 0.0);
     const Calibration& cal = m.calibration;
@@ -241,6 +243,13 @@ LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubrica
     }
     r.seals = p.seal_total;
     if (detail) r.seal_each = p.seal_power;
+    if (detail) r.clutch_each.assign(gb.clutches.size(), 0.0);
+    for (size_t i = 0; i < gb.clutches.size(); ++i) {
+        if (p.clutch_slip[i] == 0.0) continue;
+        const double P = clutch::open_pack_drag(gb.clutches[i].pack, s.eta, s.rho, p.clutch_slip[i]).power;
+        r.clutches += P;
+        if (detail) r.clutch_each[i] = P;
+    }
     if (p.omega_in != 0.0) r.auxiliary = m.calibration.auxiliary_W;
     return r;
 }

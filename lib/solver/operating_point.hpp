@@ -30,6 +30,7 @@ struct PointState {
     std::vector<bearings::SkfAtPoint> bearings;        // per bearing
     std::vector<double> bearing_omega;
     std::vector<double> seal_power;                     // per seal, oil independent
+    std::vector<double> clutch_slip;                    // per clutch pack [rad/s] (0 when engaged)
     double seal_total = 0;
     bool any_drag = false;
     // Calibration terms fixed by the point.
@@ -43,11 +44,12 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
 
 struct LossBreakdown {
     double mesh = 0, churning = 0, bearings = 0, seals = 0, auxiliary = 0;  // churning includes windage
-    double windage = 0;  // part of `churning` from the calibration's windage term
-    double total() const { return mesh + churning + bearings + seals + auxiliary; }
+    double clutches = 0;  // drag of open wet clutch packs
+    double windage = 0;   // part of `churning` from the calibration's windage term
+    double total() const { return mesh + churning + bearings + seals + clutches + auxiliary; }
     // Per component (filled only when detail is requested).
     std::vector<double> mesh_each, mesh_mu, mesh_lambda, mesh_hmin, mesh_hc;
-    std::vector<double> churn_each, bearing_each, seal_each;
+    std::vector<double> churn_each, bearing_each, seal_each, clutch_each;
     std::vector<churning::Regime> churn_regime;
     double lambda_min = 0;   // over loaded meshes; NaN-free: 0 when no loaded mesh
     bool has_lambda = false;

@@ -83,7 +83,7 @@ const std::map<std::string, Unit, std::less<>>& unit_table() {
         {"N", {1.0, force}}, {"Nm", {1.0, torque}}, {"kNm", {1e3, torque}}, {"kN", {1e3, force}}, {"MN", {1e6, force}},
         {"Pa", {1.0, pressure}}, {"kPa", {1e3, pressure}}, {"MPa", {1e6, pressure}}, {"GPa", {1e9, pressure}},
         {"bar", {1e5, pressure}},
-        {"J", {1.0, energy}}, {"kJ", {1e3, energy}}, {"Wh", {3600.0, energy}}, {"kWh", {3.6e6, energy}},
+        {"J", {1.0, energy}}, {"kJ", {1e3, energy}}, {"MJ", {1e6, energy}}, {"Wh", {3600.0, energy}}, {"kWh", {3.6e6, energy}},
         {"W", {1.0, power}}, {"kW", {1e3, power}}, {"MW", {1e6, power}},
         // volume
         {"L", {1e-3, volume}}, {"l", {1e-3, volume}}, {"mL", {1e-6, volume}}, {"ml", {1e-6, volume}},

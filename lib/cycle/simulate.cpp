@@ -1,0 +1,244 @@
+#include "cycle/simulate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <boost/numeric/odeint.hpp>
+#include <cmath>
+
+#include "solver/operating_point.hpp"
+
+namespace gearloss::cycle {
+
+namespace odeint = boost::numeric::odeint;
+
+thermal::NodeTemperatures uniform(double T) { return {T, T, T}; }
+
+namespace {
+
+// Integrated state: node temperatures, then the energies of each heat flow [J].
+using State = std::array<double, 12>;
+enum : size_t { kOil, kHousing, kClutch, kMesh, kChurn, kBearing, kSeal, kClutchDrag, kAux, kTc, kAmbient, kHeater };
+
+// What stays fixed over one step of the cycle (the oil temperature does not).
+struct StepLoad {
+    const solver::Model* gearbox = nullptr;  // null: gearbox at rest
+    solver::PointState point;
+    bool converter = false, lockup = false;
+    double turbine_speed = 0, turbine_torque = 0;
+    double heater = 0;
+    double omega_in = 0;
+};
+
+struct Rates {
+    const Powertrain& pt;
+    const StepLoad& load;
+    double ambient;
+    void operator()(const State& x, State& dx, double /*t*/) const {
+        const solver::Model& tm = pt.thermal_model();
+        const auto& net = tm.thermal.network;
+        const thermal::NodeTemperatures T{x[kOil], x[kHousing], x[kClutch]};
+        const lubricant::OilState os = tm.oil_state(T[0]);
+        solver::LossBreakdown L;
+        if (load.gearbox) L = solver::evaluate_losses(*load.gearbox, load.point, os, false);
+        double P_tc = 0;
+        if (load.converter)
+            P_tc = torque_converter::operate(*pt.torque_converter, load.turbine_speed, load.turbine_torque,
+                                             pt.vehicle.engine.idle_speed, os.nu_cSt, load.lockup)
+                       .loss;
+        const double P_oil = L.total() - L.clutches + P_tc + load.heater;
+        const double Q = tm.surface_heat_flow(thermal::surface_temperature(net, T), ambient, load.omega_in);
+        const auto d = thermal::node_rates(net, T, P_oil, L.clutches, Q);
+        dx = {d[0], d[1], d[2], L.mesh, L.churning, L.bearings, L.seals, L.clutches, L.auxiliary, P_tc, Q, load.heater};
+    }
+};
+
+void integrate(const Powertrain& pt, const StepLoad& load, double ambient, State& x, double t0, double t1) {
+    // Tolerances: 1e-4 K on temperatures (the energies are large numbers: relative 1e-7).
+    auto stepper = odeint::make_controlled(1e-4, 1e-7, odeint::runge_kutta_dopri5<State>());
+    odeint::integrate_adaptive(stepper, Rates{pt, load, ambient}, x, t0, t1, t1 - t0);
+}
+
+}  // namespace
+
+CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const thermal::NodeTemperatures& start,
+                           double ambient, bool keep_trace) {
+    CycleResult res;
+    auto& tot = res.totals;
+    const auto& veh = pt.vehicle;
+    const auto& net = pt.thermal_model().thermal.network;
+    tot.duration = cycle.duration();
+    tot.distance = cycle.distance();
+    tot.start = start;
+    tot.stored_start = thermal::stored_heat(net, start, ambient);
+    tot.has_fuel = veh.engine.fuel_map.has_value();
+    // Gearbox input speed per unit wheel speed in each gear.
+    std::vector<double> input_per_wheel;
+    for (const auto& m : pt.gears) input_per_wheel.push_back(veh.final_drive / std::abs(m.layout.ratio));
+
+    State x{};
+    x[kOil] = start[0];
+    x[kHousing] = start[1];
+    x[kClutch] = start[2];
+    StepLoad load;
+    int gear = 1;
+    double last_loss = 0;
+    if (keep_trace) res.trace.reserve(cycle.time.size());
+    for (size_t i = 0; i + 1 < cycle.time.size(); ++i) {
+        const double dt = cycle.time[i + 1] - cycle.time[i];
+        const double v = 0.5 * (cycle.speed[i] + cycle.speed[i + 1]);
+        const double a = (cycle.speed[i + 1] - cycle.speed[i]) / dt;
+        TraceRow row;
+        row.time = cycle.time[i];
+        row.speed = cycle.speed[i];
+        row.accel = a;
+        row.T_oil = x[kOil];
+        row.T_housing = net.has_housing() ? x[kHousing] : x[kOil];
+        row.T_clutch = net.has_clutch() ? x[kClutch] : x[kOil];
+        load = StepLoad{};
+        const double w_wheel = v / veh.wheel_radius;
+        const double T_wheel = veh.tractive_force(v, a) * veh.wheel_radius;
+        if (!cycle.gear.empty()) gear = std::min<int>(cycle.gear[i], static_cast<int>(pt.gears.size()));
+        else gear = vehicle::select_gear(veh, input_per_wheel, w_wheel, gear);
+        const bool moving = v > 0.0 && gear > 0;
+        double w_in = 0, T_in = 0;
+        if (moving) {
+            const solver::Model& gm = pt.gears[gear - 1];
+            w_in = input_per_wheel[gear - 1] * w_wheel;
+            const double P_wheel = T_wheel * w_wheel;
+            if (P_wheel > 0) tot.E_wheel += P_wheel * dt;
+            // Power at the gearbox output (final drive losses outside the gearbox).
+            const double P_out = P_wheel >= 0 ? P_wheel / veh.final_drive_efficiency : P_wheel * veh.final_drive_efficiency;
+            // Input torque that delivers P_out with the gearbox's own losses at this oil temperature;
+            // in overrun the engine's drag limits it and the brakes take the rest.
+            // Two fixed-point passes from the previous step's loss: the loss changes little with
+            // torque, so the second pass leaves a torque error of a fraction of a per cent of the loss.
+            T_in = std::max((P_out + last_loss) / w_in, -veh.engine.overrun_torque);
+            for (int k = 0; k < 2; ++k) {
+                solver::prepare_point(gm, w_in, T_in, load.point);
+                last_loss = solver::total_loss(gm, load.point, x[kOil]);
+                const double next = std::max((P_out + last_loss) / w_in, -veh.engine.overrun_torque);
+                if (std::abs(next - T_in) < 1e-3 * (1.0 + std::abs(T_in))) break;
+                T_in = next;
+                if (k == 1) solver::prepare_point(gm, w_in, T_in, load.point);
+            }
+            load.gearbox = &gm;
+            load.omega_in = w_in;
+            if (T_in > 0) {
+                tot.E_gearbox_in += T_in * w_in * dt;
+                tot.E_gearbox_out += std::max(0.0, P_out) * dt;
+            }
+        }
+        row.gear = moving ? gear : 0;
+        row.input_speed = w_in;
+        row.input_torque = T_in;
+        // Engine side: converter (automatic) or a slipping dry clutch below idle (manual).
+        double w_eng = std::max(w_in, veh.engine.idle_speed), T_eng = T_in;
+        if (pt.torque_converter) {
+            const auto& tc = *pt.torque_converter;
+            load.converter = true;
+            load.lockup = moving && tc.lockup_from_gear > 0 && gear >= tc.lockup_from_gear && w_in >= tc.lockup_min_speed;
+            load.turbine_speed = w_in;
+            load.turbine_torque = T_in;
+            const auto s = torque_converter::operate(tc, w_in, T_in, veh.engine.idle_speed,
+                                                     pt.thermal_model().oil_state(x[kOil]).nu_cSt, load.lockup);
+            w_eng = std::max(s.pump_speed, veh.engine.idle_speed);
+            T_eng = s.pump_torque;
+            row.tc_speed_ratio = s.speed_ratio;
+            row.lockup = s.locked;
+        }
+        row.engine_speed = w_eng;
+        row.engine_torque = T_eng;
+        if (veh.engine.fuel_map) {
+            const bool fuel_cut = T_eng < 0 && w_eng > 1.05 * veh.engine.idle_speed;
+            row.fuel_rate = fuel_cut ? 0.0 : veh.engine.fuel_map->rate_at(w_eng, std::max(T_eng, 0.0));
+            tot.fuel += row.fuel_rate * dt;
+        }
+        if (keep_trace) {
+            // Loss rates at the start of the step for the trace.
+            State d{};
+            Rates{pt, load, ambient}(x, d, 0.0);
+            row.P_mesh = d[kMesh];
+            row.P_churn = d[kChurn];
+            row.P_bearing = d[kBearing];
+            row.P_seal = d[kSeal];
+            row.P_clutch = d[kClutchDrag];
+            row.P_aux = d[kAux];
+            row.P_gearbox = d[kMesh] + d[kChurn] + d[kBearing] + d[kSeal] + d[kClutchDrag] + d[kAux];
+            row.P_tc = d[kTc];
+            res.trace.push_back(row);
+        }
+        integrate(pt, load, ambient, x, cycle.time[i], cycle.time[i + 1]);
+    }
+    if (keep_trace) {
+        TraceRow last;
+        last.time = cycle.time.back();
+        last.speed = cycle.speed.back();
+        last.T_oil = x[kOil];
+        last.T_housing = net.has_housing() ? x[kHousing] : x[kOil];
+        last.T_clutch = net.has_clutch() ? x[kClutch] : x[kOil];
+        last.engine_speed = veh.engine.idle_speed;
+        res.trace.push_back(last);
+    }
+    tot.E_mesh = x[kMesh];
+    tot.E_churn = x[kChurn];
+    tot.E_bearing = x[kBearing];
+    tot.E_seal = x[kSeal];
+    tot.E_clutch = x[kClutchDrag];
+    tot.E_aux = x[kAux];
+    tot.E_tc = x[kTc];
+    tot.E_ambient = x[kAmbient];
+    tot.E_heater = x[kHeater];
+    tot.end = {x[kOil], x[kHousing], x[kClutch]};
+    tot.stored_end = thermal::stored_heat(net, tot.end, ambient);
+    return res;
+}
+
+PrewarmResult prewarm(const Powertrain& pt, const thermal::NodeTemperatures& start, double target, double power,
+                      double ambient, double max_time) {
+    PrewarmResult r;
+    StepLoad load;
+    load.heater = power;
+    State x{};
+    x[kOil] = start[0];
+    x[kHousing] = start[1];
+    x[kClutch] = start[2];
+    if (x[kOil] >= target) {
+        r.reached = true;
+        r.state = start;
+        return r;
+    }
+    // 1 s steps; the crossing is interpolated linearly inside the last one.
+    double t = 0;
+    while (t < max_time) {
+        const State before = x;
+        integrate(pt, load, ambient, x, t, t + 1.0);
+        if (x[kOil] >= target) {
+            const double f = (target - before[kOil]) / (x[kOil] - before[kOil]);
+            State at{};
+            for (size_t k = 0; k < at.size(); ++k) at[k] = before[k] + f * (x[k] - before[k]);
+            r.reached = true;
+            r.time = t + f;
+            r.energy = at[kHeater];
+            r.heat_lost = at[kAmbient];
+            r.state = {at[kOil], at[kHousing], at[kClutch]};
+            return r;
+        }
+        t += 1.0;
+    }
+    r.time = t;
+    r.energy = x[kHeater];
+    r.heat_lost = x[kAmbient];
+    r.state = {x[kOil], x[kHousing], x[kClutch]};
+    // Steady oil temperature at this heater power: power = Q(T).
+    const solver::Model& tm = pt.thermal_model();
+    double lo = ambient, hi = ambient + 1.0;
+    while (tm.heat_flow(hi, ambient, 0.0) < power && hi < ambient + 1000) hi += (hi - ambient);
+    for (int k = 0; k < 80; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (tm.heat_flow(mid, ambient, 0.0) < power ? lo : hi) = mid;
+    }
+    r.max_oil_temperature = 0.5 * (lo + hi);
+    return r;
+}
+
+}  // namespace gearloss::cycle

@@ -1,0 +1,53 @@
+#pragma once
+// The vehicle around the transmission: road load, final drive, gear ratios and
+// shift schedule, engine idle/overrun behaviour and an optional fuel map
+// (bearings-ehl-oil.md §4: F = f0 + f1 v + f2 v^2 + m_eff a + m g sin(theta)).
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gearloss::vehicle {
+
+// Bilinear fuel-flow map over engine speed x engine torque, clamped at the edges.
+struct FuelMap {
+    std::vector<double> speeds;              // rad/s, ascending
+    std::vector<double> torques;             // N m, ascending
+    std::vector<std::vector<double>> rate;   // kg/s, [speed][torque]
+    double rate_at(double omega, double torque) const;
+};
+
+struct Engine {
+    double idle_speed = 83.776;       // rad/s (800 rpm)
+    double overrun_torque = 25.0;     // drag torque available for engine braking [N m] (fuel cut)
+    std::optional<FuelMap> fuel_map;
+    double fuel_density = 745.0;      // kg/m^3 (petrol)
+    double lower_heating_value = 43e6;  // J/kg
+};
+
+struct ShiftSchedule {
+    double upshift_speed = 2500 * 3.14159265358979323846 / 30;    // gearbox input [rad/s]
+    double downshift_speed = 1200 * 3.14159265358979323846 / 30;
+};
+
+struct Vehicle {
+    double mass = 1500;               // kg, test mass
+    double rotating_mass_factor = 0.03;  // m_eff = m (1 + e)
+    double wheel_radius = 0.31;       // dynamic rolling radius [m]
+    double f0 = 0, f1 = 0, f2 = 0;    // road load [N], [N s/m], [N s^2/m^2]
+    double final_drive = 1.0;         // wheel speed x final_drive = gearbox output speed
+    double final_drive_efficiency = 1.0;
+    std::vector<std::string> gears;   // gearbox ratio names, first gear first
+    ShiftSchedule shift;
+    bool torque_converter = false;    // automatic: converter between engine and gearbox
+    Engine engine;
+
+    // Tractive force at the wheels for speed v [m/s] and acceleration a [m/s^2].
+    double tractive_force(double v, double a, double grade = 0.0) const;
+};
+
+// Gear selection by gearbox input speed with hysteresis: up when the input would exceed
+// upshift_speed, down when it falls below downshift_speed. `input_per_wheel` holds
+// n_in/n_out of each gear (incl. the final drive) and `gear` the current gear (1-based).
+int select_gear(const Vehicle& v, const std::vector<double>& input_per_wheel, double wheel_speed, int gear);
+
+}  // namespace gearloss::vehicle
