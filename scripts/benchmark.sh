@@ -78,3 +78,19 @@ for _ in range(5):
     times.append(time.perf_counter() - t0)
 print(f"diagnose, 30-point campaign: median {statistics.median(times):.2f} s (min {min(times):.2f}, max {max(times):.2f}; target < 10 s)")
 PY
+
+# Drive cycle: one WLTC run (1800 steps) of each shipped transmission from -10 degC, timed
+# inside gearloss (`--stats`: the simulation of the run from the start temperature alone),
+# best and median of 11 runs (target < 50 ms).
+for cfg in automatic-6speed manual-6speed; do
+    for _ in $(seq 11); do
+        build/app/gearloss cycle "configs/$cfg.yaml" --cycle wltc --start-temp -10degC --stats 2>> "$tmp/cycle-$cfg.txt" > /dev/null
+    done
+done
+python3 - "$tmp" <<'PY'
+import re, statistics, sys
+d = sys.argv[1]
+for cfg in ("automatic-6speed", "manual-6speed"):
+    ms = [float(re.search(r"in ([0-9.]+) ms", l).group(1)) for l in open(f"{d}/cycle-{cfg}.txt")]
+    print(f"WLTC cycle, {cfg}: median {statistics.median(ms):.1f} ms, best {min(ms):.1f} ms ({len(ms)} runs; target < 50 ms)")
+PY

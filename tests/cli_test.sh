@@ -123,5 +123,26 @@ check "mesh-profile rows" test "$(wc -l < "$tmp/prof.csv")" -eq 10
 check "mesh-profile unknown mesh exit 2" test $? -eq 2
 check "mesh-profile unknown mesh message" grep -q "unknown mesh 'nope'; meshes: m" "$tmp/err6.txt"
 
+# Drive cycle: summary on stdout, a trace row per sample, JSON summary, bad cycle name.
+"$bin" cycle "$src/configs/automatic-6speed.yaml" --cycle nedc --start-temp -10degC --prewarm 90degC --heater 2kW \
+    -o "$tmp/trace.csv" --json "$tmp/cycle.json" > "$tmp/cycle.txt"
+check "cycle exit 0" test $? -eq 0
+check "cycle trace rows" test "$(wc -l < "$tmp/trace.csv")" -eq 1181
+check "cycle trace no nan" bash -c "! grep -qiE 'nan|inf' '$tmp/trace.csv'"
+check "cycle summary" grep -q "pre-warming saves" "$tmp/cycle.txt"
+check "cycle json" python3 -c "
+import json, sys
+d = json.load(open('$tmp/cycle.json'))
+assert d['cycle'] == 'nedc' and abs(d['distance_km'] - 11.02) < 0.01
+assert d['prewarm']['reached'] and d['prewarm']['fuel_saved_percent'] > 0
+assert d['start']['fuel_L'] > d['warm_start']['fuel_L']
+"
+"$bin" cycle "$src/configs/automatic-6speed.yaml" --cycle nedcc --start-temp -10degC 2> "$tmp/err7.txt" > /dev/null
+check "cycle unknown name exit 2" test $? -eq 2
+check "cycle unknown name message" grep -q "neither a cycle file nor one of" "$tmp/err7.txt"
+"$bin" cycle "$src/configs/transfer-box.yaml" --cycle nedc --start-temp -10degC 2> "$tmp/err8.txt" > /dev/null
+check "cycle without vehicle exit 2" test $? -eq 2
+check "cycle without vehicle message" grep -q "no 'vehicle' block" "$tmp/err8.txt"
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0

@@ -44,6 +44,19 @@ TEST_CASE("bad input names file, line and key", "[config]") {
     // Each class of bad input from the issue, one mutation each.
     expect_error({"options:\n", "options:\n  mesh_friction: ehl_local\n", "mesh_friction: schlenk", "options.mesh_friction",
                   "duplicate key"});
+    // Vehicle, clutch-pack and thermal-network blocks (gearloss cycle).
+    expect_error({"gears: [g1, g2, g3, g4, g5, g6]", "gears: [g1, g2, g7, g4, g5, g6]", "gears: [g1, g2, g7",
+                  "vehicle.gears", "not one of gearbox.ratios", "manual-6speed.yaml"});
+    expect_error({"f1: 0.9 N/(km/h)", "f1: 0.9 N", "f1: 0.9 N,", "vehicle.road_load.f1", "dimension",
+                  "manual-6speed.yaml"});
+    expect_error({"[534, 998, 1462, 1925, 2389, 2853, 3317, 3781, 4244]", "[534, 998, 1462]", "[534, 998, 1462]",
+                  "vehicle.engine.fuel_map.fuel_rate", "one value per torque", "manual-6speed.yaml"});
+    expect_error({"clearance: 0.15 mm, roughness: 1.5 um", "clearance: 0.003 mm, roughness: 1.5 um",
+                  "clearance: 0.003 mm", "clutches[0].clearance", "3x the roughness", "automatic-6speed.yaml"});
+    expect_error({"    oil: 3 kJ/K\n    housing: 8 kJ/K\n", "    oil: 3 kJ/K\n", "oil_to_housing: 25 W/K",
+                  "thermal.network.oil_to_housing", "needs a 'housing' node", "manual-6speed.yaml"});
+    expect_error({"speed_ratio:  [0,", "speed_ratio:  [0.1,", "speed_ratio:  [0.1,",
+                  "vehicle.torque_converter.speed_ratio", "starts at stall", "automatic-6speed.yaml"});
     expect_error({"teeth: 32,", "teeth: -3,", "name: w1", "gears[0].teeth", "at least 5"});
     expect_error({"module: 3.5 mm, profile_shift: 0.381", "module: 3.5 furlong, profile_shift: 0.381", "name: w1",
                   "gears[0].module", "unknown unit 'furlong'"});

@@ -89,17 +89,15 @@ DriveCycle load_cycle_csv(const std::string& file) {
 DriveCycle concatenate(const DriveCycle& a, const DriveCycle& b, const std::string& name) {
     DriveCycle c = a;
     c.name = name;
-    // Joined at the same instant when a ends as b starts (both at rest, as the ARTEMIS
-    // parts: 993 s + 1068 s = seed 003's 2061 s); else b starts one step after a.
-    const bool same = a.speed.back() == b.speed.front();
+    // b starts one time step after a ends (the ARTEMIS parts: 993 s + 1 s + 1067 s = seed 003's 2061 s).
     const double step = a.time.size() > 1 ? a.time[a.time.size() - 1] - a.time[a.time.size() - 2] : 1.0;
-    const double shift = a.time.back() + (same ? 0.0 : step) - b.time.front();
-    for (size_t i = same ? 1 : 0; i < b.time.size(); ++i) {
+    const double shift = a.time.back() + step - b.time.front();
+    for (size_t i = 0; i < b.time.size(); ++i) {
         c.time.push_back(b.time[i] + shift);
         c.speed.push_back(b.speed[i]);
-        if (!a.gear.empty() && !b.gear.empty()) c.gear.push_back(b.gear[i]);
     }
-    if (a.gear.empty() || b.gear.empty()) c.gear.clear();
+    if (!a.gear.empty() && !b.gear.empty()) c.gear.insert(c.gear.end(), b.gear.begin(), b.gear.end());
+    else c.gear.clear();
     return c;
 }
 

@@ -17,7 +17,7 @@ struct DriveCycle {
 
 // Reads a cycle CSV; errors name the file, line and column.
 DriveCycle load_cycle_csv(const std::string& file);
-// `a` followed by `b` (joined at a's last instant when a ends at b's starting speed).
+// `a` followed by `b`, b starting one time step after a's last sample.
 DriveCycle concatenate(const DriveCycle& a, const DriveCycle& b, const std::string& name);
 // A name (nedc, wltc, wltc-class3b, artemis, artemis-urban, artemis-rural,
 // artemis-motorway-130, artemis-motorway-150) resolved in `dirs`, or a CSV file path.
