@@ -16,6 +16,7 @@
 #include "io/reports.hpp"
 #include "map/compare.hpp"
 #include "map/map_runner.hpp"
+#include "map/vecto.hpp"
 #include "units/units.hpp"
 
 namespace {
@@ -110,6 +111,38 @@ void progress_line(size_t done, size_t total) {
     if (done == total) std::fprintf(stderr, "\n");
 }
 
+// `map --format vecto`: one torque-loss table per gear (the selected ratio, or every ratio).
+int run_vecto(const Common& c, const std::string& out, int threads, const std::string& speeds, const std::string& torques) {
+    const io::Case first = load(c);
+    std::vector<std::string> ratios;
+    if (!c.ratio.empty() || first.ratio_names.empty()) ratios.push_back(c.ratio);
+    else ratios = first.ratio_names;
+    if (ratios.size() > 1 && out == "-")
+        throw InputError("", 0, 0, "--output", "several gears: give -o FILE (written as FILE_<ratio>.vtlm per gear)");
+    gearloss::map::MapOptions opt;
+    opt.threads = threads;
+    for (const auto& ratio : ratios) {
+        Common cr = c;
+        cr.ratio = ratio;
+        io::Case k = load(cr);
+        if (!k.grid.is_grid) throw InputError(k.file, 0, 0, "operating", "--format vecto needs a speeds x torques grid");
+        std::vector<double> w = k.grid.speeds, T = k.grid.torques;
+        if (!speeds.empty()) w = io::parse_value_list(speeds, gearloss::units::dim::angular_speed, "--speed", "0,1000,2000rpm");
+        if (!torques.empty()) T = io::parse_value_list(torques, gearloss::units::dim::torque, "--torque", "100,200,400Nm");
+        const auto rows = gearloss::map::vecto_loss_map(k.model, w, T, opt);
+        if (io::g_interrupted) return kInterrupted;
+        std::string file = out;
+        if (ratios.size() > 1) {
+            const std::string stem = out.size() > 5 && out.substr(out.size() - 5) == ".vtlm" ? out.substr(0, out.size() - 5) : out;
+            file = stem + "_" + ratio + ".vtlm";
+        }
+        io::AtomicFile f(file);
+        f.write(gearloss::map::vecto_csv(rows));
+        f.commit();
+    }
+    return kOk;
+}
+
 int run_map(const Common& c, const std::string& out, int threads, bool detail, const std::string& speeds,
             const std::string& torques, bool stats) {
     io::Case k = load(c);
@@ -196,7 +229,12 @@ int main(int argc, char** argv) {
     map->add_flag("--stats", stats, "print solve time, points per second and loss evaluations per point to stderr");
     map->add_option("--speed", speeds, "override the input speeds, e.g. 600,700,800rpm");
     map->add_option("--torque", torques, "override the input torques, e.g. 150,200,250Nm");
-    map->footer("Example: gearloss map configs/transfer-75W90.yaml --speed 600,700,800rpm --torque 150,200,250Nm -o out.csv");
+    std::string map_format = "csv";
+    map->add_option("--format", map_format, "csv (loss breakdown) or vecto (torque-loss table per gear, negative "
+                                            "torques included)")->check(CLI::IsMember({"csv", "vecto"}));
+    map->footer("Examples:\n  gearloss map configs/transfer-box.yaml --speed 600,700,800rpm --torque 150,200,250Nm -o out.csv\n"
+                "  gearloss map configs/manual-6speed.yaml --format vecto --oil-temp 70degC -o manual.vtlm   "
+                "(manual_g1.vtlm ... manual_g6.vtlm)");
 
     auto* point = app.add_subcommand("point", "one operating point: every component's loss, temperatures and films");
     add_common(point);
@@ -301,7 +339,8 @@ int main(int argc, char** argv) {
     try {
         int rc = kOk;
         if (map->parsed()) {
-            rc = run_map(common, out, threads, detail, speeds, torques, stats);
+            rc = map_format == "vecto" ? run_vecto(common, out, threads, speeds, torques)
+                                       : run_map(common, out, threads, detail, speeds, torques, stats);
         } else if (point->parsed()) {
             io::Case k = load(common);
             const double w = single_value(speed1, gearloss::units::dim::angular_speed, "--speed", "800rpm");

@@ -144,5 +144,13 @@ check "cycle unknown name message" grep -q "neither a cycle file nor one of" "$t
 check "cycle without vehicle exit 2" test $? -eq 2
 check "cycle without vehicle message" grep -q "no 'vehicle' block" "$tmp/err8.txt"
 
+# VECTO torque-loss tables: one file per gear, negative torques included.
+"$bin" map "$src/configs/manual-6speed.yaml" --format vecto --oil-temp 70degC --speed 1000,2000rpm --torque 50,100Nm -o "$tmp/m.vtlm"
+check "vecto exit 0" test $? -eq 0
+check "vecto six files" test "$(ls "$tmp"/m_g*.vtlm | wc -l)" -eq 6
+check "vecto header" bash -c "head -1 '$tmp/m_g3.vtlm' | grep -qx 'Input Speed \[rpm\],Input Torque \[Nm\],Torque Loss \[Nm\]'"
+check "vecto rows" test "$(wc -l < "$tmp/m_g3.vtlm")" -eq 11
+check "vecto negative torque" grep -q '^1000.00,-100.00,' "$tmp/m_g3.vtlm"
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0
