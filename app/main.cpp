@@ -15,6 +15,8 @@
 #include "io/cycle_report.hpp"
 #include "io/reports.hpp"
 #include "map/compare.hpp"
+#include "io/sweep.hpp"
+#include "map/job.hpp"
 #include "map/map_runner.hpp"
 #include "map/vecto.hpp"
 #include "units/units.hpp"
@@ -47,10 +49,8 @@ struct Common {
     std::string oil;
 };
 
-io::Case load(const Common& c) {
-    std::optional<std::string> ratio;
-    if (!c.ratio.empty()) ratio = c.ratio;
-    io::Case k = io::load_case(c.config, ratio);
+// --oil and --oil-temp applied to a loaded case.
+void apply_overrides(io::Case& k, const Common& c) {
     if (!c.oil.empty()) io::replace_oil(k, io::load_oil_file(c.oil));
     if (!c.oil_temp.empty()) {
         gearloss::units::Quantity q;
@@ -64,6 +64,13 @@ io::Case load(const Common& c) {
         k.model.thermal.mode = gearloss::solver::ThermalMode::fixed;
         k.model.thermal.oil_temperature = q.value;
     }
+}
+
+io::Case load(const Common& c) {
+    std::optional<std::string> ratio;
+    if (!c.ratio.empty()) ratio = c.ratio;
+    io::Case k = io::load_case(c.config, ratio);
+    apply_overrides(k, c);
     return k;
 }
 
@@ -143,9 +150,8 @@ int run_vecto(const Common& c, const std::string& out, int threads, const std::s
     return kOk;
 }
 
-int run_map(const Common& c, const std::string& out, int threads, bool detail, const std::string& speeds,
-            const std::string& torques, bool stats) {
-    io::Case k = load(c);
+// --speed/--torque applied to a case's grid.
+void override_grid(io::Case& k, const std::string& speeds, const std::string& torques) {
     if (!speeds.empty() || !torques.empty()) {
         if (!k.grid.is_grid) {
             k.grid.is_grid = true;
@@ -159,9 +165,45 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
         if (!torques.empty())
             k.grid.torques = io::parse_value_list(torques, gearloss::units::dim::torque, "--torque", "150,200,250Nm");
     }
+}
+
+int run_map(const Common& c, const std::string& out, int threads, bool detail, const std::string& speeds,
+            const std::string& torques, bool stats, const std::string& shard) {
+    io::Case k = load(c);
+    override_grid(k, speeds, torques);
     gearloss::map::MapOptions opt;
     opt.threads = threads;
     opt.detail = detail;
+    if (!k.sweep.empty() || !shard.empty()) {
+        // Sweep variants and/or one shard of the job (gearloss merge joins the shards).
+        gearloss::map::MapJob job;
+        if (k.sweep.empty()) {
+            job.variants.push_back({{}, std::move(k)});
+        } else {
+            for (const auto& a : k.sweep) job.sweep_labels.push_back(a.label);
+            for (auto& v : io::expand_sweep(c.config, c.ratio.empty() ? std::nullopt : std::optional<std::string>(c.ratio))) {
+                apply_overrides(v.c, c);
+                override_grid(v.c, speeds, torques);
+                job.variants.push_back({v.values, std::move(v.c)});
+            }
+        }
+        std::optional<gearloss::map::Shard> sh;
+        if (!shard.empty()) sh = gearloss::map::parse_shard(shard);
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::string csv = gearloss::map::run_job(job, opt, sh);
+        if (io::g_interrupted) return kInterrupted;
+        if (stats) {
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const size_t n = sh ? sh->range(job.total_points()).second - sh->range(job.total_points()).first
+                                : job.total_points();
+            std::fprintf(stderr, "points %zu of %zu (%zu sweep variants), %.4f s, %.0f points/s\n", n, job.total_points(),
+                         job.variants.size(), seconds, n / seconds);
+        }
+        io::AtomicFile f(out);
+        f.write(csv);
+        f.commit();
+        return kOk;
+    }
     if (::isatty(STDERR_FILENO) && k.grid.size() >= 20000) opt.progress = progress_line;
     const auto t0 = std::chrono::steady_clock::now();
     const auto results = gearloss::map::run_map(k.model, k.grid, opt);
@@ -229,7 +271,8 @@ int main(int argc, char** argv) {
     map->add_flag("--stats", stats, "print solve time, points per second and loss evaluations per point to stderr");
     map->add_option("--speed", speeds, "override the input speeds, e.g. 600,700,800rpm");
     map->add_option("--torque", torques, "override the input torques, e.g. 150,200,250Nm");
-    std::string map_format = "csv";
+    std::string map_format = "csv", shard;
+    map->add_option("--shard", shard, "compute only shard K of N of the points (K/N, e.g. 3/16); join with `gearloss merge`");
     map->add_option("--format", map_format, "csv (loss breakdown) or vecto (torque-loss table per gear, negative "
                                             "torques included)")->check(CLI::IsMember({"csv", "vecto"}));
     map->footer("Examples:\n  gearloss map configs/transfer-box.yaml --speed 600,700,800rpm --torque 150,200,250Nm -o out.csv\n"
@@ -318,6 +361,15 @@ int main(int argc, char** argv) {
     cyc->footer("Example: gearloss cycle configs/automatic-6speed.yaml --cycle nedc --start-temp -10degC --prewarm 90degC "
                 "--heater 1kW -o trace.csv");
 
+    // merge
+    std::vector<std::string> shard_files;
+    std::string merge_out = "-";
+    auto* merge = app.add_subcommand("merge", "join the shards of `map --shard K/N` into the file a single run writes");
+    merge->add_option("shards", shard_files, "shard CSV files, any order")->required();
+    merge->add_option("-o,--output", merge_out, "output CSV ('-' = stdout)");
+    merge->footer("Example:\n  for k in 1 2 3 4; do gearloss map configs/transfer-box.yaml --shard $k/4 -o part$k.csv; done\n"
+                  "  gearloss merge part*.csv -o map.csv");
+
     auto* check = app.add_subcommand("check", "validate a case and print derived data (geometry, H_V, speeds, oil)");
     add_common(check);
     check->add_flag("--json", json, "print the derived data as JSON");
@@ -340,7 +392,7 @@ int main(int argc, char** argv) {
         int rc = kOk;
         if (map->parsed()) {
             rc = map_format == "vecto" ? run_vecto(common, out, threads, speeds, torques)
-                                       : run_map(common, out, threads, detail, speeds, torques, stats);
+                                       : run_map(common, out, threads, detail, speeds, torques, stats, shard);
         } else if (point->parsed()) {
             io::Case k = load(common);
             const double w = single_value(speed1, gearloss::units::dim::angular_speed, "--speed", "800rpm");
@@ -456,6 +508,11 @@ int main(int argc, char** argv) {
                 f.write(io::cycle_trace_csv(pt, study.cold));
                 f.commit();
             }
+        } else if (merge->parsed()) {
+            const std::string csv = gearloss::map::merge_shards(shard_files);
+            io::AtomicFile f(merge_out);
+            f.write(csv);
+            f.commit();
         } else if (check->parsed()) {
             io::Case k = load(common);
             std::fputs((json ? io::check_json(k) : io::check_report(k)).c_str(), stdout);

@@ -152,5 +152,21 @@ check "vecto header" bash -c "head -1 '$tmp/m_g3.vtlm' | grep -qx 'Input Speed \
 check "vecto rows" test "$(wc -l < "$tmp/m_g3.vtlm")" -eq 11
 check "vecto negative torque" grep -q '^1000.00,-100.00,' "$tmp/m_g3.vtlm"
 
+# Shards through the Slurm array script (array environment emulated, tasks 0-2), merged in
+# any order: byte-identical to a single run. A missing shard is an error.
+grid=(--speed 400,600,800,1000,1200rpm --torque 100,150,200,250Nm)
+"$bin" map "$src/configs/transfer-box.yaml" "${grid[@]}" -o "$tmp/single.csv"
+for k in 0 1 2; do
+    SLURM_ARRAY_TASK_ID=$k SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=2 GEARLOSS=$bin \
+        bash "$src/scripts/slurm-map.sh" "$src/configs/transfer-box.yaml" "$tmp/shards" "${grid[@]}" > /dev/null 2>&1
+done
+check "slurm shards written" test "$(ls "$tmp"/shards/shard-*.csv | wc -l)" -eq 3
+"$bin" merge "$tmp/shards/shard-3.csv" "$tmp/shards/shard-1.csv" "$tmp/shards/shard-2.csv" -o "$tmp/merged.csv"
+check "merge exit 0" test $? -eq 0
+check "merge byte-identical to a single run" cmp -s "$tmp/single.csv" "$tmp/merged.csv"
+"$bin" merge "$tmp/shards/shard-1.csv" "$tmp/shards/shard-3.csv" 2> "$tmp/err9.txt" > /dev/null
+check "merge missing shard exit 2" test $? -eq 2
+check "merge missing shard message" grep -q "missing shard(s) 2 of 3" "$tmp/err9.txt"
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "bearings/skf_constants.hpp"
+#include "io/sweep.hpp"
 
 namespace gearloss::io {
 
@@ -749,7 +750,9 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     c.file = file;
     const YamlNode root = YamlNode::load_text(text, file);
     root.allow_keys({"name", "description", "oil", "materials", "shafts", "gears", "meshes", "bearings", "seals",
-                     "clutches", "housing", "thermal", "gearbox", "operating", "options", "calibration", "vehicle"});
+                     "clutches", "housing", "thermal", "gearbox", "operating", "options", "calibration", "vehicle",
+                     "sweep"});
+    c.sweep = read_sweep(root);
     auto& m = c.model;
     m.name = root.has("name") ? root.at("name").as_string() : fs::path(file).stem().string();
 

@@ -24,6 +24,13 @@ struct OperatingGrid {
     }
 };
 
+// One axis of a design-space sweep (io/sweep.hpp).
+struct SweepAxis {
+    std::string label;               // CSV column name (the first path)
+    std::vector<std::string> paths;  // set together (e.g. both gears of a mesh)
+    std::vector<std::string> values; // YAML scalars as written ("3.75 mm", "oils/75W140-A.yaml")
+};
+
 struct Case {
     std::string file;
     solver::Model model;
@@ -32,6 +39,7 @@ struct Case {
     std::string ratio;
     std::optional<vehicle::Vehicle> vehicle;  // for `gearloss cycle`
     std::optional<torque_converter::TorqueConverter> torque_converter;
+    std::vector<SweepAxis> sweep;  // `sweep:` axes (map runs every combination; io/sweep.hpp)
 };
 
 // The `vehicle` block (docs/config.md) into c.vehicle (and c.torque_converter).

@@ -1,0 +1,169 @@
+#include "map/job.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "io/csv_format.hpp"
+#include "io/sweep.hpp"
+
+namespace gearloss::map {
+
+namespace {
+constexpr double kRpm = 30.0 / std::numbers::pi;
+
+std::string prefix(const std::vector<std::string>& values) {
+    std::string s;
+    for (const auto& v : values) s += io::csv_cell(v) + ",";
+    return s;
+}
+
+struct Fnv {
+    uint64_t h = 1469598103934665603ull;
+    void add(const std::string& s) {
+        for (unsigned char c : s) {
+            h ^= c;
+            h *= 1099511628211ull;
+        }
+        h ^= 0xff;
+        h *= 1099511628211ull;
+    }
+};
+}  // namespace
+
+size_t MapJob::total_points() const {
+    size_t n = 0;
+    for (const auto& v : variants) n += v.c.grid.size();
+    return n;
+}
+
+std::string MapJob::header(bool detail) const {
+    std::string h;
+    for (const auto& l : sweep_labels) h += io::csv_cell(l) + ",";
+    const std::string body = csv_header(variants.front().c.model, detail);
+    for (const auto& v : variants)
+        if (csv_header(v.c.model, detail) != body)
+            throw InputError(v.c.file, 0, 0, "sweep",
+                             "the sweep changes the components (different --detail columns); map it without --detail");
+    return h + body;
+}
+
+uint64_t MapJob::fingerprint(bool detail) const {
+    Fnv f;
+    f.add(header(detail));
+    for (const auto& v : variants) {
+        const std::string p = prefix(v.values);
+        for (size_t i = 0; i < v.c.grid.size(); ++i) {
+            const auto [w, T] = v.c.grid.at(i);
+            f.add(p + io::csv_number(w * kRpm) + "," + io::csv_number(T));
+        }
+    }
+    return f.h;
+}
+
+std::pair<size_t, size_t> Shard::range(size_t total) const {
+    const size_t k = static_cast<size_t>(index - 1), n = static_cast<size_t>(count);
+    return {total * k / n, total * (k + 1) / n};
+}
+
+Shard parse_shard(const std::string& text) {
+    Shard s;
+    const auto slash = text.find('/');
+    try {
+        if (slash == std::string::npos) throw std::invalid_argument("no slash");
+        size_t p1 = 0, p2 = 0;
+        s.index = std::stoi(text.substr(0, slash), &p1);
+        s.count = std::stoi(text.substr(slash + 1), &p2);
+        if (p1 != slash || p2 != text.size() - slash - 1) throw std::invalid_argument("trailing text");
+    } catch (const std::exception&) {
+        throw InputError("", 0, 0, "--shard", "'" + text + "' is not K/N (e.g. 3/16)");
+    }
+    if (s.count < 1 || s.count > 100000 || s.index < 1 || s.index > s.count)
+        throw InputError("", 0, 0, "--shard", "'" + text + "': need 1 <= K <= N <= 100000");
+    return s;
+}
+
+std::string run_job(const MapJob& job, const MapOptions& opt, const std::optional<Shard>& shard) {
+    const size_t total = job.total_points();
+    const auto [begin, end] = shard ? shard->range(total) : std::pair<size_t, size_t>{0, total};
+    std::string out;
+    if (shard)
+        out += fmt::format("# gearloss shard {}/{}: rows {}-{} of {}, job {:016x}\n", shard->index, shard->count, begin,
+                           end, total, job.fingerprint(opt.detail));
+    out += job.header(opt.detail);
+    size_t offset = 0;
+    for (const auto& v : job.variants) {
+        const size_t n = v.c.grid.size();
+        const size_t a = std::max(begin, offset), b = std::min(end, offset + n);
+        if (a < b) {
+            io::OperatingGrid part;
+            part.is_grid = false;
+            for (size_t i = a; i < b; ++i) part.points.push_back(v.c.grid.at(i - offset));
+            const auto results = run_map(v.c.model, part, opt);
+            const std::string p = prefix(v.values);
+            for (const auto& r : results) out += p + csv_row(v.c.model, r, opt.detail);
+        }
+        offset += n;
+    }
+    return out;
+}
+
+std::string merge_shards(const std::vector<std::string>& files) {
+    struct Part {
+        int index = 0, count = 0;
+        size_t begin = 0, end = 0, total = 0;
+        std::string job, header, body, file;
+    };
+    std::vector<Part> parts;
+    for (const auto& file : files) {
+        std::ifstream in(file, std::ios::binary);
+        if (!in) throw InputError(file, 0, 0, "", "cannot open shard file");
+        std::stringstream ss;
+        ss << in.rdbuf();
+        const std::string text = ss.str();
+        Part p;
+        p.file = file;
+        const auto nl1 = text.find('\n');
+        const auto nl2 = nl1 == std::string::npos ? std::string::npos : text.find('\n', nl1 + 1);
+        char job[17] = {0};
+        if (nl2 == std::string::npos ||
+            std::sscanf(text.substr(0, nl1).c_str(), "# gearloss shard %d/%d: rows %zu-%zu of %zu, job %16s", &p.index,
+                        &p.count, &p.begin, &p.end, &p.total, job) != 6)
+            throw InputError(file, 1, 1, "", "not a shard of `gearloss map --shard K/N` (first line)");
+        p.job = job;
+        p.header = text.substr(nl1 + 1, nl2 - nl1);
+        p.body = text.substr(nl2 + 1);
+        const size_t rows = static_cast<size_t>(std::count(p.body.begin(), p.body.end(), '\n'));
+        if (rows != p.end - p.begin || (!p.body.empty() && p.body.back() != '\n'))
+            throw InputError(file, 0, 0, "", fmt::format("has {} rows, the shard line promises {} (incomplete run?)", rows,
+                                                         p.end - p.begin));
+        parts.push_back(std::move(p));
+    }
+    if (parts.empty()) throw InputError("", 0, 0, "merge", "no shard files given");
+    std::sort(parts.begin(), parts.end(), [](const Part& a, const Part& b) { return a.index < b.index; });
+    const Part& f = parts.front();
+    for (const auto& p : parts)
+        if (p.job != f.job || p.count != f.count || p.total != f.total || p.header != f.header)
+            throw InputError(p.file, 1, 1, "", "comes from a different map job than " + f.file);
+    for (size_t i = 0; i < parts.size(); ++i) {
+        if (i > 0 && parts[i].index == parts[i - 1].index)
+            throw InputError(parts[i].file, 1, 1, "", fmt::format("shard {} given twice (also {})", parts[i].index,
+                                                                  parts[i - 1].file));
+    }
+    std::string missing;
+    for (int k = 1, i = 0; k <= f.count; ++k) {
+        if (i < static_cast<int>(parts.size()) && parts[i].index == k) ++i;
+        else missing += (missing.empty() ? "" : ", ") + std::to_string(k);
+    }
+    if (!missing.empty())
+        throw InputError("", 0, 0, "merge", fmt::format("missing shard(s) {} of {}", missing, f.count));
+    std::string out = f.header;
+    for (const auto& p : parts) out += p.body;
+    return out;
+}
+
+}  // namespace gearloss::map
