@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
+#include <functional>
 #include <filesystem>
 #include <cstdio>
 #include <fmt/format.h>
@@ -109,14 +111,36 @@ double temperature_difference(const std::string& text, const char* what) {
     }
 }
 
-void progress_line(size_t done, size_t total) {
-    static auto t0 = std::chrono::steady_clock::now();
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double rate = s > 0 ? done / s : 0;
-    const double eta = rate > 0 ? (total - done) / rate : 0;
-    std::fprintf(stderr, "\r%zu/%zu points, %.0f points/s, ETA %.1f s   ", done, total, rate, eta);
-    if (done == total) std::fprintf(stderr, "\n");
-}
+// Progress on stderr for long runs: only on a terminal, only once a run has lasted
+// GEARLOSS_PROGRESS_AFTER seconds (default 1), at most 5 updates a second.
+class ProgressMeter {
+public:
+    ProgressMeter() : enabled_(::isatty(STDERR_FILENO) != 0), t0_(std::chrono::steady_clock::now()) {
+        if (const char* e = std::getenv("GEARLOSS_PROGRESS_AFTER")) after_ = std::atof(e);
+    }
+    ~ProgressMeter() {
+        if (shown_) std::fputc('\n', stderr);
+    }
+    std::function<void(size_t, size_t)> callback() {
+        if (!enabled_) return {};
+        return [this](size_t done, size_t total) { update(done, total); };
+    }
+
+private:
+    void update(size_t done, size_t total) {
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+        if (s < after_ || (s - last_ < 0.2 && done < total)) return;
+        last_ = s;
+        shown_ = true;
+        const double rate = s > 0 ? done / s : 0;
+        const double eta = rate > 0 ? (total - done) / rate : 0;
+        std::fprintf(stderr, "\r%zu/%zu points (%.0f %%), %.0f points/s, ETA %.1f s   ", done, total,
+                     total ? 100.0 * done / total : 100.0, rate, eta);
+    }
+    bool enabled_, shown_ = false;
+    std::chrono::steady_clock::time_point t0_;
+    double after_ = 1.0, last_ = -1.0;
+};
 
 // `map --format vecto`: one torque-loss table per gear (the selected ratio, or every ratio).
 int run_vecto(const Common& c, const std::string& out, int threads, const std::string& speeds, const std::string& torques) {
@@ -174,6 +198,8 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
     gearloss::map::MapOptions opt;
     opt.threads = threads;
     opt.detail = detail;
+    ProgressMeter meter;
+    opt.progress = meter.callback();
     if (!k.sweep.empty() || !shard.empty()) {
         // Sweep variants and/or one shard of the job (gearloss merge joins the shards).
         gearloss::map::MapJob job;
@@ -204,7 +230,6 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
         f.commit();
         return kOk;
     }
-    if (::isatty(STDERR_FILENO) && k.grid.size() >= 20000) opt.progress = progress_line;
     const auto t0 = std::chrono::steady_clock::now();
     const auto results = gearloss::map::run_map(k.model, k.grid, opt);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -467,6 +492,8 @@ int main(int argc, char** argv) {
             io::replace_oil(b, io::load_oil_file(compare_oils[1]));
             gearloss::map::MapOptions mo;
             mo.threads = threads;
+            ProgressMeter meter;
+            mo.progress = meter.callback();
             const auto ra = gearloss::map::run_map(a.model, a.grid, mo);
             const auto rb = gearloss::map::run_map(b.model, b.grid, mo);
             if (!io::g_interrupted) {

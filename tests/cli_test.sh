@@ -168,5 +168,11 @@ check "merge byte-identical to a single run" cmp -s "$tmp/single.csv" "$tmp/merg
 check "merge missing shard exit 2" test $? -eq 2
 check "merge missing shard message" grep -q "missing shard(s) 2 of 3" "$tmp/err9.txt"
 
+# Progress: rate and ETA on a terminal (a pseudo-terminal from script(1)), nothing otherwise.
+GEARLOSS_PROGRESS_AFTER=0 script -qec "'$bin' map '$src/configs/transfer-box.yaml' ${grid[*]} -o '$tmp/p1.csv'" /dev/null > "$tmp/tty.txt"
+check "progress on a terminal" grep -q 'points/s, ETA' "$tmp/tty.txt"
+GEARLOSS_PROGRESS_AFTER=0 "$bin" map "$src/configs/transfer-box.yaml" "${grid[@]}" -o "$tmp/p2.csv" 2> "$tmp/notty.txt"
+check "quiet without a terminal" test ! -s "$tmp/notty.txt"
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0

@@ -96,6 +96,7 @@ std::string run_job(const MapJob& job, const MapOptions& opt, const std::optiona
                            end, total, job.fingerprint(opt.detail));
     out += job.header(opt.detail);
     size_t offset = 0;
+    MapOptions part_opt = opt;
     for (const auto& v : job.variants) {
         const size_t n = v.c.grid.size();
         const size_t a = std::max(begin, offset), b = std::min(end, offset + n);
@@ -103,7 +104,12 @@ std::string run_job(const MapJob& job, const MapOptions& opt, const std::optiona
             io::OperatingGrid part;
             part.is_grid = false;
             for (size_t i = a; i < b; ++i) part.points.push_back(v.c.grid.at(i - offset));
-            const auto results = run_map(v.c.model, part, opt);
+            // Progress over the whole job (or shard), not per variant.
+            if (opt.progress) {
+                const size_t before = a - begin, all = end - begin;
+                part_opt.progress = [&opt, before, all](size_t d, size_t) { opt.progress(before + d, all); };
+            }
+            const auto results = run_map(v.c.model, part, part_opt);
             const std::string p = prefix(v.values);
             for (const auto& r : results) out += p + csv_row(v.c.model, r, opt.detail);
         }
