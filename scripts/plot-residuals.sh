@@ -1,12 +1,4 @@
 #!/usr/bin/env bash
-# Installs Debian's python3-matplotlib if missing, then plots diagnosis residuals.
+# Diagnosis residuals before/after (kept for compatibility): scripts/plot.sh diagnose.
 # Usage: scripts/plot-residuals.sh RESIDUALS.csv OUT.png [--title TEXT]
-set -euo pipefail
-# Debian's own interpreter: the apt package is importable there (not from a pyenv/venv python).
-if ! /usr/bin/python3 -c "import matplotlib" 2> /dev/null; then
-    sudo_cmd=""
-    [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-    $sudo_cmd apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq python3-matplotlib > /dev/null
-fi
-exec /usr/bin/python3 "$(dirname "$0")/plot-residuals.py" "$@"
+exec "$(dirname "$0")/plot.sh" diagnose "$@"
