@@ -191,8 +191,15 @@ void override_grid(io::Case& k, const std::string& speeds, const std::string& to
     }
 }
 
+void write_json_summary(const std::string& file, const std::string& json) {
+    if (file.empty()) return;
+    io::AtomicFile f(file);
+    f.write(json);
+    f.commit();
+}
+
 int run_map(const Common& c, const std::string& out, int threads, bool detail, const std::string& speeds,
-            const std::string& torques, bool stats, const std::string& shard) {
+            const std::string& torques, bool stats, const std::string& shard, const std::string& json_file) {
     io::Case k = load(c);
     override_grid(k, speeds, torques);
     gearloss::map::MapOptions opt;
@@ -216,10 +223,11 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
         std::optional<gearloss::map::Shard> sh;
         if (!shard.empty()) sh = gearloss::map::parse_shard(shard);
         const auto t0 = std::chrono::steady_clock::now();
-        const std::string csv = gearloss::map::run_job(job, opt, sh);
+        const auto res = gearloss::map::run_job(job, opt, sh);
+        const std::string& csv = res.csv;
         if (io::g_interrupted) return kInterrupted;
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (stats) {
-            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             const size_t n = sh ? sh->range(job.total_points()).second - sh->range(job.total_points()).first
                                 : job.total_points();
             std::fprintf(stderr, "points %zu of %zu (%zu sweep variants), %.4f s, %.0f points/s\n", n, job.total_points(),
@@ -228,6 +236,7 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
         io::AtomicFile f(out);
         f.write(csv);
         f.commit();
+        write_json_summary(json_file, gearloss::map::map_summary_json(res.results, seconds));
         return kOk;
     }
     const auto t0 = std::chrono::steady_clock::now();
@@ -254,6 +263,7 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
     }
     f.write(buf);
     f.commit();
+    write_json_summary(json_file, gearloss::map::map_summary_json(results, seconds));
     return kOk;
 }
 
@@ -269,10 +279,13 @@ int main(int argc, char** argv) {
     CLI::App app{"gearloss — where the power goes in a gearbox: mesh, churning, bearing and seal losses with the\n"
                  "thermally stabilised oil temperature, from a YAML description.\n\n"
                  "Examples:\n"
-                 "  gearloss check configs/transfer-75W90.yaml\n"
-                 "  gearloss point configs/transfer-75W90.yaml --speed 800rpm --torque 250Nm\n"
-                 "  gearloss map configs/transfer-75W90.yaml -o map.csv\n"
+                 "  gearloss check configs/transfer-box.yaml\n"
+                 "  gearloss point configs/transfer-box.yaml --speed 800rpm --torque 250Nm\n"
+                 "  gearloss map configs/transfer-box.yaml -o map.csv\n"
+                 "  gearloss cycle configs/automatic-6speed.yaml --cycle wltc --start-temp -10degC\n"
                  "  gearloss map configs/fzg-c40-paor.yaml --speed 500,1000,1500rpm --torque 100,200Nm --oil-temp 90degC"};
+    app.footer("Exit codes: 0 success, 1 usage error, 2 input error (file:line:column: key: message), 3 output not "
+               "writable, 4 internal error, 130/143 interrupted (no output written).\nEvery command: gearloss COMMAND --help");
     app.set_version_flag("--version", std::string("gearloss ") + GEARLOSS_VERSION);
     app.require_subcommand(1);
 
@@ -296,7 +309,8 @@ int main(int argc, char** argv) {
     map->add_flag("--stats", stats, "print solve time, points per second and loss evaluations per point to stderr");
     map->add_option("--speed", speeds, "override the input speeds, e.g. 600,700,800rpm");
     map->add_option("--torque", torques, "override the input torques, e.g. 150,200,250Nm");
-    std::string map_format = "csv", shard;
+    std::string map_format = "csv", shard, map_json;
+    map->add_option("--json", map_json, "also write a JSON summary (counts, efficiency, loss and temperature ranges, time)");
     map->add_option("--shard", shard, "compute only shard K of N of the points (K/N, e.g. 3/16); join with `gearloss merge`");
     map->add_option("--format", map_format, "csv (loss breakdown) or vecto (torque-loss table per gear, negative "
                                             "torques included)")->check(CLI::IsMember({"csv", "vecto"}));
@@ -308,7 +322,7 @@ int main(int argc, char** argv) {
     add_common(point);
     point->add_option("--speed", speed1, "input speed, e.g. 800rpm")->required();
     point->add_option("--torque", torque1, "input torque, e.g. 250Nm")->required();
-    point->footer("Example: gearloss point configs/transfer-75W90.yaml --speed 800rpm --torque 250Nm");
+    point->footer("Example: gearloss point configs/transfer-box.yaml --speed 800rpm --torque 250Nm");
 
     // diagnose
     std::string recordings, json_out, write_config, residuals_out;
@@ -417,7 +431,7 @@ int main(int argc, char** argv) {
         int rc = kOk;
         if (map->parsed()) {
             rc = map_format == "vecto" ? run_vecto(common, out, threads, speeds, torques)
-                                       : run_map(common, out, threads, detail, speeds, torques, stats, shard);
+                                       : run_map(common, out, threads, detail, speeds, torques, stats, shard, map_json);
         } else if (point->parsed()) {
             io::Case k = load(common);
             const double w = single_value(speed1, gearloss::units::dim::angular_speed, "--speed", "800rpm");

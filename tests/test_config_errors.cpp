@@ -51,7 +51,7 @@ TEST_CASE("bad input names file, line and key", "[config]") {
                   "manual-6speed.yaml"});
     expect_error({"[534, 998, 1462, 1925, 2389, 2853, 3317, 3781, 4244]", "[534, 998, 1462]", "[534, 998, 1462]",
                   "vehicle.engine.fuel_map.fuel_rate", "one value per torque", "manual-6speed.yaml"});
-    expect_error({"clearance: 0.15 mm, roughness: 1.5 um", "clearance: 0.003 mm, roughness: 1.5 um",
+    expect_error({"clearance: 0.3 mm, roughness: 1.5 um", "clearance: 0.003 mm, roughness: 1.5 um",
                   "clearance: 0.003 mm", "clutches[0].clearance", "3x the roughness", "automatic-6speed.yaml"});
     expect_error({"    oil: 3 kJ/K\n    housing: 8 kJ/K\n", "    oil: 3 kJ/K\n", "oil_to_housing: 25 W/K",
                   "thermal.network.oil_to_housing", "needs a 'housing' node", "manual-6speed.yaml"});

@@ -54,12 +54,12 @@ TEST_CASE("shards of a sweep job joined by merge equal the single run", "[sweep]
     for (auto& v : io::expand_sweep(cfg.path, std::nullopt)) job.variants.push_back({v.values, std::move(v.c)});
     map::MapOptions opt;
     opt.detail = true;
-    const std::string single = map::run_job(job, opt, std::nullopt);
+    const std::string single = map::run_job(job, opt, std::nullopt).csv;
     REQUIRE(job.total_points() == 18);
     std::vector<std::string> files;
     for (int k = 4; k >= 1; --k) {  // written in reverse: merge must order them
         const std::string f = cfg.path + ".shard" + std::to_string(k);
-        std::ofstream(f) << map::run_job(job, opt, map::Shard{k, 4});
+        std::ofstream(f) << map::run_job(job, opt, map::Shard{k, 4}).csv;
         files.push_back(f);
     }
     CHECK(map::merge_shards(files) == single);
@@ -69,7 +69,7 @@ TEST_CASE("shards of a sweep job joined by merge equal the single run", "[sweep]
     // A shard of another job is refused.
     auto other = job;
     other.variants.pop_back();
-    std::ofstream(files[0]) << map::run_job(other, opt, map::Shard{4, 4});
+    std::ofstream(files[0]) << map::run_job(other, opt, map::Shard{4, 4}).csv;
     CHECK_THROWS_AS(map::merge_shards(files), InputError);
     for (const auto& f : files) std::filesystem::remove(f);
     CHECK_THROWS_AS(map::parse_shard("5/4"), InputError);

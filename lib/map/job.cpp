@@ -87,10 +87,11 @@ Shard parse_shard(const std::string& text) {
     return s;
 }
 
-std::string run_job(const MapJob& job, const MapOptions& opt, const std::optional<Shard>& shard) {
+JobOutput run_job(const MapJob& job, const MapOptions& opt, const std::optional<Shard>& shard) {
     const size_t total = job.total_points();
     const auto [begin, end] = shard ? shard->range(total) : std::pair<size_t, size_t>{0, total};
-    std::string out;
+    JobOutput res;
+    std::string& out = res.csv;
     if (shard)
         out += fmt::format("# gearloss shard {}/{}: rows {}-{} of {}, job {:016x}\n", shard->index, shard->count, begin,
                            end, total, job.fingerprint(opt.detail));
@@ -112,10 +113,11 @@ std::string run_job(const MapJob& job, const MapOptions& opt, const std::optiona
             const auto results = run_map(v.c.model, part, part_opt);
             const std::string p = prefix(v.values);
             for (const auto& r : results) out += p + csv_row(v.c.model, r, opt.detail);
+            res.results.insert(res.results.end(), results.begin(), results.end());
         }
         offset += n;
     }
-    return out;
+    return res;
 }
 
 std::string merge_shards(const std::vector<std::string>& files) {

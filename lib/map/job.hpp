@@ -34,8 +34,11 @@ struct Shard {
 // "K/N" with 1 <= K <= N.
 Shard parse_shard(const std::string& text);
 
-// The CSV of a job, or of one shard of it (then with a first line `# gearloss shard ...`).
-std::string run_job(const MapJob& job, const MapOptions& opt, const std::optional<Shard>& shard);
+struct JobOutput {
+    std::string csv;  // of the job, or of one shard (then with a first line `# gearloss shard ...`)
+    std::vector<solver::PointResult> results;  // the rows computed, in order
+};
+JobOutput run_job(const MapJob& job, const MapOptions& opt, const std::optional<Shard>& shard);
 
 // Joins shard files (any order) into the single-run CSV; checks that they come from one
 // job and that every shard is there exactly once. Throws InputError naming the file.

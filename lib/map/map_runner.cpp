@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include "io/atomic_file.hpp"
+#include "io/json.hpp"
 
 namespace gearloss::map {
 
@@ -95,6 +96,43 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
         list(L.clutch_each, gb.clutches.size());
     }
     return s + "\n";
+}
+
+std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds) {
+    size_t ok = 0;
+    double eff_min = 1, eff_max = 0, eff_sum = 0, P_min = 1e300, P_max = 0, T_min = 1e300, T_max = -1e300;
+    size_t n_eff = 0;
+    for (const auto& r : results) {
+        if (r.status != solver::PointStatus::ok) continue;
+        ++ok;
+        const double P = r.losses.total();
+        P_min = std::min(P_min, P);
+        P_max = std::max(P_max, P);
+        T_min = std::min(T_min, r.oil_temperature);
+        T_max = std::max(T_max, r.oil_temperature);
+        if (r.has_efficiency) {
+            eff_min = std::min(eff_min, r.efficiency);
+            eff_max = std::max(eff_max, r.efficiency);
+            eff_sum += r.efficiency;
+            ++n_eff;
+        }
+    }
+    io::Json j;
+    j.begin_object();
+    j.key("points").value(results.size());
+    j.key("ok").value(ok);
+    j.key("no_equilibrium").value(results.size() - ok);
+    j.key("seconds").value(seconds);
+    j.key("points_per_second").value(seconds > 0 ? results.size() / seconds : 0.0);
+    if (ok > 0) {
+        j.key("loss_W").begin_object().key("min").value(P_min).key("max").value(P_max).end_object();
+        j.key("oil_temp_C").begin_object().key("min").value(T_min - 273.15).key("max").value(T_max - 273.15).end_object();
+    }
+    if (n_eff > 0)
+        j.key("efficiency").begin_object().key("min").value(eff_min).key("max").value(eff_max).key("mean")
+            .value(eff_sum / n_eff).end_object();
+    j.end_object();
+    return j.str() + "\n";
 }
 
 }  // namespace gearloss::map

@@ -23,4 +23,7 @@ std::vector<solver::PointResult> run_map(const solver::Model& m, const io::Opera
 std::string csv_header(const solver::Model& m, bool detail);
 std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail);
 
+// Summary for scripts: point counts, efficiency, loss and oil-temperature ranges, solve time.
+std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds);
+
 }  // namespace gearloss::map
