@@ -174,5 +174,24 @@ check "progress on a terminal" grep -q 'points/s, ETA' "$tmp/tty.txt"
 GEARLOSS_PROGRESS_AFTER=0 "$bin" map "$src/configs/transfer-box.yaml" "${grid[@]}" -o "$tmp/p2.csv" 2> "$tmp/notty.txt"
 check "quiet without a terminal" test ! -s "$tmp/notty.txt"
 
+# Pictures from every kind of output (PNG and SVG).
+plot() { MPLCONFIGDIR="$tmp/mpl" /usr/bin/python3 "$src/scripts/plot.py" "$@" > /dev/null 2>&1; }
+"$bin" map "$src/configs/transfer-box.yaml" -o "$tmp/pm.csv"
+plot map "$tmp/pm.csv" "$tmp/eff.png" --kind efficiency
+check "plot efficiency png" bash -c "head -c 8 '$tmp/eff.png' | od -An -c | grep -q 'P   N   G'"
+plot map "$tmp/pm.csv" "$tmp/brk.svg" --kind breakdown
+check "plot breakdown svg" grep -q '<svg' "$tmp/brk.svg"
+plot map "$tmp/pm.csv" "$tmp/temp.png" --kind oil-temp
+check "plot oil temperature" test -s "$tmp/temp.png"
+"$bin" compare "$src/configs/transfer-box.yaml" --oil "$src/configs/oils/75W90-A.yaml" --oil "$src/configs/oils/75W140-A.yaml" -o "$tmp/pc.csv"
+plot compare "$tmp/pc.csv" "$tmp/cmp.png"
+check "plot compare" test -s "$tmp/cmp.png"
+plot cycle "$tmp/trace.csv" "$tmp/cyc.png"
+check "plot cycle" test -s "$tmp/cyc.png"
+plot diagnose "$tmp/res.csv" "$tmp/diag.png"
+check "plot diagnose" test -s "$tmp/diag.png"
+plot cycle "$tmp/pm.csv" "$tmp/wrong.png"
+check "plot wrong file kind fails" test $? -ne 0
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0
