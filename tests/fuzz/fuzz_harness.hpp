@@ -16,6 +16,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "cycle/simulate.hpp"
 #include "diagnosis/recordings.hpp"
 #include "io/config.hpp"
 #include "io/reports.hpp"
@@ -41,11 +42,38 @@ inline void check_result(const gearloss::solver::Model& m, const gearloss::solve
     const auto& L = r.losses;
     for (double v : {L.mesh, L.churning, L.bearings, L.seals, L.auxiliary, r.oil_temperature, r.power_out, r.torque_out})
         if (!std::isfinite(v)) finding("non-finite result: " + row);
-    for (double v : {L.mesh, L.churning, L.bearings, L.seals, L.auxiliary})
+    for (double v : {L.mesh, L.churning, L.bearings, L.seals, L.clutches, L.auxiliary})
         if (v < 0) finding("negative loss: " + row);
     if (std::abs(r.power_out - (r.power_in - L.total())) > 1e-9 * std::max(1.0, std::abs(r.power_in)))
         finding("energy balance broken: " + row);
     if (r.has_efficiency && !(r.efficiency >= 0 && r.efficiency <= 1)) finding("efficiency outside [0, 1]: " + row);
+}
+
+// A case with a vehicle block over a short cold-start cycle (launch, cruise, brake): every
+// trace value finite, no negative loss, and the thermal network conserves energy.
+inline void check_cycle(const std::string& text, const gearloss::io::Case& c) {
+    gearloss::cycle::Powertrain pt;
+    pt.vehicle = *c.vehicle;
+    pt.torque_converter = c.torque_converter;
+    for (const auto& g : c.vehicle->gears)
+        pt.gears.push_back(gearloss::io::load_case_text(text, "fuzz.yaml", configs_dir(), g).model);
+    gearloss::cycle::DriveCycle dc;
+    const double v[] = {0, 0, 3, 8, 14, 20, 26, 30, 32, 32, 32, 25, 15, 5, 0, 0};
+    for (int i = 0; i < 16; ++i) {
+        dc.time.push_back(i * 2.0);
+        dc.speed.push_back(v[i] / 3.6);
+    }
+    const double T0 = 263.15;
+    const auto r = gearloss::cycle::simulate_cycle(pt, dc, gearloss::cycle::uniform(T0), T0, true);
+    for (const auto& t : r.trace)
+        for (double x : {t.T_oil, t.T_housing, t.T_clutch, t.P_gearbox, t.P_tc, t.input_torque, t.engine_torque, t.fuel_rate})
+            if (!std::isfinite(x)) finding(fmt::format("non-finite cycle trace value at t = {}", t.time));
+    const auto& k = r.totals;
+    for (double x : {k.E_mesh, k.E_churn, k.E_bearing, k.E_seal, k.E_clutch, k.E_tc})
+        if (!(x >= 0)) finding("negative or non-finite cycle loss energy");
+    const double in = k.gearbox_loss() + k.E_tc + k.E_heater, out = k.E_ambient + k.stored_end - k.stored_start;
+    if (std::abs(in - out) > 1e-6 * std::max(1.0, std::abs(in) + std::abs(k.E_ambient)))
+        finding(fmt::format("cycle energy balance broken: {} vs {}", in, out));
 }
 
 inline int config_one(const uint8_t* data, size_t size) {
@@ -58,6 +86,7 @@ inline int config_one(const uint8_t* data, size_t size) {
             const auto [w, T] = c.grid.at(0);
             check_result(c.model, gearloss::solver::solve_point(c.model, w, T, true));
         }
+        if (c.vehicle) check_cycle(text, c);
     } catch (const gearloss::InputError&) {
     }
     return 0;
