@@ -27,6 +27,7 @@ struct StepLoad {
     double turbine_speed = 0, turbine_torque = 0;
     double heater = 0;
     double omega_in = 0;
+    double air_speed = 0;  // under-body air over the housing [m/s]
 };
 
 struct Rates {
@@ -46,7 +47,7 @@ struct Rates {
                                              pt.vehicle.engine.idle_speed, os.nu_cSt, load.lockup)
                        .loss;
         const double P_oil = L.total() - L.clutches + P_tc + load.heater;
-        const double Q = tm.surface_heat_flow(thermal::surface_temperature(net, T), ambient, load.omega_in);
+        const double Q = tm.surface_heat_flow(thermal::surface_temperature(net, T), ambient, load.omega_in, load.air_speed);
         const auto d = thermal::node_rates(net, T, P_oil, L.clutches, Q);
         dx = {d[0], d[1], d[2], L.mesh, L.churning, L.bearings, L.seals, L.clutches, L.auxiliary, P_tc, Q, load.heater};
     }
@@ -95,6 +96,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         row.T_housing = net.has_housing() ? x[kHousing] : x[kOil];
         row.T_clutch = net.has_clutch() ? x[kClutch] : x[kOil];
         load = StepLoad{};
+        load.air_speed = veh.underbody_air * v;
         const double w_wheel = v / veh.wheel_radius;
         const double T_wheel = veh.tractive_force(v, a) * veh.wheel_radius;
         if (!cycle.gear.empty()) gear = std::min<int>(cycle.gear[i], static_cast<int>(pt.gears.size()));

@@ -91,7 +91,7 @@ torque_converter::TorqueConverter load_tc(const YamlNode& n) {
 
 void load_vehicle(const YamlNode& n, Case& c) {
     n.allow_keys({"mass", "rotating_mass_factor", "wheel_radius", "road_load", "final_drive", "gears", "shift",
-                  "engine", "torque_converter", "note"});
+                  "engine", "torque_converter", "underbody_air", "note"});
     vehicle::Vehicle v;
     v.mass = n.positive_quantity("mass", dim::mass, "1500 kg");
     if (auto e = n.get("rotating_mass_factor")) {
@@ -99,6 +99,10 @@ void load_vehicle(const YamlNode& n, Case& c) {
         if (!(v.rotating_mass_factor >= 0 && v.rotating_mass_factor < 1)) e->fail("must be in [0, 1)");
     }
     v.wheel_radius = n.positive_quantity("wheel_radius", dim::length, "0.31 m");
+    if (auto u = n.get("underbody_air")) {
+        v.underbody_air = u->as_number();
+        if (!(v.underbody_air >= 0 && v.underbody_air <= 1)) u->fail("a share of the vehicle speed, in [0, 1]");
+    }
     const YamlNode rl = n.at("road_load");
     rl.allow_keys({"f0", "f1", "f2", "rolling_resistance", "CdA", "air_density"});
     if (rl.has("f0")) {

@@ -24,9 +24,9 @@ lubricant::OilState Model::oil_state(double T) const {
     return s;
 }
 
-double Model::surface_heat_flow(double T_surface, double T_amb, double omega_in) const {
+double Model::surface_heat_flow(double T_surface, double T_amb, double omega_in, double air_speed) const {
     const double n_k = std::abs(omega_in) * 30.0 / 3.14159265358979323846 / 1000.0;
-    return thermal.rejection.heat_flow(T_surface, T_amb, omega_in) * calibration.heat_rejection_factor *
+    return thermal.rejection.heat_flow(T_surface, T_amb, omega_in, air_speed) * calibration.heat_rejection_factor *
            (1.0 + calibration.cooling_per_1000rpm * n_k);
 }
 

@@ -71,7 +71,8 @@ struct Model {
     // through the housing node's conductance in series when the network has one.
     double heat_flow(double T_oil, double T_amb, double omega_in) const;
     // Heat flow [W] leaving the rejecting surface (housing node, or the oil) at T_surface.
-    double surface_heat_flow(double T_surface, double T_amb, double omega_in) const;
+    // `air_speed`: air flow over a housing surface imposed from outside (vehicle) [m/s].
+    double surface_heat_flow(double T_surface, double T_amb, double omega_in, double air_speed = 0.0) const;
 };
 
 }  // namespace gearloss::solver

@@ -1,5 +1,7 @@
 #include "thermal/heat_rejection.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 
 namespace gearloss::thermal {
@@ -49,9 +51,10 @@ double HousingSurface::radiation_coefficient(double Tw, double Ta) const {
     return emissivity * sigma_SB * (Tw * Tw + Ta * Ta) * (Tw + Ta);
 }
 
-double HeatRejection::heat_flow(double T, double Ta, double omega) const {
+double HeatRejection::heat_flow(double T, double Ta, double omega, double air_speed) const {
     if (const auto* r = std::get_if<ThermalResistance>(&model)) return (T - Ta) / r->resistance(omega);
-    const auto& h = std::get<HousingSurface>(model);
+    HousingSurface h = std::get<HousingSurface>(model);
+    h.air_speed = std::max(h.air_speed, air_speed);
     return (h.convection_coefficient(T, Ta) + h.radiation_coefficient(T, Ta)) * h.area * (T - Ta);
 }
 

@@ -27,8 +27,10 @@ struct HousingSurface {
 
 struct HeatRejection {
     std::variant<ThermalResistance, HousingSurface> model;
-    // Heat flow [W] at oil temperature T_oil, ambient T_amb (K), input speed omega.
-    double heat_flow(double T_oil, double T_amb, double omega_in) const;
+    // Heat flow [W] at oil temperature T_oil, ambient T_amb (K), input speed omega. A
+    // housing surface sees at least `air_speed` [m/s] (e.g. the under-body flow of a moving
+    // vehicle) when it exceeds its own.
+    double heat_flow(double T_oil, double T_amb, double omega_in, double air_speed = 0.0) const;
 };
 
 }  // namespace gearloss::thermal

@@ -39,6 +39,7 @@ struct Vehicle {
     std::vector<std::string> gears;   // gearbox ratio names, first gear first
     ShiftSchedule shift;
     bool torque_converter = false;    // automatic: converter between engine and gearbox
+    double underbody_air = 0.0;       // share of the vehicle speed that flows over the housing
     Engine engine;
 
     // Tractive force at the wheels for speed v [m/s] and acceleration a [m/s^2].
