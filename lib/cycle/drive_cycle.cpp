@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "io/csv_read.hpp"
 
 namespace gearloss::cycle {
 
@@ -17,30 +18,6 @@ double DriveCycle::distance() const {
     for (size_t i = 1; i < time.size(); ++i) d += 0.5 * (speed[i] + speed[i - 1]) * (time[i] - time[i - 1]);
     return d;
 }
-
-namespace {
-std::vector<std::string> split(const std::string& line) {
-    std::vector<std::string> out;
-    std::string cell;
-    std::stringstream ss(line);
-    while (std::getline(ss, cell, ',')) {
-        while (!cell.empty() && (cell.back() == '\r' || cell.back() == ' ')) cell.pop_back();
-        while (!cell.empty() && cell.front() == ' ') cell.erase(cell.begin());
-        out.push_back(cell);
-    }
-    return out;
-}
-
-double number(const std::string& s, const std::string& file, int line, int col, const std::string& column) {
-    try {
-        size_t pos = 0;
-        const double v = std::stod(s, &pos);
-        if (pos == s.size() && std::isfinite(v)) return v;
-    } catch (const std::exception&) {
-    }
-    throw InputError(file, line, col, column, "'" + s + "' is not a number");
-}
-}  // namespace
 
 DriveCycle load_cycle_csv(const std::string& file) {
     std::ifstream in(file, std::ios::binary);
@@ -55,7 +32,7 @@ DriveCycle load_cycle_csv(const std::string& file) {
         ++ln;
         if (ln == 1 && line.size() >= 3 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);  // BOM
         if (line.empty() || line[0] == '#') continue;
-        const auto cells = split(line);
+        const auto cells = io::split_csv_line(line);
         if (it < 0) {
             for (size_t k = 0; k < cells.size(); ++k) {
                 if (cells[k] == "time_s") it = static_cast<int>(k);
@@ -69,15 +46,15 @@ DriveCycle load_cycle_csv(const std::string& file) {
         }
         if (cells.size() != ncol)
             throw InputError(file, ln, 1, "", "expected " + std::to_string(ncol) + " cells, found " + std::to_string(cells.size()));
-        const double t = number(cells[it], file, ln, it + 1, "time_s");
-        const double v = number(cells[iv], file, ln, iv + 1, "speed_kmh");
+        const double t = io::csv_cell_number(cells[it], file, ln, it + 1, "time_s");
+        const double v = io::csv_cell_number(cells[iv], file, ln, iv + 1, "speed_kmh");
         if (v < 0 || v > 500) throw InputError(file, ln, iv + 1, "speed_kmh", "speed must be in [0, 500] km/h");
         if (!c.time.empty() && !(t > c.time.back()))
             throw InputError(file, ln, it + 1, "time_s", "time must increase from row to row");
         c.time.push_back(t);
         c.speed.push_back(v / 3.6);
         if (ig >= 0) {
-            const double g = number(cells[ig], file, ln, ig + 1, "gear");
+            const double g = io::csv_cell_number(cells[ig], file, ln, ig + 1, "gear");
             if (g < 0 || g > 20 || g != std::floor(g)) throw InputError(file, ln, ig + 1, "gear", "gear must be 0-20");
             c.gear.push_back(static_cast<int>(g));
         }

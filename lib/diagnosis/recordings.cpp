@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "core/errors.hpp"
+#include "io/csv_read.hpp"
 
 namespace gearloss::diagnosis {
 
@@ -17,24 +18,7 @@ namespace {
 
 constexpr double rpm = std::numbers::pi / 30.0;
 
-std::vector<std::string> split_csv(const std::string& line) {
-    std::vector<std::string> out;
-    std::string cur;
-    bool quoted = false;
-    for (char c : line) {
-        if (c == '"') quoted = !quoted;
-        else if (c == ',' && !quoted) {
-            out.push_back(cur);
-            cur.clear();
-        } else if (c != '\r') cur += c;
-    }
-    out.push_back(cur);
-    for (auto& s : out) {
-        s.erase(0, s.find_first_not_of(" \t"));
-        s.erase(s.find_last_not_of(" \t") + 1);
-    }
-    return out;
-}
+using io::split_csv_line;
 
 // Column name -> (canonical key, scale to SI, offset).
 struct ColumnDef {
@@ -68,7 +52,7 @@ Table read_table(const std::string& file, std::istream& in, std::vector<std::str
         ++ln;
         if (line.empty() || line[0] == '#') continue;
         if (line.size() >= 3 && static_cast<unsigned char>(line[0]) == 0xEF) line = line.substr(3);  // UTF-8 BOM
-        header = split_csv(line);
+        header = split_csv_line(line);
         break;
     }
     if (header.empty()) throw InputError(file, ln, 0, "", "no header line");
@@ -88,7 +72,7 @@ Table read_table(const std::string& file, std::istream& in, std::vector<std::str
     while (std::getline(in, line)) {
         ++ln;
         if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r,") == std::string::npos) continue;
-        auto cells = split_csv(line);
+        auto cells = split_csv_line(line);
         if (cells.size() != header.size())
             throw InputError(file, ln, 0, "", fmt::format("row has {} cells, the header has {}", cells.size(), header.size()));
         t.rows.push_back(std::move(cells));
@@ -107,10 +91,7 @@ double cell(const std::string& file, const Table& t, size_t r, const std::string
     }
     const std::string& s = t.rows[r][it->second];
     const std::string& name = t.header[it->second];
-    double v = 0;
-    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || p != s.data() + s.size() || !std::isfinite(v))
-        throw InputError(file, t.lines[r], static_cast<int>(it->second + 1), name, "'" + s + "' is not a number");
+    const double v = io::csv_cell_number(s, file, t.lines[r], static_cast<int>(it->second + 1), name);
     if (present) *present = true;
     for (const auto& c : kColumns)
         if (name == c.name) return v * c.scale + c.offset;
