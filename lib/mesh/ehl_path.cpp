@@ -6,11 +6,23 @@
 namespace gearloss::mesh {
 
 namespace {
+// Rolling kinematics at xi on the line of action (from T1): reduced radius of curvature
+// (radii signed, < 0 for a ring) and the surface speeds of gear 0 and its mate (w0 / u, the
+// same sense for an internal pair).
+struct Kinematics {
+    double R, u1, u2;
+    double v_slide() const { return std::abs(u1 - u2); }
+};
+Kinematics kinematics_at(const geometry::PairGeometry& g, double xi, double w0) {
+    const double cb = std::cos(g.beta_b);
+    const double rho1 = xi / cb, rho2 = (g.T1T2 - xi) / cb;
+    return {std::abs(rho1 * rho2 / (rho1 + rho2)), w0 * xi, w0 / g.u * std::abs(g.T1T2 - xi)};
+}
+
 // Local state at xi (shared by the profile and the loss integral).
 PathPoint path_point(const geometry::PairGeometry& g, double xi, double L_mean, double w0, double F_bn, double E_prime,
                      double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh, bool heating,
                      const lubricant::OilState& bulk, double film_rise_guess = 0) {
-    const double w1 = w0 / g.u;  // mate relative speed, same sense for an internal pair
     const double cb = std::cos(g.beta_b);
     const bool spur = g.eps_beta == 0.0;
     PathPoint pt;
@@ -27,14 +39,13 @@ PathPoint path_point(const geometry::PairGeometry& g, double xi, double L_mean, 
         w_line = F_bn / L_mean;
         pt.load_share = g.b_eff / cb / L_mean;
     }
-    const double rho1 = xi / cb, rho2 = (g.T1T2 - xi) / cb;  // signed: < 0 for a ring
-    const double R = rho1 * rho2 / (rho1 + rho2);
-    pt.u1 = w0 * xi;
-    pt.u2 = w1 * std::abs(g.T1T2 - xi);
+    const Kinematics k = kinematics_at(g, xi, w0);
+    pt.u1 = k.u1;
+    pt.u2 = k.u2;
     pt.u_e = 0.5 * (pt.u1 + pt.u2);
-    pt.v_slide = std::abs(pt.u1 - pt.u2);
+    pt.v_slide = k.v_slide();
     pt.srr = pt.u_e > 0 ? pt.v_slide / pt.u_e : 0.0;
-    EhlContactInput in{w_line, std::abs(R), pt.u1, pt.u2, E_prime, sigma, T_bulk, film_rise_guess};
+    EhlContactInput in{w_line, k.R, pt.u1, pt.u2, E_prime, sigma, T_bulk, film_rise_guess};
     pt.c = ehl_contact(in, oil, rh, {}, heating, &bulk);
     const double v_base = w0 * 0.5 * g.db[0];
     pt.local_efficiency = v_base > 0 ? 1.0 - pt.c.mu * pt.v_slide / v_base : 1.0;
@@ -111,7 +122,6 @@ double helical_mesh_loss(const geometry::PairGeometry& g, double w0, double F_bn
     const double A = g.T1A, E = g.T1E, C = g.T1C, pbt = g.p_bt, b = g.b_eff;
     const double t = std::tan(g.beta_b), cb = std::cos(g.beta_b);
     const double span = b * t;
-    const double w1 = w0 / g.u;
     // Lines of each phase as xi intervals; L(s) from their face extent.
     struct Line { double xa, xb; };
     std::vector<std::vector<Line>> lines(kPhases);
@@ -145,12 +155,10 @@ double helical_mesh_loss(const geometry::PairGeometry& g, double w0, double F_bn
             const double xi = 0.5 * (a + bb) + 0.5 * (bb - a) * kG4x[q];
             const size_t n = 4 * sd + q;
             node_x[n] = xi;
-            const double rho1 = xi / cb, rho2 = (g.T1T2 - xi) / cb;
-            const double R = std::abs(rho1 * rho2 / (rho1 + rho2));
-            const double u1 = w0 * xi, u2 = w1 * std::abs(g.T1T2 - xi);
+            const Kinematics k = kinematics_at(g, xi, w0);
             for (int heavy = 0; heavy < (two_loads ? 2 : 1); ++heavy) {
                 double* rise = film_rise ? &(*film_rise)[2 * n + heavy] : nullptr;
-                const EhlContactInput in{F_bn / (heavy ? L_lo : L_hi), R, u1, u2, E_prime, sigma, T_bulk,
+                const EhlContactInput in{F_bn / (heavy ? L_lo : L_hi), k.R, k.u1, k.u2, E_prime, sigma, T_bulk,
                                          rise ? *rise : 0.0};
                 const EhlContactResult c = ehl_contact(in, oil, rh, {}, true, &bulk);
                 if (rise) *rise = c.T_film - T_bulk;
@@ -181,7 +189,7 @@ double helical_mesh_loss(const geometry::PairGeometry& g, double w0, double F_bn
                 for (int q = 0; q < 4; ++q) {  // exact for the cubic mu times the linear v_slide
                     const double xi = 0.5 * (a + bb) + 0.5 * (bb - a) * kG4x[q];
                     const double mu = (1 - f) * mu_at(sd, xi, mu_light) + f * mu_at(sd, xi, mu_heavy);
-                    const double v_slide = std::abs(w0 * xi - w1 * std::abs(g.T1T2 - xi));
+                    const double v_slide = std::abs(w0 * xi - w0 / g.u * std::abs(g.T1T2 - xi));  // as kinematics_at
                     integral += 0.5 * (bb - a) * kG4w[q] * std::max(mu, 0.0) * v_slide;
                 }
             }
