@@ -228,8 +228,7 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
         if (io::g_interrupted) return kInterrupted;
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (stats) {
-            const size_t n = sh ? sh->range(job.total_points()).second - sh->range(job.total_points()).first
-                                : job.total_points();
+            const size_t n = res.results.size();
             std::fprintf(stderr, "points %zu of %zu (%zu sweep variants), %.4f s, %.0f points/s\n", n, job.total_points(),
                          job.variants.size(), seconds, n / seconds);
         }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <boost/math/tools/toms748_solve.hpp>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 
@@ -18,6 +19,24 @@ namespace {
 // Integrated state: node temperatures, then the energies of each heat flow [J].
 using State = std::array<double, 12>;
 enum : size_t { kOil, kHousing, kClutch, kMesh, kChurn, kBearing, kSeal, kClutchDrag, kAux, kTc, kAmbient, kHeater };
+
+State initial_state(const thermal::NodeTemperatures& start) {
+    State x{};
+    x[kOil] = start[0];
+    x[kHousing] = start[1];
+    x[kClutch] = start[2];
+    return x;
+}
+
+thermal::NodeTemperatures nodes(const State& x) { return {x[kOil], x[kHousing], x[kClutch]}; }
+
+// Node temperatures for the trace: an absent node reads as the oil.
+void trace_temperatures(TraceRow& row, const thermal::Network& net, const State& x) {
+    row.T_oil = x[kOil];
+    row.T_housing = net.has_housing() ? x[kHousing] : x[kOil];
+    row.T_clutch = net.has_clutch() ? x[kClutch] : x[kOil];
+}
+
 
 // What stays fixed over one step of the cycle (the oil temperature does not).
 struct StepLoad {
@@ -37,7 +56,7 @@ struct Rates {
     void operator()(const State& x, State& dx, double /*t*/) const {
         const solver::Model& tm = pt.thermal_model();
         const auto& net = tm.thermal.network;
-        const thermal::NodeTemperatures T{x[kOil], x[kHousing], x[kClutch]};
+        const thermal::NodeTemperatures T = nodes(x);
         const lubricant::OilState os = tm.oil_state(T[0]);
         solver::LossBreakdown L;
         if (load.gearbox) L = solver::evaluate_losses(*load.gearbox, load.point, os, false);
@@ -76,10 +95,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
     std::vector<double> input_per_wheel;
     for (const auto& m : pt.gears) input_per_wheel.push_back(veh.final_drive / std::abs(m.layout.ratio));
 
-    State x{};
-    x[kOil] = start[0];
-    x[kHousing] = start[1];
-    x[kClutch] = start[2];
+    State x = initial_state(start);
     StepLoad load;
     int gear = 1;
     double last_loss = 0;
@@ -92,9 +108,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         row.time = cycle.time[i];
         row.speed = cycle.speed[i];
         row.accel = a;
-        row.T_oil = x[kOil];
-        row.T_housing = net.has_housing() ? x[kHousing] : x[kOil];
-        row.T_clutch = net.has_clutch() ? x[kClutch] : x[kOil];
+        trace_temperatures(row, net, x);
         load = StepLoad{};
         load.air_speed = veh.underbody_air * v;
         const double w_wheel = v / veh.wheel_radius;
@@ -175,9 +189,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         TraceRow last;
         last.time = cycle.time.back();
         last.speed = cycle.speed.back();
-        last.T_oil = x[kOil];
-        last.T_housing = net.has_housing() ? x[kHousing] : x[kOil];
-        last.T_clutch = net.has_clutch() ? x[kClutch] : x[kOil];
+        trace_temperatures(last, net, x);
         last.engine_speed = veh.engine.idle_speed;
         res.trace.push_back(last);
     }
@@ -190,7 +202,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
     tot.E_tc = x[kTc];
     tot.E_ambient = x[kAmbient];
     tot.E_heater = x[kHeater];
-    tot.end = {x[kOil], x[kHousing], x[kClutch]};
+    tot.end = nodes(x);
     tot.stored_end = thermal::stored_heat(net, tot.end, ambient);
     return res;
 }
@@ -200,10 +212,7 @@ PrewarmResult prewarm(const Powertrain& pt, const thermal::NodeTemperatures& sta
     PrewarmResult r;
     StepLoad load;
     load.heater = power;
-    State x{};
-    x[kOil] = start[0];
-    x[kHousing] = start[1];
-    x[kClutch] = start[2];
+    State x = initial_state(start);
     if (x[kOil] >= target) {
         r.reached = true;
         r.state = start;
@@ -222,7 +231,7 @@ PrewarmResult prewarm(const Powertrain& pt, const thermal::NodeTemperatures& sta
             r.time = t + f;
             r.energy = at[kHeater];
             r.heat_lost = at[kAmbient];
-            r.state = {at[kOil], at[kHousing], at[kClutch]};
+            r.state = nodes(at);
             return r;
         }
         t += 1.0;
@@ -230,16 +239,16 @@ PrewarmResult prewarm(const Powertrain& pt, const thermal::NodeTemperatures& sta
     r.time = t;
     r.energy = x[kHeater];
     r.heat_lost = x[kAmbient];
-    r.state = {x[kOil], x[kHousing], x[kClutch]};
+    r.state = nodes(x);
     // Steady oil temperature at this heater power: power = Q(T).
     const solver::Model& tm = pt.thermal_model();
-    double lo = ambient, hi = ambient + 1.0;
-    while (tm.heat_flow(hi, ambient, 0.0) < power && hi < ambient + 1000) hi += (hi - ambient);
-    for (int k = 0; k < 80; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (tm.heat_flow(mid, ambient, 0.0) < power ? lo : hi) = mid;
-    }
-    r.max_oil_temperature = 0.5 * (lo + hi);
+    auto excess = [&](double T) { return tm.heat_flow(T, ambient, 0.0) - power; };  // rises with T
+    double hi = ambient + 1.0;
+    while (excess(hi) < 0 && hi < ambient + 1000) hi += (hi - ambient);
+    std::uintmax_t it = 80;
+    const auto [a, b] = boost::math::tools::toms748_solve(
+        excess, ambient, hi, [](double x0, double x1) { return std::abs(x1 - x0) < 1e-6; }, it);
+    r.max_oil_temperature = 0.5 * (a + b);
     return r;
 }
 
