@@ -13,6 +13,7 @@
 #include "diagnosis/diagnose.hpp"
 #include "diagnosis/synth.hpp"
 #include "io/atomic_file.hpp"
+#include "io/case_plausibility.hpp"
 #include "io/config.hpp"
 #include "io/cycle_report.hpp"
 #include "io/reports.hpp"
@@ -68,11 +69,14 @@ void apply_overrides(io::Case& k, const Common& c) {
     }
 }
 
-io::Case load(const Common& c) {
+// `check` lists the plausibility warnings in its report; every other command prints them on stderr.
+io::Case load(const Common& c, bool warn_on_stderr = true) {
     std::optional<std::string> ratio;
     if (!c.ratio.empty()) ratio = c.ratio;
     io::Case k = io::load_case(c.config, ratio);
     apply_overrides(k, c);
+    io::check_oil_temperature(k, c.oil_temp.empty() ? "" : "--oil-temp");
+    if (warn_on_stderr) io::print_warnings(k);
     return k;
 }
 
@@ -202,6 +206,7 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
             const std::string& torques, bool stats, const std::string& shard, const std::string& json_file) {
     io::Case k = load(c);
     override_grid(k, speeds, torques);
+    const auto oil_temp = c.oil_temp.empty() ? std::nullopt : std::optional<double>(k.model.thermal.oil_temperature);
     gearloss::map::MapOptions opt;
     opt.threads = threads;
     opt.detail = detail;
@@ -221,7 +226,11 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
             }
         }
         std::optional<gearloss::map::Shard> sh;
-        if (!shard.empty()) sh = gearloss::map::parse_shard(shard);
+        if (!shard.empty()) {
+            sh = gearloss::map::parse_shard(shard);
+            job.inputs = gearloss::map::input_fingerprint({.config = c.config, .oil_file = c.oil, .oil_temperature = oil_temp,
+                                                           .ratio = c.ratio, .format = "csv", .detail = detail});
+        }
         const auto t0 = std::chrono::steady_clock::now();
         const auto res = gearloss::map::run_job(job, opt, sh);
         const std::string& csv = res.csv;
@@ -246,7 +255,7 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
         size_t evals = 0, no_eq = 0;
         for (const auto& r : results) {
             evals += static_cast<size_t>(r.evaluations);
-            no_eq += r.status != gearloss::solver::PointStatus::ok;
+            no_eq += !gearloss::solver::has_values(r.status);
         }
         std::fprintf(stderr, "points %zu, solve %.4f s, %.0f points/s, %.2f loss evaluations/point, %zu without equilibrium\n",
                      results.size(), seconds, results.size() / seconds, double(evals) / results.size(), no_eq);
@@ -429,6 +438,8 @@ int main(int argc, char** argv) {
     try {
         int rc = kOk;
         if (map->parsed()) {
+            if (map_format == "vecto" && !shard.empty())
+                throw InputError("", 0, 0, "--shard", "--format vecto writes whole tables per gear; it cannot be sharded");
             rc = map_format == "vecto" ? run_vecto(common, out, threads, speeds, torques)
                                        : run_map(common, out, threads, detail, speeds, torques, stats, shard, map_json);
         } else if (point->parsed()) {
@@ -488,7 +499,7 @@ int main(int argc, char** argv) {
             const double w = single_value(speed1, gearloss::units::dim::angular_speed, "--speed", "1600rpm");
             const double T = single_value(torque1, gearloss::units::dim::torque, "--torque", "720Nm");
             const auto r = gearloss::solver::solve_point(k.model, w, T);
-            if (r.status != gearloss::solver::PointStatus::ok)
+            if (!gearloss::solver::has_values(r.status))
                 throw InputError("", 0, 0, "--speed", "no thermal equilibrium at this point; give --oil-temp");
             io::AtomicFile f(out);
             f.write(io::mesh_profile_csv(k, mesh_name, w, T, r.oil_temperature, positions));
@@ -554,7 +565,7 @@ int main(int argc, char** argv) {
             f.write(csv);
             f.commit();
         } else if (check->parsed()) {
-            io::Case k = load(common);
+            io::Case k = load(common, false);
             std::fputs((json ? io::check_json(k) : io::check_report(k)).c_str(), stdout);
         }
         if (io::g_interrupted) {

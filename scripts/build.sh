@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Configures and builds gearloss (Release) into build/ (or $BUILD_DIR).
+# Uses ccache when it is installed, so that the sanitizer build, the mutation
+# check and extra build directories recompile only what changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${BUILD_DIR:-build}
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=${BUILD_TYPE:-Release} ${CMAKE_EXTRA:-} > /dev/null
+launcher=()
+command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=${BUILD_TYPE:-Release} "${launcher[@]}" ${CMAKE_EXTRA:-} > /dev/null
 cmake --build "$build" -j "$(nproc)"

@@ -168,6 +168,49 @@ check "merge byte-identical to a single run" cmp -s "$tmp/single.csv" "$tmp/merg
 check "merge missing shard exit 2" test $? -eq 2
 check "merge missing shard message" grep -q "missing shard(s) 2 of 3" "$tmp/err9.txt"
 
+# Shards of different jobs are refused (exit 2), naming both files and what differs. The
+# case and its oil are copied twice under the same names, one oil with one number changed.
+fg=(--speed 600,800rpm --torque 100,200Nm)
+for d in j1 j2; do
+    mkdir -p "$tmp/$d/oils"
+    cp "$src/configs/transfer-box.yaml" "$tmp/$d/case.yaml"
+    cp "$src/configs/oils/75W90-A.yaml" "$tmp/$d/oils/75W90-A.yaml"
+done
+sed -i 's/^density: 885 kg/density: 886 kg/' "$tmp/j2/oils/75W90-A.yaml"
+check "fingerprint test oil edited" bash -c "! cmp -s '$tmp/j1/oils/75W90-A.yaml' '$tmp/j2/oils/75W90-A.yaml'"
+refused() {  # refused NAME A B PATTERN: merge of A and B exits 2 naming both and PATTERN
+    "$bin" merge "$2" "$3" -o "$tmp/refused.csv" 2> "$tmp/err-fp.txt" > /dev/null
+    check "$1: exit 2" test $? -eq 2
+    check "$1: names the difference" grep -qF -- "$4" "$tmp/err-fp.txt"
+    check "$1: names both files" bash -c "grep -qF '$(basename "$2")' '$tmp/err-fp.txt' && grep -qF '$(basename "$3")' '$tmp/err-fp.txt'"
+    check "$1: no output" test ! -e "$tmp/refused.csv"
+}
+"$bin" map "$tmp/j1/case.yaml" "${fg[@]}" --oil-temp 60degC --shard 1/2 -o "$tmp/t60-1.csv"
+"$bin" map "$tmp/j1/case.yaml" "${fg[@]}" --oil-temp 90degC --shard 2/2 -o "$tmp/t90-2.csv"
+refused "shards at two --oil-temp" "$tmp/t60-1.csv" "$tmp/t90-2.csv" "oil temperature override (--oil-temp)"
+"$bin" map "$tmp/j1/case.yaml" "${fg[@]}" --oil-temp 60degC --shard 1/2 -o "$tmp/oilA-1.csv"
+"$bin" map "$tmp/j2/case.yaml" "${fg[@]}" --oil-temp 60degC --shard 2/2 -o "$tmp/oilB-2.csv"
+refused "case oil file edited" "$tmp/oilA-1.csv" "$tmp/oilB-2.csv" "oil file content (the case's 'oil' file)"
+"$bin" map "$src/configs/transfer-box.yaml" "${fg[@]}" --oil "$tmp/j1/oils/75W90-A.yaml" --shard 1/2 -o "$tmp/xA-1.csv"
+"$bin" map "$src/configs/transfer-box.yaml" "${fg[@]}" --oil "$tmp/j2/oils/75W90-A.yaml" --shard 2/2 -o "$tmp/xB-2.csv"
+refused "--oil file edited" "$tmp/xA-1.csv" "$tmp/xB-2.csv" "oil file content (--oil)"
+# A shard written by another release: its version field edited (the rows may differ
+# between releases, so the fingerprint covers the version even when all else agrees).
+"$bin" map "$tmp/j1/case.yaml" "${fg[@]}" --oil-temp 60degC --shard 2/2 -o "$tmp/oilA-2.csv"
+sed '1s/ version=[^ ]*/ version=0.0.9/' "$tmp/oilA-2.csv" > "$tmp/old-2.csv"
+check "version field edited" bash -c "head -1 '$tmp/old-2.csv' | grep -q ' version=0.0.9 '"
+refused "shard of another release" "$tmp/oilA-1.csv" "$tmp/old-2.csv" "program version: 0.0.9 in"
+# The same job from another working directory, the case (and --oil) named by other
+# relative paths: file contents count, not paths, so the shards merge into the single run.
+abs_src=$(cd "$src" && pwd)  # the subshells below change directory
+cp "$src/configs/oils/75W140-A.yaml" "$tmp/j1/75W140-copy.yaml"
+(cd "$tmp" && "$bin" map j1/case.yaml "${fg[@]}" --oil "$abs_src/configs/oils/75W140-A.yaml" --shard 1/2 -o cwd-1.csv)
+(cd "$tmp/j1" && "$bin" map ./case.yaml "${fg[@]}" --oil 75W140-copy.yaml --shard 2/2 -o ../cwd-2.csv)
+"$bin" map "$tmp/j2/../j1/case.yaml" "${fg[@]}" --oil "$src/configs/oils/75W140-A.yaml" -o "$tmp/cwd-single.csv"
+"$bin" merge "$tmp/cwd-2.csv" "$tmp/cwd-1.csv" -o "$tmp/cwd-merged.csv"
+check "same job from another directory merges" test $? -eq 0
+check "merged from two directories = single run" cmp -s "$tmp/cwd-single.csv" "$tmp/cwd-merged.csv"
+
 # Progress: rate and ETA on a terminal (a pseudo-terminal from script(1)), nothing otherwise.
 GEARLOSS_PROGRESS_AFTER=0 script -qec "'$bin' map '$src/configs/transfer-box.yaml' ${grid[*]} -o '$tmp/p1.csv'" /dev/null > "$tmp/tty.txt"
 check "progress on a terminal" grep -q 'points/s, ETA' "$tmp/tty.txt"

@@ -26,7 +26,7 @@ bearings::BearingSpec dgbb_6205() {
 }  // namespace
 
 TEST_CASE("SKF model: 6205 worked values of the reference", "[bearings]") {
-    // bearings-ehl-oil.md §1 check values: n 3000, nu 20, Fr 1000 N, Fa 0, K_rs 3e-8, mineral:
+    // Hand calculation with the SKF (2004) equations: n 3000, nu 20, Fr 1000 N, Fa 0, K_rs 3e-8, mineral:
     // G_rr 0.02082, G_sl 125.02, phi_ish 0.9636, phi_rs 0.9673, M_rr 15.33, phi_bl 0.00748, M_sl 6.34, M 20.63 N mm.
     const auto b = dgbb_6205();
     const auto g = bearings::skf_load_terms(b, 1000, 0, 3000);

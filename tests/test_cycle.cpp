@@ -41,7 +41,7 @@ TEST_CASE("drive cycles: duration and distance against the published figures", "
     CHECK(nedc.time.size() == 1180);
     CHECK(nedc.duration() == 1179.0);
     CHECK(nedc.distance() / 1e3 == Approx(11.023).margin(0.005));
-    // WLTC class 3b: 1800 s, 23.266 km (bearings-ehl-oil.md §4).
+    // WLTC class 3b (UN GTR No. 15): 1800 s, 23.266 km integrated from the shipped 1 Hz trace.
     const auto wltc = cycle::resolve_cycle("wltc", cycle_dirs());
     CHECK(wltc.duration() == 1800.0);
     CHECK(wltc.distance() / 1e3 == Approx(23.266).margin(0.005));

@@ -45,7 +45,7 @@ geometry::PairGeometry fzg_c() {
 }  // namespace
 
 TEST_CASE("EHL contact: Hertz half-width and pressure against the hand values", "[ehl]") {
-    // bearings-ehl-oil.md §3: E* 115.4 GPa, R' 10 mm, w 500 N/mm -> a = 234.9 um, p0 = 1.355 GPa.
+    // Hertz line contact (Johnson 1985, ch. 4): E* 115.4 GPa, R' 10 mm, w 500 N/mm -> a = 234.9 um, p0 = 1.355 GPa.
     const auto r = mesh::ehl_contact(contact(500, 5, 5), oil(), {}, {}, false);
     CHECK(r.a == Approx(234.9e-6).epsilon(1e-3));
     CHECK(r.p0 == Approx(1.355e9).epsilon(1e-3));
@@ -111,7 +111,7 @@ TEST_CASE("EHL path: with a constant friction the path integral reproduces mu H_
     mesh::Rheology rh;
     rh.mu_boundary = 0.08;
     const auto prof = mesh::ehl_path(geo, 14e-3, w1, F_bt, 1, 2 * 115.4e9, 1e-3, 353.15, oil(), rh, 2000);
-    const double H_V = 0.1950;  // published test-vector value (gear-losses.md §1)
+    const double H_V = 0.1950;  // Ohlendorf (1958) H_V of the FZG type C pair (hand calculation)
     CHECK(prof.loss == Approx(0.08 * H_V * T1 * w1).epsilon(2e-3));
     // Sliding vanishes at the pitch point: the local efficiency is highest there.
     double best = 0, at = 1e9;

@@ -24,7 +24,7 @@ geometry::GearSpec fzg(int z, double x, double b_mm) {
 }  // namespace
 
 TEST_CASE("FZG type C geometry matches the published test vector", "[geometry]") {
-    // gear-losses.md §1 test vector (FZG C: z 16/24, m 4.5, x 0.1817/0.1715, b 14);
+    // ISO 21771 hand calculation (FZG C: z 16/24, m 4.5, x 0.1817/0.1715, b 14);
     // tip diameters 82.46/118.36 mm match the FZG drawing, a_w = 91.5 mm is the rig's.
     const auto g = geometry::pair_geometry(fzg(16, 0.1817, 14), fzg(24, 0.1715, 14));
     CHECK(g.alpha_wt / deg == Approx(22.439).margin(0.001));
@@ -47,7 +47,7 @@ TEST_CASE("given centre distance reproduces the shift-derived one", "[geometry]"
 }
 
 TEST_CASE("Wimmer numerical H_V equals Ohlendorf for spur gears with rigid load sharing", "[mesh]") {
-    // gear-losses.md §2.1: beta = 0 + rigid sharing -> Ohlendorf.
+    // Wimmer (2006) H_VL: beta = 0 + rigid sharing -> Ohlendorf (1958).
     const auto g = geometry::pair_geometry(fzg(16, 0.1817, 14), fzg(24, 0.1715, 14));
     const auto sweep = mesh::sweep_contact_lines(g, 4000);
     CHECK(sweep.H_V == Approx(mesh::loss_factor_ohlendorf(g, 16)).epsilon(2e-3));
@@ -60,7 +60,7 @@ TEST_CASE("Wimmer numerical H_V equals Ohlendorf for spur gears with rigid load 
 }
 
 TEST_CASE("Schlenk mean friction: FZG C worked example", "[mesh]") {
-    // gear-losses.md §2.2 example: T1 = 302 N m, n1 = 1500 rpm, eta = 50 mPa s, Ra = 0.3 um, X_L = 1
+    // Schlenk (1994) mu_mZ, hand calculation: T1 = 302 N m, n1 = 1500 rpm, eta = 50 mPa s, Ra = 0.3 um, X_L = 1
     // -> w = 637.7 N/mm, v_sumC = 4.389 m/s, mu = 0.0517, P_VZP = 478 W.
     const auto g = geometry::pair_geometry(fzg(16, 0.1817, 14), fzg(24, 0.1715, 14));
     const double T1 = 302, w1 = 1500 * 2 * std::numbers::pi / 60;
@@ -89,7 +89,7 @@ TEST_CASE("impossible gear pairs are rejected", "[geometry]") {
 }
 
 TEST_CASE("Hertz pressure and film thickness against hand values", "[mesh]") {
-    // bearings-ehl-oil.md §3: steel E* = 115.4 GPa, R' = 10 mm, w = 500 N/mm -> p0 = 1.355 GPa.
+    // Hertz line contact (Johnson 1985, ch. 4): steel E* = 115.4 GPa, R' = 10 mm, w = 500 N/mm -> p0 = 1.355 GPa.
     CHECK(mesh::hertz_pressure(500e3, 10e-3, 2 * 115.4e9) == Approx(1.355e9).epsilon(1e-3));
     // Ertel-Grubin central film, hand calculation: eta0 = 0.05 Pa s, u_e = 5 m/s, E' = 230.8 GPa,
     // R = 10 mm, alpha = 2e-8 1/Pa, w = 500 N/mm: U = 1.0832e-10, G = 4616, W = 2.1664e-4,

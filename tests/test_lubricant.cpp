@@ -8,7 +8,7 @@ using namespace gearloss;
 using Approx = Catch::Detail::Approx;
 
 TEST_CASE("Vogel three-point fit reproduces the reference check values", "[lubricant]") {
-    // bearings-ehl-oil.md §2: (40, 68), (70, 20), (100, 8.6) -> k 0.08690, b 888.29, c 93.327
+    // Vogel (1921) law, hand calculation: (40, 68), (70, 20), (100, 8.6) -> k 0.08690, b 888.29, c 93.327
     const double T[3] = {40, 70, 100}, nu[3] = {68, 20, 8.6};
     const auto v = lubricant::VogelLaw::fit(T, nu);
     CHECK(v.k_mm2s == Approx(0.08690).epsilon(2e-4));
@@ -46,7 +46,7 @@ TEST_CASE("shipped oils match seed 001 Table 3.4 within 1 %", "[lubricant]") {
 TEST_CASE("Gold piezoviscosity and density law", "[lubricant]") {
     lubricant::Oil oil;
     oil.base = lubricant::BaseOil::mineral;
-    // 0.9904e-8 * 100^0.139 = 1.88e-8 1/Pa (bearings-ehl-oil.md §2 check)
+    // 0.9904e-8 * 100^0.139 = 1.88e-8 1/Pa (Gold et al. 2001 law, mineral constants)
     CHECK(oil.pressure_viscosity(313.15, 100.0) == Approx(1.88e-8).epsilon(0.005));
     oil.rho15 = 885;
     oil.expansion = 6.8e-4;

@@ -39,7 +39,7 @@ void check_cells(const std::string& row, size_t expected_cells) {
     CHECK(cells.size() == expected_cells);
     for (size_t i = 0; i < cells.size(); ++i) {
         const std::string& c = cells[i];
-        if (c.empty() || c == "ok" || c == "no_equilibrium") continue;
+        if (c.empty() || c == "ok" || c == "no_equilibrium" || c == "above_oil_limit") continue;
         INFO("cell " << i << " of " << row);
         char* end = nullptr;
         const double v = std::strtod(c.c_str(), &end);
@@ -155,7 +155,7 @@ TEST_CASE("stress map: extreme but legal inputs give finite numbers or an explic
                 check_cells(row, columns);
                 CHECK(row.find("nan") == std::string::npos);
                 CHECK(row.find("inf") == std::string::npos);
-                no_eq += r.status != solver::PointStatus::ok;
+                no_eq += !solver::has_values(r.status);
                 ++cells_rows;
             }
         }
@@ -169,7 +169,7 @@ TEST_CASE("property: the heat balance holds at every stabilised point", "[proper
         for (double n : {100.0, 800.0, 2000.0})
             for (double T : {0.0, 100.0, 300.0}) {
                 const auto r = solver::solve_point(c.model, n * rpm, T);
-                if (r.status != solver::PointStatus::ok) continue;
+                if (!solver::has_values(r.status)) continue;
                 const double Q = c.model.heat_flow(r.oil_temperature, r.ambient, n * rpm);
                 INFO(f << " " << n << " rpm " << T << " N m");
                 CHECK(std::abs(r.losses.total() - Q) < 0.05);

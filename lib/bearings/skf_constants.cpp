@@ -99,7 +99,7 @@ const Table& table(BearingType t) {
     };
     static const Table crf = {{"other", crb(2.13e-6, 0.16, 0.0015, 6.2, 0.70)}};
     // No SKF row exists for needle rollers: the thin-section caged CRB row (series 10)
-    // is used as a proxy (bearings-ehl-oil.md §1); `gearloss check` says so.
+    // is used as a proxy (SKF 2004 tabulates no needle rollers); `gearloss check` says so.
     static const Table nd = {{"other", crb(1.12e-6, 0.17, 0.0015, 5.1, 0.65)}};
     static const Table tr = {
         {"302", trb(1.76e-6, 0.017)}, {"303", trb(1.69e-6, 0.017)}, {"313", trb(1.84e-6, 0.048)},

@@ -1,6 +1,6 @@
 #pragma once
 // Geometry constants of the SKF (2004) frictional moment model by bearing type
-// and series (bearings-ehl-oil.md §1, tables R/S, K_Z/K_L, seals).
+// and series (SKF 2004 tables of R/S constants, K_Z/K_L and seal constants).
 #include <optional>
 #include <string>
 #include <vector>

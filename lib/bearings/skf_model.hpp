@@ -1,5 +1,5 @@
 #pragma once
-// SKF (2004) rolling-bearing frictional moment (bearings-ehl-oil.md §1):
+// SKF (2004) rolling-bearing frictional moment (the catalogue's total-moment equation):
 //   M = phi_ish phi_rs M_rr + M_sl + M_seal + M_drag
 // Units of the source: d, D, B, d_m in mm; n in r/min; nu in mm^2/s; loads N; M in N*mm.
 #include <optional>

@@ -1,6 +1,6 @@
 #pragma once
 // Churning of a gear dipping in the sump: Changenet & Velex (2007),
-// J. Mech. Des. 129(1) 128-133, as consolidated in gear-losses.md §4.1.
+// J. Mech. Des. 129(1) 128-133 (drag coefficient C_m of both Reynolds regimes).
 
 namespace gearloss::churning {
 

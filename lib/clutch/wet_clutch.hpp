@@ -19,7 +19,7 @@ struct WetClutchPack {
 };
 
 // Patir & Cheng (1979) shear-stress factor phi_fs for isotropic roughness (gamma = 1),
-// phi_fs = 11.1 H^2.31 exp(-2.38 H + 0.11 H^2), H = h/sigma < 7 (bearings-ehl-oil.md §5);
+// phi_fs = 11.1 H^2.31 exp(-2.38 H + 0.11 H^2), H = h/sigma < 7 (Patir & Cheng 1979, fit for gamma = 1);
 // 0 beyond its range (it is 0.013 at H = 7, against 1 for the smooth-film term).
 double shear_stress_factor(double H);
 

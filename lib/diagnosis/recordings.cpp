@@ -8,9 +8,11 @@
 #include <sstream>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "io/csv_read.hpp"
+#include "units/units.hpp"
 
 namespace gearloss::diagnosis {
 
@@ -20,25 +22,59 @@ constexpr double rpm = std::numbers::pi / 30.0;
 
 using io::split_csv_line;
 
-// Column name -> (canonical key, scale to SI, offset).
-struct ColumnDef {
-    const char* name;
+// A column is a quantity and its unit, "speed_in_rpm", "speed_in_Hz", "speed_in_1/min",
+// "speed_in_rad/s", "torque_in_Nm", "P_loss_kW", "oil_temp_C", "oil_temp_K", "time_min":
+// the prefix names the quantity, the rest is a unit read by the units module (rotational
+// speeds with its convention: Hz and 1/min count revolutions, a bare 1/s is ambiguous).
+struct QuantityColumn {
+    const char* prefix;
     const char* key;
-    double scale, offset;
+    const units::Dimension* dim;
+    bool temperature;  // an absolute temperature (degC, K, degF)
 };
-constexpr ColumnDef kColumns[] = {
-    {"speed_in_rpm", "speed_in", rpm, 0},     {"torque_in_Nm", "torque_in", 1, 0},
-    {"P_loss_W", "loss", 1, 0},               {"P_loss_kW", "loss", 1e3, 0},
-    {"oil_temp_C", "oil", 1, 273.15},         {"ambient_temp_C", "ambient", 1, 273.15},
-    {"room_temp_C", "ambient", 1, 273.15},    {"torque_out_Nm", "torque_out", 1, 0},
-    {"speed_out_rpm", "speed_out", rpm, 0},   {"time_s", "time", 1, 0},
-    {"time_min", "time", 60, 0},              {"wall_temp_C", "wall", 1, 273.15},
-    {"label", "label", 1, 0},
+const QuantityColumn kQuantityColumns[] = {
+    {"speed_in_", "speed_in", &units::dim::angular_speed, false},  {"speed_out_", "speed_out", &units::dim::angular_speed, false},
+    {"torque_in_", "torque_in", &units::dim::torque, false},       {"torque_out_", "torque_out", &units::dim::torque, false},
+    {"P_loss_", "loss", &units::dim::power, false},                {"time_", "time", &units::dim::time, false},
+    {"oil_temp_", "oil", &units::dim::temperature, true},          {"ambient_temp_", "ambient", &units::dim::temperature, true},
+    {"room_temp_", "ambient", &units::dim::temperature, true},     {"wall_temp_", "wall", &units::dim::temperature, true},
 };
+
+struct ColumnDef {
+    std::string key;
+    double scale = 1, offset = 0;  // SI = scale * cell + offset
+};
+
+// The definition of a header cell; nullopt for an unknown column. A known
+// quantity with a unit that is unknown, of the wrong dimension or ambiguous is an error.
+std::optional<ColumnDef> column_definition(const std::string& name, const std::string& file, int line, int col) {
+    if (name == "label") return ColumnDef{"label"};
+    for (const auto& q : kQuantityColumns) {
+        const std::string prefix = q.prefix;
+        if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+        const std::string unit = name.substr(prefix.size());
+        try {
+            const units::UnitFactor f = units::parse_unit(unit);
+            if (f.dim != *q.dim || f.affine != q.temperature)
+                throw units::UnitError(fmt::format("unit '{}' is not {}", unit,
+                                                   q.temperature ? "a temperature (C, degC, K)" : units::to_string(*q.dim)));
+            units::Quantity one;
+            one.value = f.scale;
+            one.dim = f.dim;
+            one.explicit_angle = f.angle;
+            one.rotation = f.rotation;
+            return ColumnDef{q.key, units::as_rotational_speed(one, unit), f.offset};
+        } catch (const units::UnitError& e) {
+            throw InputError(file, line, col, name, e.msg);
+        }
+    }
+    return std::nullopt;
+}
 
 struct Table {
     std::vector<std::string> header;
     std::map<std::string, size_t> col;  // key -> column index
+    std::vector<ColumnDef> def;         // per column (key empty: unknown)
     std::vector<std::vector<std::string>> rows;
     std::vector<int> lines;
 };
@@ -57,10 +93,9 @@ Table read_table(const std::string& file, std::istream& in, std::vector<std::str
     }
     if (header.empty()) throw InputError(file, ln, 0, "", "no header line");
     t.header = header;
+    t.def.resize(header.size());
     for (size_t i = 0; i < header.size(); ++i) {
-        const ColumnDef* def = nullptr;
-        for (const auto& c : kColumns)
-            if (header[i] == c.name) def = &c;
+        const auto def = column_definition(header[i], file, ln, static_cast<int>(i + 1));
         if (!def) {
             warnings.push_back(fmt::format("{}:{}: unknown column '{}' ignored", file, ln, header[i]));
             continue;
@@ -68,6 +103,7 @@ Table read_table(const std::string& file, std::istream& in, std::vector<std::str
         if (t.col.count(def->key))
             throw InputError(file, ln, static_cast<int>(i + 1), header[i], "column duplicates another for the same quantity");
         t.col[def->key] = i;
+        t.def[i] = *def;
     }
     while (std::getline(in, line)) {
         ++ln;
@@ -93,9 +129,7 @@ double cell(const std::string& file, const Table& t, size_t r, const std::string
     const std::string& name = t.header[it->second];
     const double v = io::csv_cell_number(s, file, t.lines[r], static_cast<int>(it->second + 1), name);
     if (present) *present = true;
-    for (const auto& c : kColumns)
-        if (name == c.name) return v * c.scale + c.offset;
-    return v;
+    return v * t.def[it->second].scale + t.def[it->second].offset;
 }
 
 void require(const std::string& file, const Table& t, const char* key, const char* name) {

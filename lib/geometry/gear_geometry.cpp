@@ -13,6 +13,15 @@ double GearSpec::alpha_t() const { return std::atan(std::tan(alpha_n) / std::cos
 double GearSpec::d() const { return z * mt(); }
 double GearSpec::db() const { return d() * std::cos(alpha_t()); }
 
+const char* to_string(TipSource s) {
+    switch (s) {
+        case TipSource::given_tip_alteration: return "given tip alteration factor";
+        case TipSource::given_tip_diameter: return "given tip diameter";
+        case TipSource::iso_tip_alteration: break;
+    }
+    return "ISO 21771 tip alteration";
+}
+
 double involute(double a) { return std::tan(a) - a; }
 
 double inverse_involute(double inv) {
@@ -70,8 +79,23 @@ PairGeometry pair_geometry(const GearSpec& g1, const GearSpec& g2, std::optional
     // ISO 21771: k = y - (x1 + x2) <= 0 keeps the nominal tip clearance (external pairs).
     const double k = internal ? 0.0 : std::min(0.0, y - (g1.x + g2.x));
     const double dw1 = 2.0 * a_w / (1.0 + z2 / z1);
-    const double da1 = d1 + 2.0 * mn * (g1.ha_star + g1.x + k), df1 = d1 - 2.0 * mn * (g1.hf_star - g1.x);
-    const double da2 = d2 + 2.0 * mn * (g2.ha_star + g2.x + k), df2 = d2 - 2.0 * mn * (g2.hf_star - g2.x);
+    // Tip diameter (ISO 21771, signed for the internal gear): d_a = d + 2 m_n (h*_a + x + k).
+    const auto tip = [&](const GearSpec& g, double d, double s, int i) {
+        const double nominal = d + 2.0 * mn * (g.ha_star + g.x);
+        double da = nominal + 2.0 * mn * k;
+        p.tip_source[i] = TipSource::iso_tip_alteration;
+        if (g.tip_diameter) {
+            da = s * *g.tip_diameter;
+            p.tip_source[i] = TipSource::given_tip_diameter;
+        } else if (g.tip_alteration_factor) {
+            da = nominal + 2.0 * mn * *g.tip_alteration_factor;
+            p.tip_source[i] = TipSource::given_tip_alteration;
+        }
+        p.k_applied[i] = (da - nominal) / (2.0 * mn);
+        return da;
+    };
+    const double da1 = tip(g1, d1, 1.0, 0), df1 = d1 - 2.0 * mn * (g1.hf_star - g1.x);
+    const double da2 = tip(g2, d2, sg, 1), df2 = d2 - 2.0 * mn * (g2.hf_star - g2.x);
     p.a = abs(a);
     p.a_w = abs(a_w);
     p.y = sg * y;
@@ -134,14 +158,18 @@ PairGeometry pair_geometry(const GearSpec& g1, const GearSpec& g2, std::optional
     p.eps1 = ga1 / p.p_bt;
     p.eps2 = ga2 / p.p_bt;
     p.eps_alpha = p.eps1 + p.eps2;
-    if (p.eps_alpha < 1.0)
-        throw GeometryError(fmt::format("transverse contact ratio {:.3f} < 1: the pair does not mesh continuously",
-                                        p.eps_alpha));
     p.T1B = p.T1E - p.p_bt;
     p.T1D = p.T1A + p.p_bt;
     p.b_eff = std::min(g1.b, g2.b);
     p.eps_beta = p.b_eff * sin(beta) / (std::numbers::pi * mn);
     p.eps_gamma = p.eps_alpha + p.eps_beta;
+    // Continuous meshing needs a total contact ratio of 1 (ISO 21771); a helical
+    // pair may have eps_alpha < 1 when the overlap makes up the difference.
+    if (p.eps_gamma < 1.0)
+        throw GeometryError(fmt::format("total contact ratio eps_gamma = {:.3f} < 1 (eps_alpha {:.3f} + eps_beta {:.3f}): "
+                                        "the pair does not mesh continuously",
+                                        p.eps_gamma, p.eps_alpha, p.eps_beta));
+    p.transverse_gap = p.eps_alpha < 1.0;
     // rho_redC = a_w sin(alpha_wt) u / ((u + 1)^2 cos beta_b) with signed a_w and u.
     const double us = z2 / z1;
     p.rho_redC = a_w * sin(p.alpha_wt) * us / ((1.0 + us) * (1.0 + us) * cos(p.beta_b));

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "bearings/skf_constants.hpp"
+#include "io/case_plausibility.hpp"
 #include "io/sweep.hpp"
 
 namespace gearloss::io {
@@ -54,10 +55,17 @@ lubricant::BearingFrictionPair parse_pair(const YamlNode& n) {
 
 lubricant::Oil load_oil(const YamlNode& n) {
     n.allow_keys({"name", "base", "viscosity", "density", "thermal_expansion", "piezoviscosity", "X_L",
-                  "thermal_conductivity", "specific_heat", "bearing_friction", "gear_friction", "traction", "note"});
+                  "thermal_conductivity", "specific_heat", "bearing_friction", "gear_friction", "traction",
+                  "max_temperature", "note"});
     lubricant::Oil oil;
     oil.name = n.at("name").as_string();
     oil.base = parse_base(n.at("base"));
+    oil.max_temperature = lubricant::default_max_temperature(oil.base);
+    if (auto t = n.get("max_temperature")) {
+        oil.max_temperature = t->as_temperature();
+        if (!(oil.max_temperature > 273.15 && oil.max_temperature < 273.15 + 400))
+            t->fail("permissible oil temperature outside 0..400 degC");
+    }
 
     const YamlNode v = n.at("viscosity");
     v.allow_keys({"law", "points", "astm_d341"});
@@ -227,7 +235,11 @@ std::vector<double> parse_value_list(const std::string& text, const units::Dimen
             throw InputError("", 0, 0, what,
                              "'" + p + "' has dimension " + units::to_string(v.dim) + ", expected " + units::to_string(d) +
                                  " (e.g. '" + example + "')");
-        out.push_back(v.value);
+        try {
+            out.push_back(units::as_rotational_speed(v, q));
+        } catch (const units::UnitError& e) {
+            throw InputError("", 0, 0, what, e.msg + " (expected e.g. '" + example + "')");
+        }
     }
     return out;
 }
@@ -306,7 +318,7 @@ struct Loader {
         for (const auto& n : root.at("gears").items()) {
             n.allow_keys({"name", "shaft", "position", "teeth", "module", "profile_shift", "face_width", "pressure_angle",
                           "helix_angle", "hand", "material", "Ra", "Rq", "mount", "immersion", "addendum_coefficient",
-                          "dedendum_coefficient", "internal", "carrier", "planets", "note"});
+                          "dedendum_coefficient", "internal", "carrier", "planets", "tip_diameter", "tip_alteration_factor", "note"});
             gearbox::Gear g;
             auto& s = g.spec;
             s.name = n.at("name").as_string();
@@ -345,6 +357,14 @@ struct Loader {
             }
             if (n.has("addendum_coefficient")) s.ha_star = n.at("addendum_coefficient").as_number();
             if (n.has("dedendum_coefficient")) s.hf_star = n.at("dedendum_coefficient").as_number();
+            if (n.has("tip_diameter") && n.has("tip_alteration_factor"))
+                n.at("tip_alteration_factor").fail("give either 'tip_diameter' or 'tip_alteration_factor', not both");
+            if (n.has("tip_diameter")) s.tip_diameter = n.positive_quantity("tip_diameter", dim::length, "82.46 mm");
+            if (auto k = n.get("tip_alteration_factor")) {
+                s.tip_alteration_factor = k->as_number();
+                if (!(*s.tip_alteration_factor > -1.0 && *s.tip_alteration_factor <= 0.5))
+                    k->fail("tip alteration factor k outside -1..0.5 (ISO 21771 sign: k <= 0 shortens the tip)");
+            }
             s.material = n.has("material") ? material(n.at("material")) : materials["steel"];
             if (n.has("Ra")) s.Ra = n.positive_quantity("Ra", dim::length, "0.5 um");
             if (n.has("Rq")) s.Rq = n.positive_quantity("Rq", dim::length, "0.6 um");
@@ -447,7 +467,7 @@ struct Loader {
             if (auto se = n.get("seals")) {
                 const std::string st = se->as_string();
                 if (st != "none") {
-                    // M_seal = K_S1 d_s^beta + K_S2 (bearings-ehl-oil.md §1, both sides sealed).
+                    // M_seal = K_S1 d_s^beta + K_S2 (SKF 2004 seal moment, both sides sealed).
                     using BT = bearings::BearingType;
                     if (s.type == BT::deep_groove_ball && st == "RS1") {
                         s.seal_beta = 2.25;
@@ -808,7 +828,10 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     }
 
     const YamlNode h = root.at("housing");
-    h.allow_keys({"oil_volume", "oil_level", "note"});
+    h.allow_keys({"oil_volume", "oil_level", "lubrication", "note"});
+    const auto lubrication = h.has("lubrication") ? h.at("lubrication").as_enum<solver::Lubrication>(
+                                                        {{"dip", solver::Lubrication::dip}, {"injection", solver::Lubrication::injection}})
+                                                  : solver::Lubrication::dip;
     m.gearbox.oil_volume = h.positive_quantity("oil_volume", units::dim::volume, "2 L");
     if (auto lv = h.get("oil_level")) m.gearbox.oil_level = lv->as_quantity(units::dim::length, "-60 mm");
 
@@ -845,6 +868,17 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     } catch (const gearbox::TopologyError& e) {
         gbn.fail(e.msg);
     }
+    // Ohlendorf's closed form (and the single-pair average) assume 1 <= eps_alpha < 2.
+    if (m.options.loss_factor != mesh::LossFactorModel::wimmer)
+        for (size_t i = 0; i < m.layout.meshes.size(); ++i) {
+            const auto& g = m.layout.meshes[i].geom;
+            if (g.eps_alpha < 1.0 || g.eps_alpha >= 2.0)
+                root.at("options").at("gear_loss_factor").fail(fmt::format(
+                    "mesh '{}' has eps_alpha = {:.3f}, outside the 1..2 that this closed form assumes; use 'wimmer' "
+                    "(rigid load sharing over the contact lines)",
+                    m.gearbox.meshes[i].name, g.eps_alpha));
+        }
+    check_case_plausibility(root, c, lubrication);
     return c;
 }
 }  // namespace

@@ -40,6 +40,9 @@ struct Case {
     std::optional<vehicle::Vehicle> vehicle;  // for `gearloss cycle`
     std::optional<torque_converter::TorqueConverter> torque_converter;
     std::vector<SweepAxis> sweep;  // `sweep:` axes (map runs every combination; io/sweep.hpp)
+    // Plausibility findings ("file:line:col: key: warning: ..."), printed by every
+    // command on stderr and listed by `check`.
+    std::vector<std::string> warnings;
 };
 
 // The `vehicle` block (docs/config.md) into c.vehicle (and c.torque_converter).

@@ -15,10 +15,13 @@ namespace {
 constexpr double rpm = 30.0 / std::numbers::pi;
 constexpr double deg = 180.0 / std::numbers::pi;
 
-std::string status_line(const solver::PointResult& r) {
+std::string status_line(const solver::Model& m, const solver::PointResult& r) {
     if (r.status == solver::PointStatus::no_equilibrium)
         return fmt::format("status: no_equilibrium (losses exceed heat rejection up to {:.1f} degC)\n",
                            r.oil_temperature - 273.15);
+    if (r.status == solver::PointStatus::above_oil_limit)
+        return fmt::format("status: above_oil_limit (the oil settles above its permissible {:.1f} degC)\n",
+                           m.oil.max_temperature - 273.15);
     return "status: ok\n";
 }
 }  // namespace
@@ -30,8 +33,8 @@ std::string point_report(const Case& c, const solver::PointResult& r) {
     std::string s;
     s += fmt::format("{} — oil {}{}\n", m.name, m.oil.name, c.ratio.empty() ? "" : ", ratio " + c.ratio);
     s += fmt::format("input  {:10.2f} rpm  {:10.2f} N*m  {:10.1f} W\n", r.speed_in * rpm, r.torque_in, r.power_in);
-    s += status_line(r);
-    if (r.status != solver::PointStatus::ok) return s;
+    s += status_line(m, r);
+    if (!solver::has_values(r.status)) return s;
     s += fmt::format("output {:10.2f} rpm  {:10.2f} N*m  {:10.1f} W\n", r.omega_out * rpm, r.torque_out, r.power_out);
     s += fmt::format("oil temperature {:.2f} degC (ambient {:.2f} degC, {})\n", r.oil_temperature - 273.15,
                      r.ambient - 273.15, m.thermal.mode == solver::ThermalMode::fixed ? "fixed" : "stabilised");
@@ -114,8 +117,15 @@ std::string check_report(const Case& c) {
                          g.tip_clearance[1] * 1e3);
         s += fmt::format("    eps_1 = {:.4f}, eps_2 = {:.4f}, eps_alpha = {:.4f}, eps_beta = {:.4f}, eps_gamma = {:.4f}\n",
                          g.eps1, g.eps2, g.eps_alpha, g.eps_beta, g.eps_gamma);
-        s += fmt::format("    H_V: Ohlendorf {:.4f}, Buckingham {:.4f}, Wimmer (rigid) {:.4f}; rho_redC = {:.4f}, L_min = {:.3f}\n",
-                         md.H_V_ohlendorf, md.H_V_buckingham, md.H_V_wimmer, g.rho_redC * 1e3, md.L_min * 1e3);
+        s += fmt::format("    tips: {} {} (k = {:.4f}), {} {} (k = {:.4f})\n", g0.name, geometry::to_string(g.tip_source[0]),
+                         g.k_applied[0], g1.name, geometry::to_string(g.tip_source[1]), g.k_applied[1]);
+        if (g.transverse_gap)
+            s += fmt::format("    note: eps_alpha = {:.4f} < 1; contact stays continuous through the overlap (eps_gamma = "
+                             "{:.4f}); H_V from the contact-line sweep\n",
+                             g.eps_alpha, g.eps_gamma);
+        s += fmt::format("    H_V: Ohlendorf {:.4f}, Buckingham {:.4f}, Wimmer (rigid) {:.4f} [used: {}]; rho_redC = {:.4f}, L_min = {:.3f}\n",
+                         md.H_V_ohlendorf, md.H_V_buckingham, md.H_V_wimmer, mesh::to_string(m.options.loss_factor),
+                         g.rho_redC * 1e3, md.L_min * 1e3);
     }
     s += "\nshafts (housing frame, y up, mm) and speeds per input speed\n";
     for (size_t i = 0; i < gb.shafts.size(); ++i)
@@ -138,7 +148,13 @@ std::string check_report(const Case& c) {
                      lubricant::to_string(m.oil.base), s40.nu_cSt, s100.nu_cSt, m.oil.rho15, m.oil.X_L);
     s += fmt::format("    alpha_p(40) = {:.4g} 1/Pa, alpha_p(100) = {:.4g} 1/Pa, beta_T(40) = {:.4g} 1/K\n", s40.alpha_p,
                      s100.alpha_p, s40.beta_T);
+    s += fmt::format("    permissible oil temperature {:.1f} degC (above it a stabilised point is 'above_oil_limit')\n",
+                     m.oil.max_temperature - 273.15);
     s += fmt::format("operating points: {}\n", c.grid.size());
+    if (!c.warnings.empty()) {
+        s += fmt::format("\nplausibility ({}):\n", c.warnings.size());
+        for (const auto& w : c.warnings) s += "  " + w + "\n";
+    }
     return s;
 }
 
@@ -166,6 +182,8 @@ std::string check_json(const Case& c) {
         j.key("reference_centre_distance_mm").value(g.a * 1e3);
         j.key("working_pressure_angle_deg").value(g.alpha_wt * deg);
         j.key("tip_diameters_mm").begin_array().value(g.da[0] * 1e3).value(g.da[1] * 1e3).end_array();
+        j.key("tip_sources").begin_array().value(geometry::to_string(g.tip_source[0])).value(geometry::to_string(g.tip_source[1])).end_array();
+        j.key("tip_alteration_factors").begin_array().value(g.k_applied[0]).value(g.k_applied[1]).end_array();
         j.key("root_diameters_mm").begin_array().value(g.df[0] * 1e3).value(g.df[1] * 1e3).end_array();
         j.key("working_pitch_diameters_mm").begin_array().value(g.dw[0] * 1e3).value(g.dw[1] * 1e3).end_array();
         j.key("eps_1").value(g.eps1);
@@ -176,6 +194,8 @@ std::string check_json(const Case& c) {
         j.key("H_V_ohlendorf").value(md.H_V_ohlendorf);
         j.key("H_V_buckingham").value(md.H_V_buckingham);
         j.key("H_V_wimmer").value(md.H_V_wimmer);
+        j.key("H_V_model").value(mesh::to_string(m.options.loss_factor));
+        j.key("H_V").value(md.loss_factor(m.options.loss_factor));
         j.key("rho_redC_mm").value(g.rho_redC * 1e3);
         j.end_object();
     }
@@ -218,8 +238,12 @@ std::string check_json(const Case& c) {
     j.key("nu100_cSt").value(s100.nu_cSt);
     j.key("rho15_kg_m3").value(m.oil.rho15);
     j.key("X_L").value(m.oil.X_L);
+    j.key("max_temperature_C").value(m.oil.max_temperature - 273.15);
     j.end_object();
     j.key("operating_points").value(c.grid.size());
+    j.key("warnings").begin_array();
+    for (const auto& w : c.warnings) j.value(w);
+    j.end_array();
     j.end_object();
     return j.str() + "\n";
 }

@@ -64,6 +64,12 @@ void YamlNode::fail(const std::string& message) const {
     throw InputError(file_, known ? m.line + 1 : 0, known ? m.column + 1 : 0, path_, message);
 }
 
+std::string YamlNode::located(const std::string& message) const {
+    const YAML::Mark m = node_.Mark();
+    const bool known = !m.is_null() && m.line >= 0;
+    return InputError::format(file_, known ? m.line + 1 : 0, known ? m.column + 1 : 0, path_, message);
+}
+
 bool YamlNode::has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
 
 YamlNode YamlNode::at(const std::string& key) const {
@@ -196,7 +202,11 @@ double YamlNode::as_quantity(const units::Dimension& expected, const char* examp
     }
     if (q.absolute_temperature)
         fail("'" + s + "' is a temperature; a temperature difference or rate was expected (e.g. '" + example + "')");
-    return q.value;
+    try {
+        return units::as_rotational_speed(q, s);
+    } catch (const units::UnitError& e) {
+        fail(e.msg + std::string(" (expected e.g. '") + example + "')");
+    }
 }
 
 double YamlNode::as_temperature() const {

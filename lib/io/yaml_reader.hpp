@@ -30,6 +30,8 @@ public:
     bool has(const std::string& key) const;
 
     [[noreturn]] void fail(const std::string& message) const;
+    // "file:line:col: key.path: message", for warnings that point at this node.
+    std::string located(const std::string& message) const;
 
     YamlNode at(const std::string& key) const;                 // required
     std::optional<YamlNode> get(const std::string& key) const; // optional

@@ -19,8 +19,22 @@ const char* to_string(BaseOil b) {
     return "?";
 }
 
+double default_max_temperature(BaseOil b) {
+    switch (b) {
+        case BaseOil::mineral: return 273.15 + 95.0;
+        case BaseOil::pao:
+        case BaseOil::ester:
+        case BaseOil::pag:
+        case BaseOil::pag_water_soluble: return 273.15 + 110.0;
+        case BaseOil::transmission_fluid: return 273.15 + 120.0;
+        case BaseOil::phosphate_ester:
+        case BaseOil::traction_fluid: return 273.15 + 100.0;
+    }
+    return 273.15 + 95.0;
+}
+
 std::optional<double> default_XL(BaseOil b) {
-    // ISO/TS 6336-20 lubricant factor table (gear-losses.md §2.2).
+    // ISO/TS 6336-20 (2017) lubricant factor X_L table.
     switch (b) {
         case BaseOil::mineral: return 1.0;
         case BaseOil::transmission_fluid: return 1.0;
@@ -118,7 +132,7 @@ OilState Oil::state(double T_K) const {
         s.k = (0.1172 / SG15) * (1.0 - 0.00054 * T_C);  // Cragoe (petroleum oils)
     } else {
         // Synthetic base stocks conduct ~15 % better than mineral oils
-        // (PAO 0.15-0.16, esters/PAG 0.15-0.17 W/(m K); bearings-ehl-oil.md §2).
+        // (PAO 0.15-0.16, esters/PAG 0.15-0.17 W/(m K); typical data-sheet values, no single source).
         s.k = 0.158 * (1.0 - 0.00054 * T_C);
     }
     s.cp = cp_fixed ? *cp_fixed : 1000.0 * (1.684 + 0.00339 * T_C) / std::sqrt(SG15);  // Cragoe

@@ -62,6 +62,7 @@ public:
     std::optional<double> k_fixed;   // W/(m K); else from base oil
     std::optional<double> cp_fixed;  // J/(kg K); else Cragoe
     double X_L = 1.0;               // lubricant factor of the mean gear friction
+    double max_temperature = 368.15;  // K, permissible bulk (sump) temperature; from the datasheet or per base oil
     BearingFrictionPair bearing_ball, bearing_roller;
     TractionProperties traction;
 
@@ -71,11 +72,16 @@ public:
     double pressure_viscosity(double T_K, double nu_mm2s) const;
 };
 
+// Permissible sump temperature [K] when the oil file gives none: mineral oils 95 degC
+// (the sump temperature at which ISO/TR 14179-1 rates thermal capacity), synthetic
+// gear oils and ATF 110-120 degC (typical datasheet limits for continuous service, assumed).
+double default_max_temperature(BaseOil b);
+
 // X_L default by base oil (ISO/TS 6336-20 table); nullopt where the table has none.
 std::optional<double> default_XL(BaseOil b);
 
 // Gold et al. (2001) alpha = s * nu^t (nu in mm^2/s), constants as consolidated
-// in bearings-ehl-oil.md §2.
+// in Fernandes 2015 (PhD thesis), Table 2.7.
 std::pair<double, double> gold_constants(BaseOil b);
 
 }  // namespace gearloss::lubricant

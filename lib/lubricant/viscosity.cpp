@@ -6,7 +6,7 @@
 namespace gearloss::lubricant {
 
 VogelLaw VogelLaw::fit(const double T[3], const double nu[3]) {
-    // Closed form of bearings-ehl-oil.md §2 (Vogel three-point solution).
+    // Vogel (1921) law through three points: closed-form solution (derived, not from a source).
     const double l1 = std::log(nu[0]), l2 = std::log(nu[1]), l3 = std::log(nu[2]);
     if (!(l2 != l3)) throw std::invalid_argument("Vogel fit needs distinct viscosities");
     const double R = (l1 - l2) / (l2 - l3);

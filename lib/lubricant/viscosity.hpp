@@ -7,7 +7,7 @@
 namespace gearloss::lubricant {
 
 // Vogel: nu = k * exp(b / (T + c)), T in degC, nu in mm^2/s (Vogel 1921;
-// three-point fit as in bearings-ehl-oil.md §2, used by seed 001 eq. 2.10).
+// three-point fit as used by Pereira 2017 (seed 001) eq. 2.10).
 struct VogelLaw {
     double k_mm2s = 0, b_C = 0, c_C = 0;
     static VogelLaw fit(const double T_C[3], const double nu_mm2s[3]);

@@ -20,7 +20,7 @@ std::string compare_header(const std::string& a, const std::string& b) {
 }
 
 std::string compare_row(const solver::PointResult& a, const solver::PointResult& b) {
-    const bool oa = a.status == solver::PointStatus::ok, ob = b.status == solver::PointStatus::ok;
+    const bool oa = solver::has_values(a.status), ob = solver::has_values(b.status);
     const double Pa = oa ? a.losses.total() : NAN, Pb = ob ? b.losses.total() : NAN;
     const double Ta = oa ? a.oil_temperature - 273.15 : NAN, Tb = ob ? b.oil_temperature - 273.15 : NAN;
     const double ea = oa && a.has_efficiency ? a.efficiency : NAN, eb = ob && b.has_efficiency ? b.efficiency : NAN;

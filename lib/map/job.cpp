@@ -21,18 +21,6 @@ std::string prefix(const std::vector<std::string>& values) {
     for (const auto& v : values) s += io::csv_cell(v) + ",";
     return s;
 }
-
-struct Fnv {
-    uint64_t h = 1469598103934665603ull;
-    void add(const std::string& s) {
-        for (unsigned char c : s) {
-            h ^= c;
-            h *= 1099511628211ull;
-        }
-        h ^= 0xff;
-        h *= 1099511628211ull;
-    }
-};
 }  // namespace
 
 size_t MapJob::total_points() const {
@@ -52,9 +40,17 @@ std::string MapJob::header(bool detail) const {
     return h + body;
 }
 
-uint64_t MapJob::fingerprint(bool detail) const {
-    Fnv f;
-    f.add(header(detail));
+Fingerprint MapJob::fingerprint() const {
+    Fingerprint fp = inputs;
+    // The case or --oil-temp decides the mode; a sweep may mix them.
+    std::string thermal;
+    for (const auto& v : variants) {
+        const std::string m = v.c.model.thermal.mode == solver::ThermalMode::fixed ? "fixed" : "stabilised";
+        thermal = thermal.empty() || thermal == m ? m : "mixed";
+    }
+    fp.add("thermal", thermal);
+    // The rows' keys as written (rounded like the CSV): the resolved grid and sweep.
+    Fnv1a f;
     for (const auto& v : variants) {
         const std::string p = prefix(v.values);
         for (size_t i = 0; i < v.c.grid.size(); ++i) {
@@ -62,7 +58,8 @@ uint64_t MapJob::fingerprint(bool detail) const {
             f.add(p + io::csv_number(w * kRpm) + "," + io::csv_number(T));
         }
     }
-    return f.h;
+    fp.add("points", f.hex());
+    return fp;
 }
 
 std::pair<size_t, size_t> Shard::range(size_t total) const {
@@ -92,9 +89,12 @@ JobOutput run_job(const MapJob& job, const MapOptions& opt, const std::optional<
     const auto [begin, end] = shard ? shard->range(total) : std::pair<size_t, size_t>{0, total};
     JobOutput res;
     std::string& out = res.csv;
-    if (shard)
-        out += fmt::format("# gearloss shard {}/{}: rows {}-{} of {}, job {:016x}\n", shard->index, shard->count, begin,
-                           end, total, job.fingerprint(opt.detail));
+    if (shard) {
+        // Readers that know only "... job <hash>" (older merges) still parse the line.
+        const Fingerprint fp = job.fingerprint();
+        out += fmt::format("# gearloss shard {}/{}: rows {}-{} of {}, job {:016x}; {}\n", shard->index, shard->count,
+                           begin, end, total, fp.total(), fp.text());
+    }
     out += job.header(opt.detail);
     size_t offset = 0;
     MapOptions part_opt = opt;
@@ -125,6 +125,7 @@ std::string merge_shards(const std::vector<std::string>& files) {
         int index = 0, count = 0;
         size_t begin = 0, end = 0, total = 0;
         std::string job, header, body, file;
+        Fingerprint fp;
     };
     std::vector<Part> parts;
     for (const auto& file : files) {
@@ -143,6 +144,8 @@ std::string merge_shards(const std::vector<std::string>& files) {
                         &p.count, &p.begin, &p.end, &p.total, job) != 6)
             throw InputError(file, 1, 1, "", "not a shard of `gearloss map --shard K/N` (first line)");
         p.job = job;
+        const std::string line = text.substr(0, nl1);
+        if (const auto semi = line.find("; "); semi != std::string::npos) p.fp = Fingerprint::parse(line.substr(semi + 2));
         p.header = text.substr(nl1 + 1, nl2 - nl1);
         p.body = text.substr(nl2 + 1);
         const size_t rows = static_cast<size_t>(std::count(p.body.begin(), p.body.end(), '\n'));
@@ -154,9 +157,26 @@ std::string merge_shards(const std::vector<std::string>& files) {
     if (parts.empty()) throw InputError("", 0, 0, "merge", "no shard files given");
     std::sort(parts.begin(), parts.end(), [](const Part& a, const Part& b) { return a.index < b.index; });
     const Part& f = parts.front();
-    for (const auto& p : parts)
-        if (p.job != f.job || p.count != f.count || p.total != f.total || p.header != f.header)
-            throw InputError(p.file, 1, 1, "", "comes from a different map job than " + f.file);
+    for (const auto& p : parts) {
+        // Name what differs, so the stale or foreign shard can be found and recomputed.
+        auto diff = p.fp.differences(f.fp, p.file, f.file);
+        if (p.fp.parts().empty() != f.fp.parts().empty())  // not a list of every component
+            diff = {"program version (" + (p.fp.parts().empty() ? p.file : f.file) +
+                    " has no component fingerprint: written by an older release)"};
+        if (diff.empty() && p.job != f.job) diff.push_back("job fingerprint");
+        if (diff.empty() && p.header != f.header) diff.push_back("CSV columns");
+        if (!diff.empty()) {
+            std::string what;
+            for (const auto& d : diff) what += (what.empty() ? "" : "; ") + d;
+            throw InputError(p.file, 1, 1, "",
+                             fmt::format("shard {} differs from {} (not the same map job) in: {}", p.file, f.file, what));
+        }
+        if (p.count != f.count || p.total != f.total)
+            throw InputError(p.file, 1, 1, "",
+                             fmt::format("shard {} is {}/{} of {} rows, {} is {}/{} of {} rows: the same job cut "
+                                         "differently; recompute with one --shard K/N count",
+                                         p.file, p.index, p.count, p.total, f.file, f.index, f.count, f.total));
+    }
     for (size_t i = 0; i < parts.size(); ++i) {
         if (i > 0 && parts[i].index == parts[i - 1].index)
             throw InputError(parts[i].file, 1, 1, "", fmt::format("shard {} given twice (also {})", parts[i].index,

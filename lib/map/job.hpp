@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/config.hpp"
+#include "map/fingerprint.hpp"
 #include "map/map_runner.hpp"
 
 namespace gearloss::map {
@@ -21,9 +22,13 @@ struct MapJob {
     std::vector<Variant> variants;  // one (no sweep) or the sweep's cartesian product
     size_t total_points() const;
     std::string header(bool detail) const;
-    // FNV-1a of the header and of every row's key (sweep values, speed, torque): shards of
-    // different jobs cannot be merged by mistake.
-    uint64_t fingerprint(bool detail) const;
+    // What the job is computed from (case text, files it reads, overrides, version: the
+    // CLI fills it in with input_fingerprint); empty in tests that build jobs by hand.
+    Fingerprint inputs;
+    // `inputs` plus the thermal mode of the variants and a hash of every row's key (sweep
+    // values, speed, torque): written on each shard's first line so that shards of
+    // different jobs are not merged by mistake, and merge can say what differs.
+    Fingerprint fingerprint() const;
 };
 
 struct Shard {

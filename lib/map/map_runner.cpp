@@ -63,7 +63,7 @@ std::string csv_header(const solver::Model& m, bool detail) {
 }
 
 std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail) {
-    const bool ok = r.status == solver::PointStatus::ok;
+    const bool ok = solver::has_values(r.status);
     std::string s = fmt::format("{},{},{},{},", num(r.speed_in * rpm), num(r.torque_in), num(r.power_in),
                                 fixed(r.ambient - 273.15, 2));
     if (ok) {
@@ -99,12 +99,13 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
 }
 
 std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds) {
-    size_t ok = 0;
+    size_t ok = 0, above_limit = 0;
     double eff_min = 1, eff_max = 0, eff_sum = 0, P_min = 1e300, P_max = 0, T_min = 1e300, T_max = -1e300;
     size_t n_eff = 0;
     for (const auto& r : results) {
-        if (r.status != solver::PointStatus::ok) continue;
+        if (!solver::has_values(r.status)) continue;
         ++ok;
+        above_limit += r.status == solver::PointStatus::above_oil_limit;
         const double P = r.losses.total();
         P_min = std::min(P_min, P);
         P_max = std::max(P_max, P);
@@ -120,7 +121,8 @@ std::string map_summary_json(const std::vector<solver::PointResult>& results, do
     io::Json j;
     j.begin_object();
     j.key("points").value(results.size());
-    j.key("ok").value(ok);
+    j.key("ok").value(ok - above_limit);
+    j.key("above_oil_limit").value(above_limit);
     j.key("no_equilibrium").value(results.size() - ok);
     j.key("seconds").value(seconds);
     j.key("points_per_second").value(seconds > 0 ? results.size() / seconds : 0.0);

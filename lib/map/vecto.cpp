@@ -30,7 +30,7 @@ std::vector<VectoRow> vecto_loss_map(const solver::Model& m, const std::vector<d
     for (size_t i = 0; i < results.size(); ++i) {
         const auto& r = results[i];
         const auto [w, T] = grid.at(i);
-        if (r.status != solver::PointStatus::ok)
+        if (!solver::has_values(r.status))
             throw InputError("", 0, 0, "--format vecto",
                              fmt::format("no thermal equilibrium at {:.0f} rpm, {:.1f} N m: a VECTO map cannot have holes "
                                          "(give --oil-temp for a temperature-controlled map)",

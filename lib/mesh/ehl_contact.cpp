@@ -141,7 +141,7 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
         for (int it = 0; it < 8 && !converged; ++it) {
             const double fx = film_temperature(x, nullptr, nullptr);
             const double next = x + 0.8 * (fx - x);
-            converged = std::abs(next - x) < 0.1;  // |dT| < 0.1 K (bearings-ehl-oil.md §3)
+            converged = std::abs(next - x) < 0.1;  // |dT| < 0.1 K (numerical tolerance of this loop, not from a source)
             x = next;
         }
         double lo = in.T_bulk, hi = in.T_bulk + 300.0;

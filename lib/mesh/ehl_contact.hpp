@@ -1,5 +1,5 @@
 #pragma once
-// Thermal EHL traction of one line contact (bearings-ehl-oil.md §3, after
+// Thermal EHL traction of one line contact (Hertz: Johnson 1985, ch. 4; after
 // Olver & Spikes 1998 and Evans & Johnson 1986): Roelands viscosity at the film
 // temperature, Eyring shear capped by a limiting shear stress, integrated over
 // the Hertz pressure; flash temperature (Jaeger band source, Blok partition) and

@@ -1,6 +1,6 @@
 #pragma once
 // Mean coefficient of friction of the mesh and the pitch-point film
-// (gear-losses.md §2.2 and §3).
+// (Schlenk 1994, ISO/TS 6336-20, Doleschel 2003; films: Grubin 1949, Dowson & Higginson 1966).
 
 namespace gearloss::mesh {
 

@@ -7,6 +7,15 @@
 
 namespace gearloss::mesh {
 
+const char* to_string(LossFactorModel m) {
+    switch (m) {
+        case LossFactorModel::ohlendorf: return "ohlendorf";
+        case LossFactorModel::buckingham: return "buckingham";
+        case LossFactorModel::wimmer: break;
+    }
+    return "wimmer";
+}
+
 double loss_factor_ohlendorf(const geometry::PairGeometry& g, int z1) {
     // Internal pair: (u + 1) -> (u - 1).
     const double pre = std::numbers::pi * (g.u + g.sign) / (z1 * g.u * std::cos(g.beta_b));

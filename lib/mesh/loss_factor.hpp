@@ -1,11 +1,12 @@
 #pragma once
 // Gear loss factor H_V: the ratio of the mesh friction power to mu * P_in
-// (gear-losses.md §2.1).
+// (Ohlendorf 1958; Wimmer 2006, numerical H_VL).
 #include "geometry/gear_geometry.hpp"
 
 namespace gearloss::mesh {
 
 enum class LossFactorModel { ohlendorf, buckingham, wimmer };
+const char* to_string(LossFactorModel m);
 
 // Ohlendorf (1958): H_V = pi (u+1)/(z1 u cos beta_b) (1 - eps_a + eps1^2 + eps2^2).
 double loss_factor_ohlendorf(const geometry::PairGeometry& g, int z1);

@@ -12,6 +12,7 @@ const char* to_string(PointStatus s) {
     switch (s) {
         case PointStatus::ok: return "ok";
         case PointStatus::no_equilibrium: return "no_equilibrium";
+        case PointStatus::above_oil_limit: return "above_oil_limit";
     }
     return "?";
 }
@@ -289,6 +290,7 @@ PointResult solve_point(const Model& m, double omega_in, double torque_in, bool 
             return r;
         }
         T = eq.T;
+        if (T > m.oil.max_temperature) r.status = PointStatus::above_oil_limit;
     }
     r.oil_temperature = T;
     r.losses = evaluate_losses(m, p, m.oil_state(T), detail, true);

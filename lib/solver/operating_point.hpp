@@ -65,8 +65,13 @@ double total_loss(const Model& m, const PointState& p, double T_oil);
 // Stabilised oil temperature of a prepared point (the thermal solve alone).
 thermal::Equilibrium solve_temperature(const Model& m, const PointState& p, double ambient_K);
 
-enum class PointStatus { ok, no_equilibrium };
+// ok; above_oil_limit: a stabilised oil temperature above the oil's permissible
+// temperature (the numbers are computed, the operating point is not admissible);
+// no_equilibrium: no stable temperature up to max_oil_temperature (no numbers).
+enum class PointStatus { ok, above_oil_limit, no_equilibrium };
 const char* to_string(PointStatus s);
+// Whether the result carries losses, temperatures and efficiency.
+inline bool has_values(PointStatus s) { return s != PointStatus::no_equilibrium; }
 
 struct PointResult {
     double speed_in = 0, torque_in = 0, power_in = 0;  // rad/s, N*m, W

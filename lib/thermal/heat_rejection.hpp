@@ -1,5 +1,5 @@
 #pragma once
-// Heat flow from the oil to the surroundings (gear-losses.md §6).
+// Heat flow from the oil to the surroundings (convection: Incropera et al. 2007, ch. 7 and 9; Churchill 1977).
 #include <variant>
 
 namespace gearloss::thermal {

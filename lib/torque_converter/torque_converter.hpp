@@ -7,7 +7,7 @@
 namespace gearloss::torque_converter {
 
 // ANSI/HI 9.6.7 (2010) viscosity parameter in its US-unit form (the form verified in
-// code, bearings-ehl-oil.md §5): B = 16.5 nu^0.5 H^0.0625 / (Q^0.375 N^0.25), nu [cSt],
+// public code; ANSI/HI 9.6.7-2010, US units): B = 16.5 nu^0.5 H^0.0625 / (Q^0.375 N^0.25), nu [cSt],
 // H [ft], Q [gpm], N [rpm]. Inputs here are SI-ish: H [m], Q [m^3/s], N [rad/s].
 double hi_viscosity_parameter(double nu_cSt, double head_m, double flow_m3s, double speed_rad_s);
 // Efficiency correction C_eta = B^(-0.0547 B^0.69); 1 for B <= 1, B capped at 40 (range of the method).

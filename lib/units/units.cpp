@@ -59,6 +59,10 @@ namespace {
 struct Unit {
     double scale;
     Dimension d;
+    // What the expression names besides its dimension, for rotational speeds
+    // (radians are dimensionless, so "Hz" and "rad/s" share the dimension 1/s):
+    bool angle = false;      // rad, deg, rev, rpm: the angle is explicit
+    bool rotation = false;   // Hz or a time unit other than the second (1/min, min^-1): revolutions per time
 };
 
 const std::map<std::string, Unit, std::less<>>& unit_table() {
@@ -72,13 +76,14 @@ const std::map<std::string, Unit, std::less<>>& unit_table() {
         // mass
         {"kg", {1.0, mass}}, {"g", {1e-3, mass}}, {"t", {1e3, mass}},
         // time
-        {"s", {1.0, time}}, {"ms", {1e-3, time}}, {"min", {60.0, time}}, {"h", {3600.0, time}},
+        {"s", {1.0, time}}, {"ms", {1e-3, time}}, {"min", {60.0, time, false, true}}, {"h", {3600.0, time, false, true}},
         // temperature (as a unit inside expressions: kelvin; degC as a scale is a difference)
         {"K", {1.0, temperature}},
         // angle
-        {"rad", {1.0, none}}, {"deg", {pi / 180.0, none}}, {"rev", {2.0 * pi, none}},
-        // rotational speed
-        {"rpm", {2.0 * pi / 60.0, angular_speed}}, {"Hz", {1.0, angular_speed}},
+        {"rad", {1.0, none, true}}, {"deg", {pi / 180.0, none, true}}, {"rev", {2.0 * pi, none, true}},
+        // rotational speed; Hz is a frequency: as a rotational speed it counts revolutions (DIN 1301)
+        {"rpm", {2.0 * pi / 60.0, angular_speed, true}}, {"Hz", {1.0, angular_speed, false, true}},
+        {"kHz", {1e3, angular_speed, false, true}},
         // force, torque, pressure, energy, power
         {"N", {1.0, force}}, {"Nm", {1.0, torque}}, {"kNm", {1e3, torque}}, {"kN", {1e3, force}}, {"MN", {1e6, force}},
         {"Pa", {1.0, pressure}}, {"kPa", {1e3, pressure}}, {"MPa", {1e6, pressure}}, {"GPa", {1e9, pressure}},
@@ -140,11 +145,11 @@ private:
             if (c == '*' || c == '.') {
                 ++pos_;
                 Unit v = factor();
-                u = {u.scale * v.scale, add(u.d, v.d, +1)};
+                u = {u.scale * v.scale, add(u.d, v.d, +1), u.angle || v.angle, u.rotation || v.rotation};
             } else if (c == '/') {
                 ++pos_;
                 Unit v = factor();
-                u = {u.scale / v.scale, add(u.d, v.d, -1)};
+                u = {u.scale / v.scale, add(u.d, v.d, -1), u.angle || v.angle, u.rotation || v.rotation};
             } else {
                 break;
             }
@@ -168,7 +173,7 @@ private:
             if (pos_ - start > 2) fail("exponent out of range");
             int p = std::stoi(std::string(s_.substr(start, pos_ - start))) * sign;
             if (p > 6 || p < -6) fail("exponent out of range");
-            u = {std::pow(u.scale, p), mul(u.d, p)};
+            u = {std::pow(u.scale, p), mul(u.d, p), u.angle, u.rotation};
         } else {
             // "m2" / "m3" shorthand for squared / cubed units
             size_t start = pos_;
@@ -177,7 +182,7 @@ private:
                 if (pos_ - start > 2) fail("exponent out of range");
                 int p = std::stoi(std::string(s_.substr(start, pos_ - start)));
                 if (p > 6) fail("exponent out of range");
-                u = {std::pow(u.scale, p), mul(u.d, p)};
+                u = {std::pow(u.scale, p), mul(u.d, p), u.angle, u.rotation};
             }
         }
         return u;
@@ -229,7 +234,7 @@ UnitFactor parse_unit(std::string_view expr) {
     if (expr == "K") return {1.0, 0.0, dim::temperature, true};
     if (expr.empty()) return {1.0, 0.0, dim::none, false};
     Unit u = UnitParser(expr).parse();
-    return {u.scale, 0.0, u.d, false};
+    return {u.scale, 0.0, u.d, false, u.angle, u.rotation};
 }
 
 Quantity parse_quantity(std::string_view text) {
@@ -247,8 +252,21 @@ Quantity parse_quantity(std::string_view text) {
     q.value = v * f.scale + f.offset;
     q.dim = f.dim;
     q.absolute_temperature = f.affine;
+    q.explicit_angle = f.angle;
+    q.rotation = f.rotation;
     return q;
 }
+
+double as_rotational_speed(const Quantity& q, std::string_view text) {
+    if (q.dim != dim::angular_speed) return q.value;
+    if (q.explicit_angle) return q.value;                     // rpm, rev/min, rad/s, deg/s
+    if (q.rotation) return 2.0 * std::numbers::pi * q.value;  // Hz, 1/min, min^-1: revolutions per time
+    // "1/s" is the angular velocity in rad/s to some and revolutions per second (DIN 1301) to others.
+    throw UnitError("'" + std::string(trim(text)) +
+                    "' is ambiguous as a rotational speed: write 'rad/s' for an angular velocity, or 'Hz', 'rev/s', "
+                    "'rpm' or '1/min' for revolutions per time");
+}
+
 
 
 }  // namespace gearloss::units

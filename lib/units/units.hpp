@@ -29,6 +29,8 @@ struct Quantity {
     double value = 0.0;  // SI
     Dimension dim;
     bool absolute_temperature = false;  // parsed from degC/degF/K alone
+    bool explicit_angle = false;        // the unit names an angle (rad, deg, rev, rpm)
+    bool rotation = false;              // the unit names a frequency (Hz) or a time other than the second (1/min)
 };
 
 // Parses "<number> <unit expression>". Throws UnitError with a message that
@@ -43,8 +45,17 @@ struct UnitFactor {
     double offset = 0.0;
     Dimension dim;
     bool affine = false;
+    bool angle = false;     // see Quantity::explicit_angle
+    bool rotation = false;  // see Quantity::rotation
 };
 UnitFactor parse_unit(std::string_view expr);
+
+// A quantity of dimension 1/s read as a rotational speed [rad/s]. An explicit
+// angle (rpm, rev/min, rad/s, deg/s) is taken as written; a frequency with no
+// angle (Hz, 1/min, min^-1, the DIN spellings of a speed of rotation) counts
+// revolutions per time; a bare 1/s is ambiguous (rad/s or rev/s) and throws.
+// Other dimensions: the SI value unchanged.
+double as_rotational_speed(const Quantity& q, std::string_view text);
 
 struct UnitError : std::exception {
     explicit UnitError(std::string m) : msg(std::move(m)) {}

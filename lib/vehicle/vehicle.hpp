@@ -1,7 +1,7 @@
 #pragma once
 // The vehicle around the transmission: road load, final drive, gear ratios and
 // shift schedule, engine idle/overrun behaviour and an optional fuel map
-// (bearings-ehl-oil.md §4: F = f0 + f1 v + f2 v^2 + m_eff a + m g sin(theta)).
+// (road load of UN GTR No. 15, F = f0 + f1 v + f2 v^2, plus m_eff a + m g sin(theta)).
 #include <optional>
 #include <string>
 #include <vector>

@@ -38,7 +38,7 @@ inline void check_result(const gearloss::solver::Model& m, const gearloss::solve
     const std::string row = gearloss::map::csv_row(m, r, true);
     if (row.find("nan") != std::string::npos || row.find("inf") != std::string::npos)
         finding("non-finite cell in CSV row: " + row);
-    if (r.status != gearloss::solver::PointStatus::ok) return;
+    if (!gearloss::solver::has_values(r.status)) return;
     const auto& L = r.losses;
     for (double v : {L.mesh, L.churning, L.bearings, L.seals, L.auxiliary, r.oil_temperature, r.power_out, r.torque_out})
         if (!std::isfinite(v)) finding("non-finite result: " + row);
