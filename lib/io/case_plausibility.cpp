@@ -17,10 +17,20 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
             if (const auto* s = std::get_if<thermal::HousingSurface>(&c.model.thermal.rejection.model))
                 box = solver::housing_box(s->area, s->height, s->length);
 
+    if (auto t = root.at("thermal").get("oil_temperature"))
+        if (c.model.thermal.mode == solver::ThermalMode::fixed) {
+            const std::string located = t->located("");
+            c.oil_temperature_key = located.substr(0, located.size() - 2);  // without the trailing ": "
+        }
+    std::optional<double> housing_height;
+    if (auto hr = root.at("thermal").get("heat_rejection"))
+        if (auto hs = hr->get("housing"); hs && hs->has("height"))
+            if (const auto* s = std::get_if<thermal::HousingSurface>(&c.model.thermal.rejection.model))
+                housing_height = s->height;
     using J = solver::PlausibilityFinding::Subject;
     using S = solver::PlausibilityFinding::Severity;
     const auto gears = root.at("gears").items();
-    for (const auto& f : solver::check_plausibility(c.model, lubrication, box)) {
+    for (const auto& f : solver::check_plausibility(c.model, lubrication, box, housing_height)) {
         // (YamlNode is never assigned: assigning a YAML::Node rebinds the document's data.)
         const auto locate = [&]() -> YamlNode {
             switch (f.subject) {
@@ -52,12 +62,11 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
 void check_oil_temperature(Case& c, const std::string& option) {
     const auto& m = c.model;
     if (m.thermal.mode != solver::ThermalMode::fixed || !(m.thermal.oil_temperature > m.oil.max_temperature)) return;
-    c.warnings.push_back(InputError::format(option.empty() ? c.file : "", 0, 0,
-                                            option.empty() ? "thermal.oil_temperature" : option,
-                                            fmt::format("warning: fixed oil temperature {:.1f} degC is above the permissible "
-                                                        "{:.1f} degC of oil '{}' (its 'max_temperature')",
-                                                        m.thermal.oil_temperature - 273.15, m.oil.max_temperature - 273.15,
-                                                        m.oil.name)));
+    const std::string what = fmt::format("warning: fixed oil temperature {:.1f} degC is above the permissible {:.1f} degC "
+                                         "of oil '{}' (its 'max_temperature')",
+                                         m.thermal.oil_temperature - 273.15, m.oil.max_temperature - 273.15, m.oil.name);
+    if (option.empty() && !c.oil_temperature_key.empty()) c.warnings.push_back(c.oil_temperature_key + ": " + what);
+    else c.warnings.push_back(InputError::format("", 0, 0, option.empty() ? "thermal.oil_temperature" : option, what));
 }
 
 void print_warnings(const Case& c) {

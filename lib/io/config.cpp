@@ -1,6 +1,7 @@
 #include "io/config.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -195,13 +196,16 @@ namespace {
 // Position where the unit starts in "600rpm" / "1.5e-3 m" (an 'e' followed by a
 // digit or sign belongs to the number); npos when there is no unit.
 size_t unit_start(const std::string& s) {
-    for (size_t u = 0; u < s.size(); ++u) {
-        const char c = s[u];
-        const bool exponent = (c == 'e' || c == 'E') && u + 1 < s.size() &&
-                              (std::isdigit(static_cast<unsigned char>(s[u + 1])) || s[u + 1] == '-' || s[u + 1] == '+');
-        if ((std::isalpha(static_cast<unsigned char>(c)) || c == '%') && !exponent) return u;
-    }
-    return std::string::npos;
+    // The unit is whatever follows the number ("700 1/min": "1/min", not "min").
+    size_t b = 0;
+    while (b < s.size() && s[b] == ' ') ++b;
+    if (b < s.size() && s[b] == '+') ++b;
+    double v = 0;
+    const auto [ptr, ec] = std::from_chars(s.data() + b, s.data() + s.size(), v);
+    if (ec != std::errc() && ec != std::errc::result_out_of_range) return std::string::npos;
+    size_t u = static_cast<size_t>(ptr - s.data());
+    while (u < s.size() && s[u] == ' ') ++u;
+    return u < s.size() ? u : std::string::npos;
 }
 }  // namespace
 

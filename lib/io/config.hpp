@@ -43,6 +43,7 @@ struct Case {
     // Plausibility findings ("file:line:col: key: warning: ..."), printed by every
     // command on stderr and listed by `check`.
     std::vector<std::string> warnings;
+    std::string oil_temperature_key;  // "file:line:col: thermal.oil_temperature" when the case fixes it
 };
 
 // The `vehicle` block (docs/config.md) into c.vehicle (and c.torque_converter).

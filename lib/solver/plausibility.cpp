@@ -36,7 +36,8 @@ double segment_area(double r, double h) {
 }  // namespace
 
 std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication lubrication,
-                                                    const std::optional<HousingBox>& box) {
+                                                    const std::optional<HousingBox>& box,
+                                                    std::optional<double> housing_height) {
     using S = PlausibilityFinding::Severity;
     using J = PlausibilityFinding::Subject;
     std::vector<PlausibilityFinding> out;
@@ -91,21 +92,18 @@ std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication 
                            fmt::format("oil volume {:.2f} L cannot reach the oil level: a pool {:.1f} mm deep (the deepest "
                                        "immersion) over the housing floor ({:.0f} x {:.0f} mm) holds at least {:.2f} L",
                                        V * 1e3, deepest * mm, box->length * mm, box->width * mm, needed * 1e3)});
-        if (gb.oil_level && box->height > 0) {
-            // The input shaft is the origin of the housing frame; the housing cannot be lower than the gears.
-            double top = -1e300, bottom = 1e300;
-            for (size_t g = 0; g < gb.gears.size(); ++g) {
-                if (gb.gears[g].is_planet()) continue;
-                const double y = L.shaft_centre[gb.gears[g].shaft].y(), ra = tip_radius(m, g);
-                top = std::max(top, y + ra);
-                bottom = std::min(bottom, y - ra);
-            }
-            if (bottom < top && *gb.oil_level - bottom > box->height)
-                out.push_back({S::error, J::oil_level, -1,
-                               fmt::format("oil level {:.1f} mm is {:.1f} mm above the lowest gear tip, more than the "
-                                           "housing height {:.0f} mm",
-                                           *gb.oil_level * mm, (*gb.oil_level - bottom) * mm, box->height * mm)});
-        }
+    }
+    if (gb.oil_level && housing_height && *housing_height > 0) {
+        // The housing cannot be lower than the gears, so the oil cannot stand higher
+        // above the lowest gear tip than the housing is tall.
+        double bottom = 1e300;
+        for (size_t g = 0; g < gb.gears.size(); ++g)
+            if (!gb.gears[g].is_planet()) bottom = std::min(bottom, L.shaft_centre[gb.gears[g].shaft].y() - tip_radius(m, g));
+        if (bottom < 1e300 && *gb.oil_level - bottom > *housing_height)
+            out.push_back({S::error, J::oil_level, -1,
+                           fmt::format("oil level {:.1f} mm is {:.1f} mm above the lowest gear tip, more than the "
+                                       "housing height {:.0f} mm",
+                                       *gb.oil_level * mm, (*gb.oil_level - bottom) * mm, *housing_height * mm)});
     }
     return out;
 }

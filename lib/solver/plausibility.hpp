@@ -27,8 +27,11 @@ struct PlausibilityFinding {
     std::string message;
 };
 
+// `box`: the housing's outer envelope when known; `housing_height` [m] when known
+// (the oil level cannot stand higher above the lowest gear tip).
 std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication lubrication,
-                                                    const std::optional<HousingBox>& box);
+                                                    const std::optional<HousingBox>& box,
+                                                    std::optional<double> housing_height);
 
 // Box of a rectangular housing from its outer surface A = 2(LH + LW + HW), height H
 // and length L; nullopt when no positive width fits.

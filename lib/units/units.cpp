@@ -247,7 +247,8 @@ Quantity parse_quantity(std::string_view text) {
     if (ec != std::errc() || ptr == b) throw UnitError("'" + std::string(s) + "' does not start with a number");
     if (!std::isfinite(v)) throw UnitError("'" + std::string(s) + "' is not a finite number");
     std::string_view rest = trim(std::string_view(ptr, static_cast<size_t>(e - ptr)));
-    UnitFactor f = parse_unit(rest);
+    // "10/s" reads as 10 (1/s).
+    const UnitFactor f = !rest.empty() && rest.front() == '/' ? parse_unit("1" + std::string(rest)) : parse_unit(rest);
     Quantity q;
     q.value = v * f.scale + f.offset;
     q.dim = f.dim;

@@ -1,0 +1,289 @@
+#!/usr/bin/env bash
+# End-to-end checks of rotational speed units, tips/contact-ratio reporting and the
+# plausibility findings on the command line (black-box, from the specification).
+# Usage: cli_units_plausibility.sh GEARLOSS_BINARY SOURCE_DIR
+# Every file is written inside a private mktemp -d directory.
+set -u
+bin=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+check() {  # check NAME CONDITION...
+    local name=$1
+    shift
+    if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi
+}
+# Private copies of the shipped cases, with their oils next to them (relative oil paths).
+cp -r "$src/configs/oils" "$tmp/oils"
+cp "$src/configs/transfer-box.yaml" "$tmp/tb.yaml"
+cp "$src/configs/fzg-c40-paor.yaml" "$tmp/fzg.yaml"
+tb=$tmp/tb.yaml
+
+# ---------------------------------------------------------------------------------------
+# 1. Rotational speeds on the command line. 10 Hz = 10 rev/s = 600 rev/min; 62.8319 rad/s
+#    = 62.8319 * 60 / (2 pi) = 600.0003 rpm; 3600 deg/s = 10 rev/s; 0.01 kHz = 10 Hz.
+"$bin" point "$tb" --speed 600rpm --torque 100Nm --oil-temp 70degC > "$tmp/p_rpm.txt"
+check "point 600rpm exit 0" test $? -eq 0
+check "point 600rpm prints 600.00 rpm" grep -q '^input  *600\.00 rpm' "$tmp/p_rpm.txt"
+i=0
+for s in 10Hz "600 1/min" 600min^-1 600rev/min 10rev/s 3600deg/s 0.01kHz; do
+    i=$((i + 1))
+    "$bin" point "$tb" --speed "$s" --torque 100Nm --oil-temp 70degC > "$tmp/p_$i.txt" 2> "$tmp/p_$i.err"
+    check "point --speed '$s' exit 0" test $? -eq 0
+    check "point --speed '$s' = 600 rpm (whole report)" cmp -s "$tmp/p_rpm.txt" "$tmp/p_$i.txt"
+done
+"$bin" point "$tb" --speed 62.8319rad/s --torque 100Nm --oil-temp 70degC > "$tmp/p_rad.txt"
+check "point --speed 62.8319rad/s exit 0" test $? -eq 0
+check "point --speed 62.8319rad/s = 600.00 rpm" grep -q '^input  *600\.00 rpm' "$tmp/p_rad.txt"
+
+# A bare 1/s is ambiguous: exit 2, a message naming --speed and suggesting rad/s or Hz.
+i=0
+for s in 10/s "10 1/s" 10s^-1 "10 s^-1"; do
+    i=$((i + 1))
+    "$bin" point "$tb" --speed "$s" --torque 100Nm --oil-temp 70degC > /dev/null 2> "$tmp/bad_$i.err"
+    check "point --speed '$s' exit 2" test $? -eq 2
+    check "point --speed '$s' names --speed" grep -q -- '--speed' "$tmp/bad_$i.err"
+    check "point --speed '$s' suggests rad/s and Hz" bash -c "grep -q 'rad/s' '$tmp/bad_$i.err' && grep -q 'Hz' '$tmp/bad_$i.err'"
+done
+
+# Lists on map: "10,20Hz" = 600, 1200 rpm; "600,700 1/min" and "600,700min^-1" = 600, 700 rpm.
+i=0
+for s in "10,20Hz" "600,1200rpm" "600 1/min, 1200 1/min" "600,1200min^-1" "600,1200 1/min"; do
+    i=$((i + 1))
+    "$bin" map "$tb" --speed "$s" --torque 100Nm --oil-temp 70degC -o "$tmp/ml_$i.csv" 2> "$tmp/ml_$i.err"
+    check "map --speed '$s' exit 0" test $? -eq 0
+    check "map --speed '$s' rows 600, 1200 rpm" \
+        bash -c "[ \"\$(cut -d, -f1 '$tmp/ml_$i.csv' 2>/dev/null | tail -n +2 | tr '\n' ' ')\" = '600 1200 ' ]"
+done
+"$bin" map "$tb" --speed "10,20/s" --torque 100Nm --oil-temp 70degC -o "$tmp/ml_bad.csv" 2> "$tmp/ml_bad.err"
+check "map --speed '10,20/s' exit 2" test $? -eq 2
+check "map --speed '10,20/s' suggests rad/s and Hz" bash -c "grep -q 'rad/s' '$tmp/ml_bad.err' && grep -q 'Hz' '$tmp/ml_bad.err'"
+check "map --speed '10,20/s' leaves no file" test ! -e "$tmp/ml_bad.csv"
+
+# ---------------------------------------------------------------------------------------
+# 1b. Recordings headers. The same campaign in rpm, Hz (n/60), 1/min, rad/s (n 2 pi/60),
+#     with P_loss in kW (/1000) and the oil temperature in K (+273.15).
+"$bin" synth "$src/configs/transfer-box.yaml" --seed 1 -o "$tmp/rec.csv"
+check "synth exit 0" test $? -eq 0
+check "synth header has speed_in_rpm" grep -q '^speed_in_rpm,' "$tmp/rec.csv"
+# Whole-number Hz (600, 720, 900 rpm = 10, 12, 15 Hz): the reports must be identical.
+"$bin" synth "$src/configs/transfer-box.yaml" --seed 1 --speed 600,720,900rpm -o "$tmp/rec2.csv"
+python3 - "$tmp" << 'EOF'
+import csv, math, sys
+d = sys.argv[1]
+def rewrite(src, dst, col, new_name, f):
+    rows = list(csv.reader(open(f"{d}/{src}")))
+    j = rows[0].index(col)
+    rows[0][j] = new_name
+    for r in rows[1:]:
+        r[j] = f(float(r[j]))
+    with open(f"{d}/{dst}", "w", newline="") as o:
+        csv.writer(o, lineterminator="\n").writerows(rows)
+rewrite("rec.csv", "rec_hz.csv", "speed_in_rpm", "speed_in_Hz", lambda n: repr(n / 60))
+rewrite("rec.csv", "rec_permin.csv", "speed_in_rpm", "speed_in_1/min", lambda n: repr(n))
+rewrite("rec.csv", "rec_rads.csv", "speed_in_rpm", "speed_in_rad/s", lambda n: repr(n * 2 * math.pi / 60))
+rewrite("rec.csv", "rec_pers.csv", "speed_in_rpm", "speed_in_1/s", lambda n: repr(n / 60))
+rewrite("rec.csv", "rec_kw.csv", "P_loss_W", "P_loss_kW", lambda p: repr(p / 1000))
+rewrite("rec.csv", "rec_k.csv", "oil_temp_C", "oil_temp_K", lambda t: repr(t + 273.15))
+rewrite("rec2.csv", "rec2_hz.csv", "speed_in_rpm", "speed_in_Hz", lambda n: repr(n / 60))
+EOF
+check "recordings rewritten" test -s "$tmp/rec_hz.csv"
+"$bin" diagnose "$src/configs/transfer-box.yaml" "$tmp/rec.csv" --json "$tmp/d_rpm.json" > "$tmp/d_rpm.txt"
+check "diagnose rpm exit 0" test $? -eq 0
+"$bin" diagnose "$src/configs/transfer-box.yaml" "$tmp/rec2.csv" > "$tmp/d2_rpm.txt"
+"$bin" diagnose "$src/configs/transfer-box.yaml" "$tmp/rec2_hz.csv" > "$tmp/d2_hz.txt" 2> "$tmp/d2_hz.err"
+check "diagnose speed_in_Hz (whole Hz) exit 0" test $? -eq 0
+check "diagnose speed_in_Hz (whole Hz) = rpm report" cmp -s "$tmp/d2_rpm.txt" "$tmp/d2_hz.txt"
+check "diagnose speed_in_Hz: no unknown-column warning" bash -c "! grep -qi 'unknown' '$tmp/d2_hz.err'"
+for v in hz permin rads kw k; do
+    "$bin" diagnose "$src/configs/transfer-box.yaml" "$tmp/rec_$v.csv" --json "$tmp/d_$v.json" > "$tmp/d_$v.txt" 2> "$tmp/d_$v.err"
+    check "diagnose rec_$v exit 0" test $? -eq 0
+    check "diagnose rec_$v: no unknown-column warning" bash -c "! grep -qi 'unknown' '$tmp/d_$v.err'"
+    # Verdict, summary and the residual location (everything above the candidate list) equal;
+    # the RMSEs equal to 1e-6 relative. (Candidates whose fit is flat may move in the 4th digit.)
+    check "diagnose rec_$v: same verdict and report" \
+        bash -c "cmp -s <(sed '/^candidates/,\$d' '$tmp/d_rpm.txt') <(sed '/^candidates/,\$d' '$tmp/d_$v.txt')"
+    check "diagnose rec_$v: same json numbers" python3 -c "
+import json
+a = json.load(open('$tmp/d_rpm.json')); b = json.load(open('$tmp/d_$v.json'))
+assert a['verdict'] == b['verdict'], (a['verdict'], b['verdict'])
+assert a['points'] == b['points']
+for k in ('rmse_before', 'rmse_after', 'temp_rmse_before', 'temp_rmse_after'):
+    assert abs(a[k] - b[k]) <= 1e-6 * max(1.0, abs(a[k])), (k, a[k], b[k])
+"
+done
+check "diagnose rec_permin: identical report" cmp -s "$tmp/d_rpm.txt" "$tmp/d_permin.txt"
+"$bin" diagnose "$src/configs/transfer-box.yaml" "$tmp/rec_pers.csv" > /dev/null 2> "$tmp/d_pers.err"
+check "diagnose speed_in_1/s exit 2" test $? -eq 2
+check "diagnose speed_in_1/s names the column" grep -q 'speed_in_1/s' "$tmp/d_pers.err"
+check "diagnose speed_in_1/s suggests rad/s and Hz" bash -c "grep -q 'rad/s' '$tmp/d_pers.err' && grep -q 'Hz' '$tmp/d_pers.err'"
+
+# ---------------------------------------------------------------------------------------
+# 3. Contact ratios. FZG C40 helical (beta 25 deg), pinion h*_a 0.7, wheel tip 126.8703 mm:
+#    eps_alpha = 0.9333 (hand: test_tips_contact_ratio.cpp), eps_beta = 1.1958.
+sed 's/profile_shift: 0.1817, face_width: 40 mm/profile_shift: 0.1817, face_width: 40 mm, helix_angle: 25 deg, hand: right, addendum_coefficient: 0.7/; s/profile_shift: 0.1715, face_width: 40 mm/profile_shift: 0.1715, face_width: 40 mm, helix_angle: 25 deg, hand: left, tip_diameter: 126.8703 mm/; s/, centre_distance: 91.5 mm//' \
+    "$tmp/fzg.yaml" > "$tmp/h951.yaml"
+"$bin" check "$tmp/h951.yaml" > "$tmp/h951.txt" 2> "$tmp/h951.err"
+check "eps_alpha < 1 helical: check exit 0" test $? -eq 0
+check "eps_alpha < 1 helical: eps_alpha 0.9333" grep -q 'eps_alpha = 0\.9333' "$tmp/h951.txt"
+check "eps_alpha < 1 helical: note in the C40 block" \
+    bash -c "sed -n '/^  C40 /,/^\$/p' '$tmp/h951.txt' | grep -qE 'note: .*eps_alpha.*< 1'"
+"$bin" point "$tmp/h951.yaml" --speed 1000rpm --torque 100Nm > /dev/null 2>&1
+check "eps_alpha < 1 helical: point exit 0" test $? -eq 0
+# Spur, h*_a 0.6 on both (eps_alpha 0.912): an error naming the mesh.
+sed 's/profile_shift: 0.1817, face_width: 40 mm/profile_shift: 0.1817, face_width: 40 mm, addendum_coefficient: 0.6/; s/profile_shift: 0.1715, face_width: 40 mm/profile_shift: 0.1715, face_width: 40 mm, addendum_coefficient: 0.6/' \
+    "$tmp/fzg.yaml" > "$tmp/spur_short.yaml"
+"$bin" check "$tmp/spur_short.yaml" > /dev/null 2> "$tmp/spur_short.err"
+check "spur eps_alpha < 1: exit 2" test $? -eq 2
+check "spur eps_alpha < 1: names the mesh" grep -qE 'meshes\[0\]|C40' "$tmp/spur_short.err"
+check "spur eps_alpha < 1: file:line:col" grep -qE 'spur_short\.yaml:[0-9]+:[0-9]+: ' "$tmp/spur_short.err"
+# ohlendorf with eps_alpha < 1: an error at options.gear_loss_factor.
+sed 's/gear_loss_factor: wimmer/gear_loss_factor: ohlendorf/' "$tmp/h951.yaml" > "$tmp/h951_ohl.yaml"
+"$bin" check "$tmp/h951_ohl.yaml" > /dev/null 2> "$tmp/h951_ohl.err"
+check "ohlendorf eps_alpha < 1: exit 2" test $? -eq 2
+check "ohlendorf eps_alpha < 1: at options.gear_loss_factor" \
+    grep -qE 'h951_ohl\.yaml:[0-9]+:[0-9]+: options\.gear_loss_factor: ' "$tmp/h951_ohl.err"
+
+# ---------------------------------------------------------------------------------------
+# 4. Tips. Default FZG C40: ISO 21771 (k = -0.0199) on both; d_a 82.456 / 118.365 mm.
+"$bin" check "$tmp/fzg.yaml" > "$tmp/fzg.txt"
+check "tips default: ISO 21771 on both" grep -qE 'tips: pinion ISO 21771 tip alteration.*wheel ISO 21771 tip alteration' "$tmp/fzg.txt"
+check "tips default: d_a 82.456 / 118.365" grep -q 'd_a = 82\.456 / 118\.365' "$tmp/fzg.txt"
+# tip_alteration_factor 0 on both: d_a = d + 2 m_n (1 + x) = 82.635 / 118.544 mm, eps_alpha 1.4624.
+sed 's/profile_shift: 0.1817, face_width: 40 mm/profile_shift: 0.1817, face_width: 40 mm, tip_alteration_factor: 0/; s/profile_shift: 0.1715, face_width: 40 mm/profile_shift: 0.1715, face_width: 40 mm, tip_alteration_factor: 0/' \
+    "$tmp/fzg.yaml" > "$tmp/fzg_k0.yaml"
+"$bin" check "$tmp/fzg_k0.yaml" > "$tmp/fzg_k0.txt"
+check "tips k=0: exit 0" test $? -eq 0
+check "tips k=0: d_a 82.635 / 118.544" grep -q 'd_a = 82\.635 / 118\.544' "$tmp/fzg_k0.txt"
+check "tips k=0: eps_alpha 1.4624" grep -q 'eps_alpha = 1\.4624' "$tmp/fzg_k0.txt"
+check "tips k=0: given tip alteration factor on both" \
+    grep -qE 'tips: pinion given tip alteration factor.*wheel given tip alteration factor' "$tmp/fzg_k0.txt"
+"$bin" check "$tmp/fzg_k0.yaml" --json > "$tmp/fzg_k0.json"
+check "tips k=0: json arrays" python3 -c "
+import json
+m = json.load(open('$tmp/fzg_k0.json'))['meshes'][0]
+assert m['tip_sources'] == ['given tip alteration factor'] * 2, m['tip_sources']
+assert all(abs(k) < 1e-12 for k in m['tip_alteration_factors']), m['tip_alteration_factors']
+assert abs(m['tip_diameters_mm'][0] - 82.6353) < 1e-6 and abs(m['tip_diameters_mm'][1] - 118.5435) < 1e-6
+assert abs(m['eps_alpha'] - 1.46245) < 1e-4, m['eps_alpha']
+"
+# tip_diameter on the pinion: its source is the given diameter, the wheel keeps ISO.
+sed 's/profile_shift: 0.1817, face_width: 40 mm/profile_shift: 0.1817, face_width: 40 mm, tip_diameter: 82.635 mm/' \
+    "$tmp/fzg.yaml" > "$tmp/fzg_da.yaml"
+"$bin" check "$tmp/fzg_da.yaml" > "$tmp/fzg_da.txt"
+check "tips da: pinion given tip diameter, wheel ISO" \
+    grep -qE 'tips: pinion given tip diameter.*wheel ISO 21771 tip alteration' "$tmp/fzg_da.txt"
+"$bin" check "$tmp/fzg_da.yaml" --json > "$tmp/fzg_da.json"
+check "tips da: json arrays" python3 -c "
+import json
+m = json.load(open('$tmp/fzg_da.json'))['meshes'][0]
+assert m['tip_sources'] == ['given tip diameter', 'ISO 21771 tip alteration'], m['tip_sources']
+k = m['tip_alteration_factors']   # (82.635 - 72 - 9 * 1.1817)/9 = -3.33e-5; ISO -0.019867
+assert abs(k[0] + 0.0003 / 9) < 1e-7 and abs(k[1] + 0.0198667) < 1e-6, k
+"
+# Both on one gear: an error naming the gear.
+sed 's/profile_shift: 0.1817, face_width: 40 mm/profile_shift: 0.1817, face_width: 40 mm, tip_diameter: 82.635 mm, tip_alteration_factor: 0/' \
+    "$tmp/fzg.yaml" > "$tmp/fzg_both.yaml"
+"$bin" check "$tmp/fzg_both.yaml" > /dev/null 2> "$tmp/fzg_both.err"
+check "tips both: exit 2" test $? -eq 2
+check "tips both: names gears[0]" grep -qE 'fzg_both\.yaml:[0-9]+:[0-9]+: gears\[0\]' "$tmp/fzg_both.err"
+
+# ---------------------------------------------------------------------------------------
+# 5. Plausibility (hand geometry in test_plausibility.cpp: w5 r_a 40.37 mm, w4 r_a 54.21 mm
+#    on the input shaft at y = 0; lowest tip -54.21 mm).
+sed 's/oil_level: -30 mm /oil_level: 45 mm  /' "$tb" > "$tmp/sub.yaml"
+"$bin" check "$tmp/sub.yaml" > "$tmp/sub_check.txt" 2> "$tmp/sub_check.err"
+check "submerged: check exit 0" test $? -eq 0
+check "submerged: w5 warning under plausibility, located" \
+    bash -c "sed -n '/^plausibility/,\$p' '$tmp/sub_check.txt' | grep -qE 'sub\.yaml:[0-9]+:[0-9]+: housing\.oil_level: warning: .*w5.*submerged'"
+check "submerged: w4 not fully submerged" bash -c "! grep -qE \"'w4' is fully submerged\" '$tmp/sub_check.txt'"
+"$bin" point "$tmp/sub.yaml" --speed 600rpm --torque 100Nm > /dev/null 2> "$tmp/sub_point.err"
+check "submerged: point exit 0" test $? -eq 0
+check "submerged: point prints the w5 warning once on stderr" \
+    test "$(grep -cE "w5.*submerged" "$tmp/sub_point.err")" -eq 1
+# A sweep re-reads the case per variant: the warning still once.
+cat "$tmp/sub.yaml" > "$tmp/sub_sweep.yaml"
+printf '\nsweep:\n  - {parameter: oil, values: [oils/75W90-A.yaml, oils/75W140-A.yaml]}\n' >> "$tmp/sub_sweep.yaml"
+"$bin" map "$tmp/sub_sweep.yaml" --speed 600rpm --torque 100Nm --oil-temp 70degC -o "$tmp/sub_sweep.csv" 2> "$tmp/sub_sweep.err"
+check "submerged sweep: map exit 0" test $? -eq 0
+check "submerged sweep: w5 warning once" test "$(grep -cE "w5.*submerged" "$tmp/sub_sweep.err")" -eq 1
+
+sed 's/oil_level: -30 mm /oil_level: -60 mm /' "$tb" > "$tmp/dry.yaml"
+"$bin" check "$tmp/dry.yaml" > "$tmp/dry.txt"
+check "dry dip box: warning" grep -qE 'dry\.yaml:[0-9]+:[0-9]+: housing\.[a-z_]+: warning: no gear touches the oil' "$tmp/dry.txt"
+"$bin" map "$tmp/dry.yaml" --speed 600rpm --torque 100Nm --oil-temp 70degC -o "$tmp/dry.csv" 2> "$tmp/dry_map.err"
+check "dry dip box: map warns once on stderr" test "$(grep -c 'no gear touches the oil' "$tmp/dry_map.err")" -eq 1
+sed 's/  oil_volume: 2 L /  lubrication: injection\n  oil_volume: 2 L /' "$tmp/dry.yaml" > "$tmp/jet.yaml"
+"$bin" check "$tmp/jet.yaml" > "$tmp/jet.txt"
+check "injection: check exit 0" test $? -eq 0
+check "injection: no 'no gear touches' warning" bash -c "! grep -q 'no gear touches the oil' '$tmp/jet.txt'"
+
+# Housing box L 0.4, H 0.3, A 0.55: W = (0.275 - 0.12)/0.7 = 0.22143 m, V = 26.57 L.
+sed 's/height: 0.3 m,/height: 0.3 m, length: 0.4 m,/; s/oil_volume: 2 L /oil_volume: 27 L/' "$tb" > "$tmp/vol.yaml"
+"$bin" check "$tmp/vol.yaml" > /dev/null 2> "$tmp/vol.err"
+check "oil volume > box: exit 2" test $? -eq 2
+check "oil volume > box: at housing.oil_volume" grep -qE 'vol\.yaml:[0-9]+:[0-9]+: housing\.oil_volume: ' "$tmp/vol.err"
+check "oil volume > box: states 26.57 L" grep -q '26\.57 L' "$tmp/vol.err"
+sed 's/height: 0.3 m,/height: 0.3 m, length: 0.4 m,/; s/oil_volume: 2 L /oil_volume: 26 L/' "$tb" > "$tmp/vol_ok.yaml"
+"$bin" check "$tmp/vol_ok.yaml" > /dev/null 2>&1
+check "oil volume 26 L < box: exit 0" test $? -eq 0
+# Oil level 260 mm: 314.2 mm above the lowest tip > H 300 mm.
+sed 's/height: 0.3 m,/height: 0.3 m, length: 0.4 m,/; s/oil_level: -30 mm /oil_level: 260 mm /' "$tb" > "$tmp/lvl.yaml"
+"$bin" check "$tmp/lvl.yaml" > /dev/null 2> "$tmp/lvl.err"
+check "oil level > housing height: exit 2" test $? -eq 2
+check "oil level > housing height: at housing.oil_level" grep -qE 'lvl\.yaml:[0-9]+:[0-9]+: housing\.oil_level: ' "$tmp/lvl.err"
+
+# Oil temperature limits. 75W90-A (PAO): 110 degC permissible.
+"$bin" point "$tb" --speed 600rpm --torque 100Nm --oil-temp 120degC > /dev/null 2> "$tmp/hot.err"
+check "--oil-temp 120degC: exit 0" test $? -eq 0
+check "--oil-temp 120degC: one warning on stderr" test "$(grep -c 'warning' "$tmp/hot.err")" -eq 1
+check "--oil-temp 120degC: names --oil-temp and 110" bash -c "grep -q -- '--oil-temp' '$tmp/hot.err' && grep -q '110' '$tmp/hot.err'"
+"$bin" point "$tb" --speed 600rpm --torque 100Nm --oil-temp 100degC > /dev/null 2> "$tmp/warm.err"
+check "--oil-temp 100degC: no warning" test ! -s "$tmp/warm.err"
+
+# above_oil_limit / no_equilibrium: a baseline map (no limits reached) gives each point's
+# stabilised temperature T. With the oil's max_temperature 60 degC and max_oil_temperature
+# 80 degC: T <= 60 -> ok, 60 < T <= 80 -> above_oil_limit (numbers kept), T > 80 -> no_equilibrium
+# (numbers empty).
+"$bin" map "$tb" -o "$tmp/base.csv" --json "$tmp/base.json"
+check "baseline map exit 0" test $? -eq 0
+mkdir -p "$tmp/lim/oils"
+cp "$src/configs/oils/75W90-A.yaml" "$tmp/lim/oils/75W90-A.yaml"
+printf 'max_temperature: 60 degC\n' >> "$tmp/lim/oils/75W90-A.yaml"
+sed 's/  ambient: 25 degC/  ambient: 25 degC\n  max_oil_temperature: 80 degC/' "$tb" > "$tmp/lim/tb.yaml"
+"$bin" map "$tmp/lim/tb.yaml" -o "$tmp/lim.csv" --json "$tmp/lim.json" 2> "$tmp/lim.err"
+check "limit map exit 0" test $? -eq 0
+check "limit map: statuses, kept numbers, json counts" python3 -c "
+import csv, json
+base = list(csv.DictReader(open('$tmp/base.csv')))
+lim = list(csv.DictReader(open('$tmp/lim.csv')))
+assert len(base) == len(lim) == 9
+counts = {'ok': 0, 'above_oil_limit': 0, 'no_equilibrium': 0}
+numeric = [k for k in base[0] if k not in ('status',)]
+for b, l in zip(base, lim):
+    T = float(b['oil_temp_C'])
+    want = 'ok' if T <= 60 else ('above_oil_limit' if T <= 80 else 'no_equilibrium')
+    assert l['status'] == want, (T, l['status'], want)
+    counts[want] += 1
+    for k in numeric:
+        if want == 'no_equilibrium' and k not in ('speed_in_rpm', 'torque_in_Nm', 'power_in_W', 'ambient_temp_C'):
+            assert l[k] == '', (k, l[k])
+        elif want != 'no_equilibrium':
+            assert l[k] != '', (k, want)
+            assert abs(float(l[k]) - float(b[k])) <= 1e-3 * max(1.0, abs(float(b[k]))), (k, b[k], l[k])
+assert all(v > 0 for v in counts.values()), counts
+j = json.load(open('$tmp/lim.json'))
+for k, v in counts.items():
+    assert j[k] == v, (k, j[k], v)
+assert j['points'] == 9
+jb = json.load(open('$tmp/base.json'))
+assert jb['ok'] == 9 and jb['above_oil_limit'] == 0 and jb['no_equilibrium'] == 0, jb
+"
+check "limit map: no NaN/inf" bash -c "! grep -qiE 'nan|inf' '$tmp/lim.csv'"
+"$bin" check "$tmp/lim/tb.yaml" > "$tmp/lim_check.txt"
+check "limit check: permissible 60 degC shown" grep -q 'permissible oil temperature 60\.0 degC' "$tmp/lim_check.txt"
+
+echo "cli_units_plausibility: $pass passed, $fail failed"
+test $fail -eq 0
