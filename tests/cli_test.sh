@@ -2,17 +2,7 @@
 # End-to-end checks of the gearloss command line: exit codes, stdout/stderr,
 # atomic output files. Usage: cli_test.sh GEARLOSS_BINARY SOURCE_DIR
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-check() {  # check NAME CONDITION...
-    local name=$1
-    shift
-    if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi
-}
+source "$(dirname "$0")/cli_common.sh" "$@"
 
 # A good map: 9 rows + header, no NaN/inf anywhere, status ok.
 "$bin" map "$src/configs/transfer-box.yaml" -o "$tmp/map.csv"

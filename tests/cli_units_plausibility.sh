@@ -4,17 +4,7 @@
 # Usage: cli_units_plausibility.sh GEARLOSS_BINARY SOURCE_DIR
 # Every file is written inside a private mktemp -d directory.
 set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-check() {  # check NAME CONDITION...
-    local name=$1
-    shift
-    if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi
-}
+source "$(dirname "$0")/cli_common.sh" "$@"
 # Private copies of the shipped cases, with their oils next to them (relative oil paths).
 cp -r "$src/configs/oils" "$tmp/oils"
 cp "$src/configs/transfer-box.yaml" "$tmp/tb.yaml"

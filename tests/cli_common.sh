@@ -1,0 +1,14 @@
+# Shared set-up of the command-line tests (sourced): the binary, the source tree, a
+# private temporary directory removed on exit, and the pass/fail counter.
+# Usage (from a test script): source "$(dirname "$0")/cli_common.sh" "$@"
+bin=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+check() {  # check NAME CONDITION...
+    local name=$1
+    shift
+    if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi
+}
