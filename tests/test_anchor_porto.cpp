@@ -297,3 +297,37 @@ TEST_CASE("anchor: FZG H701 helical geometry, gear loss factors and mu_mZ agains
     compare("mu_mZ, GEARpie's load and radius, k = 0", mu_gp0, 0.034498);
     compare("P_VZP [W], GEARpie's mu definition, k = 0", o0.P_in * mu_gp0 * sweep0.H_V, 154.15);
 }
+
+// FZG H951 (GEARpie gear library: z 38/57, m_n 1.75 mm, alpha_n 20 deg, beta 15 deg,
+// x 1.6915/2.0003, b 21.2418 mm): a low-loss design with eps_alpha < 1 carried by its
+// overlap. GEARpie's report REPORT/H951.txt gives a_w 91.5 mm, tip radii 38.115/55.867 mm,
+// eps_alpha 0.93, eps_beta 1.00, eps_gamma 1.93 (two decimals), which the ISO 21771 tip
+// alteration of gearloss reproduces. With eps_beta = 1 the contact length is constant, so
+// the rigid-load-sharing H_V must equal the uniform-load form pi (u+1)/(z1 u cos beta_b)
+// (eps1^2 + eps2^2)/eps_alpha, here computed from GEARpie's own radii.
+TEST_CASE("anchor: FZG H951 (eps_alpha < 1, eps_gamma >= 1) is accepted and matches GEARpie's report", "[anchor]") {
+    const auto p = gear("H951 pinion", 38, 1.75, 1.6915, 21.2418, 15, geometry::Hand::right, 0.6);
+    const auto w = gear("H951 wheel", 57, 1.75, 2.0003, 21.2418, 15, geometry::Hand::left, 0.6);
+    const auto g = geometry::pair_geometry(p, w);
+    heading("FZG H951 (GEARpie report)");
+    compare("a_w [mm]", g.a_w * 1e3, 91.5);
+    compare("r_a1 [mm]", 0.5 * g.da[0] * 1e3, 38.115);
+    compare("r_a2 [mm]", 0.5 * g.da[1] * 1e3, 55.867);
+    CHECK(g.eps_alpha == Approx(0.93).margin(0.005));
+    CHECK(g.eps_beta == Approx(1.00).margin(0.005));
+    CHECK(g.eps_gamma == Approx(1.93).margin(0.01));
+    CHECK(g.transverse_gap);
+    // Uniform-load form from GEARpie's tip radii and the ISO base radii (hand route).
+    const double pi = std::numbers::pi;
+    const double at = std::atan(std::tan(20 * deg) / std::cos(15 * deg));
+    const double bb = std::atan(std::tan(15 * deg) * std::cos(at));
+    const double mt = 1.75 / std::cos(15 * deg);
+    const double rb1 = 0.5 * 38 * mt * std::cos(at), rb2 = 0.5 * 57 * mt * std::cos(at);
+    const double awt = std::acos((rb1 + rb2) / 91.5);
+    const double pbt = pi * mt * std::cos(at);
+    const double e1 = (std::sqrt(38.115 * 38.115 - rb1 * rb1) - rb1 * std::tan(awt)) / pbt;
+    const double e2 = (std::sqrt(55.867 * 55.867 - rb2 * rb2) - rb2 * std::tan(awt)) / pbt;
+    const double u = 57.0 / 38.0;
+    const double H_uniform = pi * (u + 1) / (38 * u * std::cos(bb)) * (e1 * e1 + e2 * e2) / (e1 + e2);
+    compare("H_V rigid load sharing vs uniform-load form", mesh::sweep_contact_lines(g).H_V, H_uniform, 0.005);
+}
