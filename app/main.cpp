@@ -13,6 +13,7 @@
 #include "diagnosis/diagnose.hpp"
 #include "diagnosis/synth.hpp"
 #include "io/atomic_file.hpp"
+#include "io/interrupt.hpp"
 #include "io/case_plausibility.hpp"
 #include "io/config.hpp"
 #include "io/cycle_report.hpp"
@@ -32,15 +33,8 @@ enum Exit : int {
     kUsage = 1,
     kInput = 2,
     kOutput = 3,
-    kInternal = 4,
-    kInterrupted = 130,
+    kInternal = 4,  // 130 / 143 on SIGINT / SIGTERM: io::interrupt_exit_code() (io/interrupt.hpp)
 };
-
-volatile std::sig_atomic_t g_signal = 0;
-void on_signal(int sig) {
-    g_signal = sig;
-    gearloss::io::g_interrupted = true;
-}
 
 using gearloss::InputError;
 namespace io = gearloss::io;
@@ -67,6 +61,7 @@ void apply_overrides(io::Case& k, const Common& c) {
         k.model.thermal.mode = gearloss::solver::ThermalMode::fixed;
         k.model.thermal.oil_temperature = q.value;
     }
+    gearloss::map::validate_case(k, {.oil_temp = c.oil_temp, .oil = c.oil, .grid = false});  // solver/validate.hpp
 }
 
 // `check` lists the plausibility warnings in its report; every other command prints them on stderr.
@@ -165,7 +160,7 @@ int run_vecto(const Common& c, const std::string& out, int threads, const std::s
         if (!speeds.empty()) w = io::parse_value_list(speeds, gearloss::units::dim::angular_speed, "--speed", "0,1000,2000rpm");
         if (!torques.empty()) T = io::parse_value_list(torques, gearloss::units::dim::torque, "--torque", "100,200,400Nm");
         const auto rows = gearloss::map::vecto_loss_map(k.model, w, T, opt);
-        if (io::g_interrupted) return kInterrupted;
+        io::throw_if_interrupted();
         std::string file = out;
         if (ratios.size() > 1) {
             const std::string stem = out.size() > 5 && out.substr(out.size() - 5) == ".vtlm" ? out.substr(0, out.size() - 5) : out;
@@ -193,6 +188,7 @@ void override_grid(io::Case& k, const std::string& speeds, const std::string& to
         if (!torques.empty())
             k.grid.torques = io::parse_value_list(torques, gearloss::units::dim::torque, "--torque", "150,200,250Nm");
     }
+    gearloss::map::validate_case(k, {.speeds = !speeds.empty(), .torques = !torques.empty()});
 }
 
 void write_json_summary(const std::string& file, const std::string& json) {
@@ -234,7 +230,7 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
         const auto t0 = std::chrono::steady_clock::now();
         const auto res = gearloss::map::run_job(job, opt, sh);
         const std::string& csv = res.csv;
-        if (io::g_interrupted) return kInterrupted;
+        io::throw_if_interrupted();
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (stats) {
             const size_t n = res.results.size();
@@ -250,7 +246,7 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
     const auto t0 = std::chrono::steady_clock::now();
     const auto results = gearloss::map::run_map(k.model, k.grid, opt);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (io::g_interrupted) return kInterrupted;
+    io::throw_if_interrupted();
     if (stats) {
         size_t evals = 0, no_eq = 0;
         for (const auto& r : results) {
@@ -278,11 +274,12 @@ int run_map(const Common& c, const std::string& out, int threads, bool detail, c
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
+    std::signal(SIGINT, gearloss::io::on_interrupt_signal);
+    std::signal(SIGTERM, gearloss::io::on_interrupt_signal);
     // A file-size limit (or quota) must fail the write (EFBIG) so the partial
     // temporary file is removed, rather than kill the process mid-write.
     std::signal(SIGXFSZ, SIG_IGN);
+    std::signal(SIGPIPE, SIG_IGN);  // a closed pipe is EPIPE: stdout ends quietly, files are still written
 
     CLI::App app{"gearloss — where the power goes in a gearbox: mesh, churning, bearing and seal losses with the\n"
                  "thermally stabilised oil temperature, from a YAML description.\n\n"
@@ -437,6 +434,10 @@ int main(int argc, char** argv) {
 
     try {
         int rc = kOk;
+        io::OutputTransaction outputs;  // files renamed together by publish(), discarded on error or signal
+        if (map->parsed()) io::require_distinct_outputs({{"--output", out}, {"--json", map_json}});
+        if (cyc->parsed()) io::require_distinct_outputs({{"--output", cycle_out}, {"--json", cycle_json}});
+        if (diag->parsed()) io::require_distinct_outputs({{"--json", json_out}, {"--residuals", residuals_out}, {"--write-config", write_config}});
         if (map->parsed()) {
             if (map_format == "vecto" && !shard.empty())
                 throw InputError("", 0, 0, "--shard", "--format vecto writes whole tables per gear; it cannot be sharded");
@@ -446,8 +447,9 @@ int main(int argc, char** argv) {
             io::Case k = load(common);
             const double w = single_value(speed1, gearloss::units::dim::angular_speed, "--speed", "800rpm");
             const double T = single_value(torque1, gearloss::units::dim::torque, "--torque", "250Nm");
+            gearloss::map::validate_point(w, T);
             const auto r = gearloss::solver::solve_point(k.model, w, T, true);
-            std::fputs(io::point_report(k, r).c_str(), stdout);
+            io::write_stdout(io::point_report(k, r));
         } else if (diag->parsed()) {
             io::Case k = load(common);
             const auto rec = gearloss::diagnosis::read_recordings(recordings);
@@ -460,7 +462,7 @@ int main(int argc, char** argv) {
             } catch (const std::invalid_argument& e) {
                 throw InputError(recordings, 0, 0, "", e.what());
             }
-            std::fputs(gearloss::diagnosis::diagnosis_text(d).c_str(), stdout);
+            io::write_stdout(gearloss::diagnosis::diagnosis_text(d));
             if (!json_out.empty()) {
                 io::AtomicFile f(json_out);
                 f.write(gearloss::diagnosis::diagnosis_json(d));
@@ -480,6 +482,7 @@ int main(int argc, char** argv) {
                 k.grid.torques = io::parse_value_list(torques, gearloss::units::dim::torque, "--torque", "150,200Nm");
             if ((!speeds.empty() || !torques.empty()) && !k.grid.is_grid)
                 throw InputError("", 0, 0, "--speed", "the case lists points; --speed/--torque need a speeds x torques grid");
+            gearloss::map::validate_case(k, {.speeds = !speeds.empty(), .torques = !torques.empty()});
             gearloss::diagnosis::SynthOptions so;
             for (const auto& e : effects) so.effects.push_back(gearloss::diagnosis::parse_effect_assignment(e));
             const double nl = single_value(noise_loss, gearloss::units::dim::none, "--noise-loss", "1.5%");
@@ -500,7 +503,7 @@ int main(int argc, char** argv) {
             const double T = single_value(torque1, gearloss::units::dim::torque, "--torque", "720Nm");
             const auto r = gearloss::solver::solve_point(k.model, w, T);
             if (!gearloss::solver::has_values(r.status))
-                throw InputError("", 0, 0, "--speed", "no thermal equilibrium at this point; give --oil-temp");
+                throw InputError("", 0, 0, "--speed", gearloss::solver::status_text(r) + " at this point (give --oil-temp)");
             io::AtomicFile f(out);
             f.write(io::mesh_profile_csv(k, mesh_name, w, T, r.oil_temperature, positions));
             f.commit();
@@ -514,11 +517,14 @@ int main(int argc, char** argv) {
             io::Case a = base, b = base;
             io::replace_oil(a, io::load_oil_file(compare_oils[0]));
             io::replace_oil(b, io::load_oil_file(compare_oils[1]));
+            for (int i : {0, 1})  // each oil with the grid (solver/validate.hpp)
+                gearloss::map::validate_case(i ? b : a, {cmp.oil_temp, compare_oils[i], !speeds.empty(), !torques.empty()});
             gearloss::map::MapOptions mo;
             mo.threads = threads;
             ProgressMeter meter;
             mo.progress = meter.callback();
             const auto ra = gearloss::map::run_map(a.model, a.grid, mo);
+            io::throw_if_interrupted();  // not the second map
             const auto rb = gearloss::map::run_map(b.model, b.grid, mo);
             if (!io::g_interrupted) {
                 io::AtomicFile f(out);
@@ -528,6 +534,7 @@ int main(int argc, char** argv) {
             }
         } else if (cyc->parsed()) {
             io::Case k = io::load_case(common.config);
+            gearloss::map::validate_case(k, {.grid = false});
             const auto pt = io::load_powertrain(k, common.oil.empty() ? std::nullopt : std::optional<std::string>(common.oil));
             std::vector<std::string> dirs = {(std::filesystem::path(common.config).parent_path() / "cycles").string(),
                                              GEARLOSS_CYCLES_DIR};
@@ -544,8 +551,8 @@ int main(int argc, char** argv) {
             so.heater_power = single_value(heater, gearloss::units::dim::power, "--heater", "100W");
             if (!(so.heater_power > 0)) throw InputError("", 0, 0, "--heater", "heater power must be positive");
             const auto study = io::run_cycle_study(pt, dc, so);
-            if (io::g_interrupted) return kInterrupted;
-            std::fputs(io::cycle_summary_text(pt, study, so).c_str(), stdout);
+            io::throw_if_interrupted();
+            io::write_stdout(io::cycle_summary_text(pt, study, so));
             if (stats)
                 std::fprintf(stderr, "cycle %s: %zu steps simulated in %.2f ms\n", dc.name.c_str(), dc.time.size() - 1,
                              1e3 * study.seconds_per_run);
@@ -566,20 +573,21 @@ int main(int argc, char** argv) {
             f.commit();
         } else if (check->parsed()) {
             io::Case k = load(common, false);
-            std::fputs((json ? io::check_json(k) : io::check_report(k)).c_str(), stdout);
+            io::write_stdout(json ? io::check_json(k) : io::check_report(k));
         }
-        if (io::g_interrupted) {
-            std::fprintf(stderr, "gearloss: interrupted (signal %d); no output written\n", static_cast<int>(g_signal));
-            return g_signal == SIGTERM ? 143 : kInterrupted;
-        }
+        if (io::interrupted()) return io::report_interrupt();
+        outputs.publish();
         return rc;
     } catch (const InputError& e) {
+        if (io::interrupted()) return io::report_interrupt();  // an error the interrupt caused
         std::fprintf(stderr, "gearloss: error: %s\n", e.what());
         return kInput;
     } catch (const io::IoError& e) {
+        if (io::interrupted()) return io::report_interrupt();  // io::Interrupted, or a write the signal stopped
         std::fprintf(stderr, "gearloss: error: %s\n", e.what());
-        return io::g_interrupted ? kInterrupted : kOutput;
+        return kOutput;
     } catch (const std::exception& e) {
+        if (io::interrupted()) return io::report_interrupt();
         std::fprintf(stderr, "gearloss: internal error: %s\n", e.what());
         return kInternal;
     }

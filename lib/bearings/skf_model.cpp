@@ -21,6 +21,7 @@ SkfLoadTerms skf_load_terms(const BearingSpec& b, double Fr, double Fa, double n
             } else {
                 // alpha_F = 24.6 (F_a/C0)^0.24 degrees
                 const double aF = 24.6 * pow(Fa / b.C0, 0.24) * std::numbers::pi / 180.0;
+                g.alpha_F = aF;
                 const double sa = std::sin(aF);
                 g.G_rr = k.R1 * pow(dm, 1.96) * pow(Fr + k.R2 * Fa / sa, 0.54);
                 g.G_sl = k.S1 * pow(dm, -0.145) * pow(pow(Fr, 5) + k.S2 * pow(dm, 1.5) * pow(Fa, 4) / sa, 1.0 / 3.0);
@@ -119,6 +120,7 @@ SkfAtPoint SkfAtPoint::make(const BearingSpec& b, double Fr, double Fa, double n
     p.a_rs = b.K_rs * p.n * (b.d + b.D) * std::sqrt(b.k.K_Z / (2.0 * (b.D - b.d)));
     p.a_bl = 2.6e-8 * std::pow(p.n, 1.4) * dm;
     p.G_sl = g.G_sl;
+    p.alpha_F = g.alpha_F;
     p.mu_bl = b.mu_bl;
     p.mu_ehl = b.mu_ehl;
     p.M_seal = (b.seal_KS1 > 0 || b.seal_KS2 > 0) && p.n > 0
@@ -135,6 +137,17 @@ double SkfAtPoint::moment(double nu, double nu06, double nu064, double nu14, dou
     const double phi_bl = std::exp(-a_bl * nu14);
     const double mu_sl = phi_bl * mu_bl + (1.0 - phi_bl) * mu_ehl;
     return phi_ish * phi_rs * rr * nu06 + G_sl * mu_sl + M_seal + drag_a + drag_b * nu1379;
+}
+
+const char* SkfAtPoint::fault() const {
+    if (!(alpha_F < 0.5 * std::numbers::pi)) return "contact angle";  // also NaN
+    if (!std::isfinite(n)) return "speed";
+    if (!std::isfinite(rr) || !std::isfinite(a_ish) || !std::isfinite(a_rs)) return "rolling moment";
+    if (!std::isfinite(G_sl) || !std::isfinite(a_bl) || !std::isfinite(mu_bl) || !std::isfinite(mu_ehl))
+        return "sliding moment";
+    if (!std::isfinite(M_seal)) return "seal moment";
+    if (!std::isfinite(drag_a) || !std::isfinite(drag_b)) return "drag moment";
+    return nullptr;
 }
 
 SkfMoment skf_moment(const BearingSpec& b, double Fr, double Fa, double n_rpm, double nu) {

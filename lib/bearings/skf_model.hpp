@@ -29,6 +29,9 @@ struct BearingSpec {
 
 struct SkfLoadTerms {
     double G_rr = 0, G_sl = 0;
+    // Deep groove ball under axial load: the contact angle alpha_F [rad] of SKF's formula
+    // (0 otherwise). Past 90 deg the formula has left its range (F_a far above C0).
+    double alpha_F = 0;
 };
 
 // Load/geometry functions G_rr, G_sl (SKF Table 2a). Fr, Fa in N, n in r/min
@@ -59,9 +62,13 @@ struct SkfAtPoint {
     double M_seal = 0;
     double drag_a = 0;       // drag first term (independent of nu)
     double drag_b = 0;       // drag second term / nu^1.379
+    double alpha_F = 0;      // contact angle of a deep groove ball bearing under axial load [rad]
     static SkfAtPoint make(const BearingSpec& b, double Fr, double Fa, double n_rpm);
     // nu^0.6, nu^0.64, nu^1.4, nu^1.379 passed in; returns M [N*mm].
     double moment(double nu, double nu06, double nu064, double nu14, double nu1379) const;
+    // What is out of the model's range at this point ("contact angle", "rolling moment", ...),
+    // or nullptr: the contact angle at or past 90 deg, or a term that is not a finite number.
+    const char* fault() const;
 };
 
 }  // namespace gearloss::bearings

@@ -20,8 +20,8 @@ double DriveCycle::distance() const {
 }
 
 DriveCycle load_cycle_csv(const std::string& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(file, 0, 0, "", "cannot open cycle file");
+    // A regular file of at most 64 MiB (a FIFO or a device is refused by name, unread).
+    std::istringstream in(io::read_input_file(file, io::kMaxCsvFileBytes));
     DriveCycle c;
     c.name = fs::path(file).stem().string();
     std::string line;
@@ -39,13 +39,18 @@ DriveCycle load_cycle_csv(const std::string& file) {
                 else if (cells[k] == "speed_kmh") iv = static_cast<int>(k);
                 else if (cells[k] == "gear") ig = static_cast<int>(k);
             }
-            if (it < 0 || iv < 0)
-                throw InputError(file, ln, 1, "", "header must name the columns 'time_s' and 'speed_kmh' (optional 'gear')");
+            if (it < 0 || iv < 0) {
+                const std::string hint = cells.size() == 1 ? io::separator_hint(line) : std::string();
+                throw InputError(file, ln, 1, "", hint.empty() ? "header must name the columns 'time_s' and 'speed_kmh' (optional 'gear')" : hint);
+            }
             ncol = cells.size();
             continue;
         }
-        if (cells.size() != ncol)
-            throw InputError(file, ln, 1, "", "expected " + std::to_string(ncol) + " cells, found " + std::to_string(cells.size()));
+        if (cells.size() != ncol) {
+            const std::string hint = io::separator_hint(line);
+            throw InputError(file, ln, 1, "", "expected " + std::to_string(ncol) + " cells, found " + std::to_string(cells.size()) +
+                                                  (hint.empty() ? "" : "; " + hint));
+        }
         const double t = io::csv_cell_number(cells[it], file, ln, it + 1, "time_s");
         const double v = io::csv_cell_number(cells[iv], file, ln, iv + 1, "speed_kmh");
         if (v < 0 || v > 500) throw InputError(file, ln, iv + 1, "speed_kmh", "speed must be in [0, 500] km/h");
@@ -105,7 +110,8 @@ DriveCycle resolve_cycle(const std::string& name_or_file, const std::vector<std:
     const auto it = named().find(name_or_file);
     if (it == named().end()) {
         std::error_code ec;
-        if (fs::is_regular_file(name_or_file, ec)) return load_cycle_csv(name_or_file);
+        // Any existing path is read as a file: a FIFO, a device or a directory is then refused by name.
+        if (fs::exists(fs::status(name_or_file, ec))) return load_cycle_csv(name_or_file);
         std::string names;
         for (const auto& n : cycle_names()) names += (names.empty() ? "" : ", ") + n;
         throw InputError("", 0, 0, "--cycle", "'" + name_or_file + "' is neither a cycle file nor one of: " + names);

@@ -5,8 +5,13 @@
 #include <boost/math/tools/toms748_solve.hpp>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
+#include <fmt/format.h>
+#include <limits>
 
+#include "core/errors.hpp"
+#include "io/interrupt.hpp"
 #include "solver/operating_point.hpp"
+#include "solver/validate.hpp"
 
 namespace gearloss::cycle {
 
@@ -72,16 +77,83 @@ struct Rates {
     }
 };
 
+// Bounds of the transient: a cycle lasts at most kMaxDuration (11.6 days; the regulatory
+// cycles last 20-30 min), one interval between samples takes at most kMaxSteps accepted
+// steps of the integrator (a 1-s interval takes a handful), the vehicle runs at most
+// kMaxVehicleSpeed.
+constexpr double kMaxDuration = 1e6;             // s
+constexpr size_t kMaxSteps = 100000;             // per interval
+constexpr double kMaxVehicleSpeed = 500.0 / 3.6; // m/s
+
+std::string celsius(double T) { return fmt::format("{:.1f} degC", T - 273.15); }
+
+[[noreturn]] void fail(const std::string& key, const std::string& message) { throw InputError("", 0, 0, key, message); }
+
+// Called by the integrator once per accepted step: bounds the steps and stops at the first
+// value that is not finite, naming the component when the gearbox is loaded.
+struct StepGuard {
+    const StepLoad& load;
+    double ambient;
+    size_t* steps;
+    void operator()(const State& x, double t) const {
+        if (++*steps > kMaxSteps)
+            fail("cycle", fmt::format("the integration of the interval at t = {:g} s did not finish within {} steps", t,
+                                      kMaxSteps));
+        for (double v : x)
+            if (!std::isfinite(v)) {
+                std::string cause;
+                if (load.gearbox && std::isfinite(x[kOil]))
+                    cause = solver::loss_fault(*load.gearbox, load.point, x[kOil], ambient);
+                fail("cycle", fmt::format("at t = {:g} s a temperature or energy is not a finite number (out_of_range: {})",
+                                          t, cause.empty() ? "thermal network" : cause));
+            }
+    }
+};
+
 void integrate(const Powertrain& pt, const StepLoad& load, double ambient, State& x, double t0, double t1) {
     // Tolerances: 1e-4 K on temperatures (the energies are large numbers: relative 1e-7).
     auto stepper = odeint::make_controlled(1e-4, 1e-7, odeint::runge_kutta_dopri5<State>());
-    odeint::integrate_adaptive(stepper, Rates{pt, load, ambient}, x, t0, t1, t1 - t0);
+    size_t steps = 0;
+    try {
+        odeint::integrate_adaptive(stepper, Rates{pt, load, ambient}, x, t0, t1, t1 - t0, StepGuard{load, ambient, &steps});
+    } catch (const odeint::step_adjustment_error& e) {
+        fail("cycle", fmt::format("the integration from t = {:g} s failed: {}", t0, e.what()));
+    }
+}
+
+// The inputs of a run: the cycle's samples, the temperatures, the thermal network.
+void check_run(const Powertrain& pt, const DriveCycle& cycle, const thermal::NodeTemperatures& start, double ambient) {
+    if (pt.gears.empty()) fail("vehicle", "no gear");
+    if (auto f = solver::ambient_fault(ambient)) fail("ambient", *f);
+    const auto& tm = pt.thermal_model();
+    const auto& net = tm.thermal.network;
+    if (!(net.C_oil > 0 && std::isfinite(net.C_oil)))
+        fail("thermal.heat_capacity", "a transient needs a positive, finite heat capacity of the oil");
+    for (size_t k = 0; k < start.size(); ++k) {
+        if ((k == 1 && !net.has_housing()) || (k == 2 && !net.has_clutch())) continue;
+        if (auto f = solver::oil_temperature_fault(tm.oil, start[k])) fail("start temperature", *f);
+    }
+    if (auto f = solver::oil_temperature_fault(tm.oil, ambient)) fail("ambient", "ambient " + *f);
+    const auto& t = cycle.time;
+    if (t.size() != cycle.speed.size() || (!cycle.gear.empty() && cycle.gear.size() != t.size()))
+        fail("cycle", "the cycle's columns differ in length");
+    for (size_t i = 0; i < t.size(); ++i) {
+        if (!std::isfinite(t[i])) fail("cycle", fmt::format("sample {}: time is not a finite number", i + 1));
+        if (i > 0 && !(t[i] > t[i - 1])) fail("cycle", fmt::format("sample {}: time does not increase", i + 1));
+        if (!(cycle.speed[i] >= 0 && cycle.speed[i] <= kMaxVehicleSpeed))
+            fail("cycle", fmt::format("sample {}: vehicle speed {:g} km/h outside 0..{:g} km/h", i + 1,
+                                      cycle.speed[i] * 3.6, kMaxVehicleSpeed * 3.6));
+    }
+    if (!t.empty() && !(t.back() - t.front() <= kMaxDuration))
+        fail("cycle", fmt::format("the cycle lasts {:g} s; at most {:g} s (11.6 days) are simulated",
+                                  t.back() - t.front(), kMaxDuration));
 }
 
 }  // namespace
 
 CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const thermal::NodeTemperatures& start,
                            double ambient, bool keep_trace) {
+    check_run(pt, cycle, start, ambient);
     CycleResult res;
     auto& tot = res.totals;
     const auto& veh = pt.vehicle;
@@ -101,6 +173,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
     double last_loss = 0;
     if (keep_trace) res.trace.reserve(cycle.time.size());
     for (size_t i = 0; i + 1 < cycle.time.size(); ++i) {
+        io::throw_if_interrupted();  // SIGINT / SIGTERM: io::Interrupted, exit 130 / 143
         const double dt = cycle.time[i + 1] - cycle.time[i];
         const double v = 0.5 * (cycle.speed[i] + cycle.speed[i + 1]);
         const double a = (cycle.speed[i + 1] - cycle.speed[i]) / dt;
@@ -136,6 +209,13 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
                 if (std::abs(next - T_in) < 1e-3 * (1.0 + std::abs(T_in))) break;
                 T_in = next;
                 if (k == 1) solver::prepare_point(gm, w_in, T_in, load.point);
+            }
+            if (!load.point.fault.empty() || !std::isfinite(last_loss) || !std::isfinite(T_in)) {
+                std::string cause = load.point.fault;
+                if (cause.empty()) cause = solver::loss_fault(gm, load.point, x[kOil], ambient);
+                fail("cycle", fmt::format("at t = {:g} s (gear {}, {:.0f} rpm, {:.1f} N m, oil {}): out_of_range: {}",
+                                          cycle.time[i], gear, w_in * 30 / 3.14159265358979323846, T_in,
+                                          celsius(x[kOil]), cause.empty() ? "gearbox loss not finite" : cause));
             }
             load.gearbox = &gm;
             load.omega_in = w_in;
@@ -209,6 +289,10 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
 
 PrewarmResult prewarm(const Powertrain& pt, const thermal::NodeTemperatures& start, double target, double power,
                       double ambient, double max_time) {
+    check_run(pt, DriveCycle{}, start, ambient);
+    if (auto f = solver::oil_temperature_fault(pt.thermal_model().oil, target)) fail("pre-warm target", *f);
+    if (!(power > 0 && std::isfinite(power))) fail("heater", "heater power must be a positive, finite number");
+    if (!(max_time > 0 && max_time <= kMaxDuration)) fail("pre-warm time", "at most 1e6 s of pre-warming are simulated");
     PrewarmResult r;
     StepLoad load;
     load.heater = power;
@@ -221,6 +305,7 @@ PrewarmResult prewarm(const Powertrain& pt, const thermal::NodeTemperatures& sta
     // 1 s steps; the crossing is interpolated linearly inside the last one.
     double t = 0;
     while (t < max_time) {
+        io::throw_if_interrupted();
         const State before = x;
         integrate(pt, load, ambient, x, t, t + 1.0);
         if (x[kOil] >= target) {
@@ -245,6 +330,10 @@ PrewarmResult prewarm(const Powertrain& pt, const thermal::NodeTemperatures& sta
     auto excess = [&](double T) { return tm.heat_flow(T, ambient, 0.0) - power; };  // rises with T
     double hi = ambient + 1.0;
     while (excess(hi) < 0 && hi < ambient + 1000) hi += (hi - ambient);
+    if (!(excess(ambient) <= 0 && excess(hi) >= 0))  // not bracketed: beyond 1000 K above ambient
+        fail("heater", fmt::format("the oil did not reach {} in {:g} s, and at this power it would level off more than "
+                                   "1000 K above the ambient (heat rejection not finite or too small)",
+                                   celsius(target), max_time));
     std::uintmax_t it = 80;
     const auto [a, b] = boost::math::tools::toms748_solve(
         excess, ambient, hi, [](double x0, double x1) { return std::abs(x1 - x0) < 1e-6; }, it);

@@ -4,17 +4,21 @@
 #include <algorithm>
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <fmt/format.h>
 #include <numbers>
 #include <numeric>
 #include <omp.h>
 #include <random>
+#include <stdexcept>
 #include <yaml-cpp/yaml.h>
 
 #include "io/atomic_file.hpp"
+#include "io/interrupt.hpp"
 #include "io/json.hpp"
 #include "solver/operating_point.hpp"
+#include "solver/validate.hpp"
 
 namespace gearloss::diagnosis {
 
@@ -36,6 +40,7 @@ struct Obs {
 
 struct Pred {
     std::vector<double> loss, temp;
+    std::string failure;  // the first point the hypothesis could not be evaluated at (then the values are void)
 };
 
 struct Score {
@@ -48,6 +53,64 @@ struct Fit {
     int k = 0;                 // parameters added
     double extra_penalty = 0;  // selection penalty beyond k ln N (choice of flagged points)
     Hypothesis h;
+    std::string failed;        // why the candidate could not be evaluated (it is then rejected)
+};
+
+// Objective of a hypothesis that could not be evaluated: finite (Brent's arithmetic stays
+// defined), far above any likelihood.
+constexpr double kFailedNll = 1e100;
+constexpr double kRejectedBic = -1e300;  // delta BIC of a rejected or already used candidate
+
+std::string point_name(const Obs& o) {
+    return fmt::format("row {} ({:.0f} rpm, {:.4g} N*m)", o.row, o.w * to_rpm, o.torque);
+}
+
+// The model at one recorded point under a hypothesis: the loss as recorded (with the
+// torque-sensor error) at the measured oil temperature, and the coupled oil temperature.
+// Returns why it cannot be evaluated (an exception of a solver, a value that is not finite),
+// or an empty string.
+std::string evaluate_point(solver::Model& m, solver::PointState& p, const Hypothesis& h, const Obs& o, double& loss,
+                           double& temp) {
+    try {
+        const double T_true = (o.torque - h.art.torque_offset) / h.art.torque_gain;
+        solver::prepare_point(m, o.w, T_true, p);
+        if (!p.fault.empty()) return p.fault;
+        const auto eq = solver::solve_temperature(m, p, o.ambient);
+        if (eq.status == thermal::EquilibriumStatus::iteration_limit)
+            return fmt::format("thermal equilibrium: no bracket within {} steps", m.thermal.equilibrium.max_bracket_steps);
+        if (eq.status == thermal::EquilibriumStatus::non_finite) {
+            const std::string f = std::isfinite(eq.T) ? solver::loss_fault(m, p, eq.T, o.ambient) : std::string();
+            return "thermal equilibrium: " + (f.empty() ? std::string("a value that is not finite") : f);
+        }
+        const double T_model = eq.status == thermal::EquilibriumStatus::ok ? eq.T : m.thermal.equilibrium.T_max;
+        const double L = solver::total_loss(m, p, o.has_T ? o.T_oil : T_model);
+        loss = L + (o.torque - T_true) * o.w;
+        temp = T_model;
+        if (!std::isfinite(loss) || !std::isfinite(temp)) {
+            const std::string f = solver::loss_fault(m, p, o.has_T ? o.T_oil : T_model, o.ambient);
+            return f.empty() ? "the model's loss or oil temperature is not a finite number" : f;
+        }
+        return {};
+    } catch (const std::exception& e) {
+        return std::string("solver error: ") + e.what();
+    }
+}
+
+// The first exception thrown in the iterations of a parallel region, rethrown after it
+// (an exception must not leave an OpenMP region: that would be std::terminate).
+class RegionErrors {
+public:
+    void capture() noexcept {
+#pragma omp critical(diagnose_region_errors)
+        if (!first_) first_ = std::current_exception();
+    }
+    void rethrow() const {
+        io::throw_if_interrupted();
+        if (first_) std::rethrow_exception(first_);
+    }
+
+private:
+    std::exception_ptr first_;
 };
 
 double profiled(double rss, int n, double floor) {
@@ -57,7 +120,8 @@ double profiled(double rss, int n, double floor) {
 
 class Engine {
 public:
-    Engine(const solver::Model& m, std::vector<Obs> obs, int threads) : obs_(std::move(obs)) {
+    Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool physical_range)
+        : obs_(std::move(obs)), physical_range_(physical_range) {
         threads_ = threads > 0 ? threads : omp_get_max_threads();
         work_.assign(static_cast<size_t>(threads_), m);
         states_.resize(static_cast<size_t>(threads_));
@@ -67,6 +131,7 @@ public:
             mean_loss_ += std::abs(o.loss) / obs_.size();
             mean_n29_ += std::pow(o.w * to_rpm / 1000.0, 2.9) / obs_.size();
             n_T_ += o.T_evidence;
+            max_rpm_ = std::max(max_rpm_, std::abs(o.w) * to_rpm);
         }
     }
     int threads() const { return threads_; }
@@ -74,9 +139,12 @@ public:
     const std::vector<int>& all() const { return all_; }
     bool has_temperature() const { return n_T_ > 0; }
 
+    // Never throws (it runs inside parallel regions): a point that cannot be evaluated, or an
+    // interrupt (polled per point), ends the prediction with `out.failure` set.
     void predict(const Hypothesis& h, const std::vector<int>& idx, Pred& out, int tid) const {
         out.loss.resize(obs_.size());
         out.temp.resize(obs_.size());
+        out.failure.clear();
         solver::Model& m = work_[static_cast<size_t>(tid)];
         m.calibration = h.cal;
         solver::PointState& p = states_[static_cast<size_t>(tid)];
@@ -84,16 +152,28 @@ public:
         for (int i : idx) {
             if (done[i]) continue;
             done[i] = 1;
+            if (io::interrupted()) {
+                out.failure = "interrupted";
+                return;
+            }
             const Obs& o = obs_[i];
-            const double T_true = (o.torque - h.art.torque_offset) / h.art.torque_gain;
-            solver::prepare_point(m, o.w, T_true, p);
-            const auto eq = solver::solve_temperature(m, p, o.ambient);
-            const double T_model = eq.status == thermal::EquilibriumStatus::ok ? eq.T : m.thermal.equilibrium.T_max;
-            const double L = solver::total_loss(m, p, o.has_T ? o.T_oil : T_model);
-            // The recorded loss carries the torque-sensor error times the speed.
-            out.loss[i] = L + (o.torque - T_true) * o.w;
-            out.temp[i] = T_model;
+            const std::string why = evaluate_point(m, p, h, o, out.loss[i], out.temp[i]);
+            if (!why.empty()) {
+                out.loss[i] = out.temp[i] = std::nan("");
+                out.failure = point_name(o) + ": " + why;
+                return;
+            }
         }
+    }
+
+    // A prediction outside parallel regions of a hypothesis evaluated before (the case as
+    // described, or a fitted one): an interrupt throws io::Interrupted.
+    Pred predict_checked(const Hypothesis& h, const std::vector<int>& idx) const {
+        Pred p;
+        predict(h, idx, p, 0);
+        io::throw_if_interrupted();
+        if (!p.failure.empty()) throw std::runtime_error("diagnose: a fitted hypothesis failed at " + p.failure);
+        return p;
     }
 
     Score score(const Hypothesis& h, const Pred& p, const std::vector<int>& idx) const {
@@ -116,10 +196,21 @@ public:
         return s;
     }
 
-    double nll(const Hypothesis& h, const std::vector<int>& idx, int tid) const {
+    // kFailedNll when the hypothesis cannot be evaluated at a point of idx (why: *failure, if given).
+    double nll(const Hypothesis& h, const std::vector<int>& idx, int tid, std::string* failure = nullptr) const {
         Pred p;
         predict(h, idx, p, tid);
+        if (!p.failure.empty()) {
+            if (failure && failure->empty()) *failure = p.failure;
+            return kFailedNll;
+        }
         return score(h, p, idx).nll;
+    }
+
+    // The scan range of a parameter: its bounds, narrowed to where the model stays physical at
+    // every point of the campaign (effects.hpp valid_range: heat flow to ambient positive).
+    std::pair<double, double> range(const Effect& e) const {
+        return physical_range_ ? valid_range(e, max_rpm_) : std::make_pair(e.lower, e.upper);
     }
 
     std::vector<double> scan_values(const Effect& e) const {
@@ -138,7 +229,8 @@ public:
         else if (id == "speed_dependent_cooling") v = {-.9, -.6, -.3, -.1, 0, .1, .25, .5, 1, 1.5, 2.5, 4, 6, 10};
         else if (id == "torque_sensor_gain") v = {.8, .85, .9, .93, .96, .98, .99, 1, 1.01, 1.02, 1.04, 1.07, 1.1, 1.15, 1.2};
         else if (id == "torque_sensor_offset") v = {-100, -50, -25, -12, -6, -3, -1, 0, 1, 3, 6, 12, 25, 50, 100};
-        for (auto& x : v) x = std::clamp(x, e.lower, e.upper);
+        const auto [lo, hi] = range(e);
+        for (auto& x : v) x = std::clamp(x, lo, hi);
         std::sort(v.begin(), v.end());
         v.erase(std::unique(v.begin(), v.end()), v.end());
         return v;
@@ -149,10 +241,22 @@ public:
         if (e.id == "unstabilised_test") return fit_unstabilised(base, idx, tid);
         Fit f;
         f.k = 1;
-        auto objective = [&](double x) {
+        std::string failure;  // the first parameter value (and point) the model could not be evaluated at
+        auto at = [&](double x, std::string* why) {
             Hypothesis h = base;
             e.apply(h, x);
-            return nll(h, idx, tid);
+            std::string w;
+            const double v = nll(h, idx, tid, &w);
+            if (!w.empty() && why && why->empty()) *why = fmt::format("{} = {:.4g}: {}", e.parameter, x, w);
+            return v;
+        };
+        auto objective = [&](double x) { return at(x, &failure); };
+        auto rejected = [&] {
+            f.failed = failure;
+            f.nll = kFailedNll;
+            f.value = std::nan("");
+            f.h = base;
+            return f;
         };
         const auto grid = scan_values(e);
         std::vector<double> val(grid.size());
@@ -161,21 +265,25 @@ public:
             val[i] = objective(grid[i]);
             if (val[i] < val[best]) best = i;
         }
+        if (!failure.empty()) return rejected();
         const double lo = grid[best == 0 ? 0 : best - 1], hi = grid[std::min(best + 1, grid.size() - 1)];
         std::uintmax_t iters = 40;
         const auto [x, fx] = boost::math::tools::brent_find_minima(objective, lo, hi, 24, iters);
+        if (!failure.empty()) return rejected();
         f.value = fx <= val[best] ? x : grid[best];
         f.nll = std::min(fx, val[best]);
         f.h = base;
         e.apply(f.h, f.value);
         if (with_uncertainty) {
             // Curvature of the profiled log-likelihood: sigma = 1/sqrt(d2 NLL / d theta2).
+            const auto [lower, upper] = range(e);
             const double step = std::max(1e-4 * (e.upper - e.lower), 2e-3 * std::abs(f.value));
-            const double a = std::max(e.lower, f.value - step), b = std::min(e.upper, f.value + step);
-            const double fa = objective(a), fb = objective(b);
+            const double a = std::max(lower, f.value - step), b = std::min(upper, f.value + step);
+            const double fa = at(a, nullptr), fb = at(b, nullptr);
             const double h1 = f.value - a, h2 = b - f.value;
-            double d2 = 0;
-            if (h1 > 0 && h2 > 0) d2 = 2.0 * (h1 * fb + h2 * fa - (h1 + h2) * f.nll) / (h1 * h2 * (h1 + h2));
+            double d2 = 0;  // a neighbour that cannot be evaluated leaves the uncertainty unknown
+            if (h1 > 0 && h2 > 0 && fa < kFailedNll && fb < kFailedNll)
+                d2 = 2.0 * (h1 * fb + h2 * fa - (h1 + h2) * f.nll) / (h1 * h2 * (h1 + h2));
             f.uncertainty = d2 > 0 ? 1.0 / std::sqrt(d2) : std::nan("");
         }
         return f;
@@ -187,6 +295,11 @@ public:
         f.h = base;
         Pred p;
         predict(base, idx, p, tid);
+        if (!p.failure.empty()) {
+            f.failed = p.failure;
+            f.nll = kFailedNll;
+            return f;
+        }
         f.nll = score(base, p, idx).nll;
         if (!has_temperature()) return f;
         std::vector<int> uniq(idx);
@@ -240,7 +353,8 @@ private:
     int threads_ = 1;
     mutable std::vector<solver::Model> work_;
     mutable std::vector<solver::PointState> states_;
-    double mean_loss_ = 0, mean_n29_ = 0;
+    double mean_loss_ = 0, mean_n29_ = 0, max_rpm_ = 0;
+    bool physical_range_ = true;
     int n_T_ = 0;
 };
 
@@ -277,36 +391,60 @@ ChannelStats channel_rmse(const Engine& E, const Pred& p, const Hypothesis& h) {
 // Leave-one-out: refit on all other points, predict the held-out one.
 struct CvResult {
     double nll = 0, rmse_loss = 0, rmse_temp = 0;
+    std::string failed;  // a fold whose fit or prediction could not be evaluated (the candidate is rejected)
 };
 
 CvResult cross_validate(const Engine& E, const Effect* e, const Hypothesis& base, const Hypothesis& full_fit) {
     const size_t n = E.obs().size();
     std::vector<double> eP(n, 0), eL(n, 0), eT(n, 0);
     std::vector<char> hasT(n, 0);
+    std::vector<std::string> failed(n);
+    RegionErrors errors;
 #pragma omp parallel for num_threads(E.threads()) schedule(dynamic, 1)
     for (long jl = 0; jl < static_cast<long>(n); ++jl) {
-        const int j = static_cast<int>(jl);
-        const int tid = omp_get_thread_num();
-        Hypothesis h = base;
-        if (e) {
-            std::vector<int> train;
-            for (int i : E.all())
-                if (i != j) train.push_back(i);
-            h = E.fit(*e, base, train, tid, false).h;
-        }
-        Pred p;
-        E.predict(h, {j}, p, tid);
-        const auto& o = E.obs()[j];
-        eL[j] = o.loss - p.loss[j];
-        eP[j] = eL[j] / o.scale;
-        // A point the full fit calls unstabilised carries no temperature evidence.
-        const bool flagged = !full_fit.unstabilised.empty() && full_fit.unstabilised[j];
-        if (o.T_evidence && !flagged) {
-            eT[j] = o.T_oil - p.temp[j];
-            hasT[j] = 1;
+        if (io::interrupted()) continue;  // the remaining folds are skipped; rethrow() throws after the region
+        try {
+            const int j = static_cast<int>(jl);
+            const int tid = omp_get_thread_num();
+            Hypothesis h = base;
+            if (e) {
+                std::vector<int> train;
+                for (int i : E.all())
+                    if (i != j) train.push_back(i);
+                Fit f = E.fit(*e, base, train, tid, false);
+                if (!f.failed.empty()) {
+                    failed[j] = "fit without " + point_name(E.obs()[j]) + ": " + f.failed;
+                    continue;
+                }
+                h = std::move(f.h);
+            }
+            Pred p;
+            E.predict(h, {j}, p, tid);
+            if (!p.failure.empty()) {
+                failed[j] = p.failure;
+                continue;
+            }
+            const auto& o = E.obs()[j];
+            eL[j] = o.loss - p.loss[j];
+            eP[j] = eL[j] / o.scale;
+            // A point the full fit calls unstabilised carries no temperature evidence.
+            const bool flagged = !full_fit.unstabilised.empty() && full_fit.unstabilised[j];
+            if (o.T_evidence && !flagged) {
+                eT[j] = o.T_oil - p.temp[j];
+                hasT[j] = 1;
+            }
+        } catch (...) {
+            errors.capture();
         }
     }
+    errors.rethrow();
     CvResult r;
+    for (const auto& f : failed)
+        if (!f.empty()) {
+            r.failed = "cross-validation: " + f;
+            r.nll = kFailedNll;
+            return r;
+        }
     double rP = 0, rT = 0;
     int nT = 0;
     for (size_t j = 0; j < n; ++j) {
@@ -506,6 +644,21 @@ Location locate(const Engine& E, const Pred& p, const Hypothesis& h, const solve
     return L;
 }
 
+// Why a recorded point cannot be compared with the model (empty: it can): a value that is
+// not finite or outside the stated ranges, an oil or ambient temperature outside the oil's
+// validity (a recorded oil_temp_C of 9999).
+std::string recorded_fault(const solver::Model& model, const Obs& o) {
+    if (!std::isfinite(o.loss)) return "the recorded loss is not a finite number";
+    if (auto f = solver::speed_fault(o.w)) return "recorded " + *f;
+    if (auto f = solver::torque_fault(o.torque)) return "recorded " + *f;
+    if (auto f = solver::ambient_fault(o.ambient)) return *f;
+    if (model.thermal.mode == solver::ThermalMode::stabilised)
+        if (auto f = solver::oil_temperature_fault(model.oil, o.ambient)) return "ambient temperature " + *f;
+    if (o.has_T)
+        if (auto f = solver::oil_temperature_fault(model.oil, o.T_oil)) return "recorded oil temperature " + *f;
+    return {};
+}
+
 std::string fmt_value(double v, const std::string& unit) {
     return unit.empty() ? fmt::format("{:.4g}", v) : fmt::format("{:.4g} {}", v, unit);
 }
@@ -515,39 +668,64 @@ std::string fmt_value(double v, const std::string& unit) {
 Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const DiagnoseOptions& opt) {
     Diagnosis d;
     d.warnings = rec.warnings;
+    // The case as described (with any calibration it carries): the baseline hypothesis.
+    Hypothesis neutral;
+    neutral.cal = model.calibration;
     std::vector<Obs> obs;
-    double mean_abs = 0;
-    for (const auto& r : rec.points) mean_abs += std::abs(r.loss) / rec.points.size();
-    for (const auto& r : rec.points) {
-        Obs o;
-        o.row = r.row;
-        o.w = r.speed_in;
-        o.torque = r.torque_in;
-        o.loss = r.loss;
-        o.ambient = r.ambient_temp ? *r.ambient_temp : model.thermal.ambient;
-        o.scale = std::max({std::abs(r.loss), 0.05 * mean_abs, 1.0});
-        o.has_T = r.oil_temp.has_value();
-        // Tests the log criterion rejects carry no equilibrium temperature.
-        o.T_evidence = o.has_T && r.stabilised && model.thermal.mode == solver::ThermalMode::stabilised;
-        o.T_oil = r.oil_temp ? *r.oil_temp : 0.0;
-        o.stabilised = r.stabilised;
-        o.drift = r.stabilisation_drift;
-        obs.push_back(o);
+    std::vector<Outlier> unused;  // rows the model cannot be compared with: listed, not used
+    {
+        solver::Model m = model;
+        solver::PointState ps;
+        for (const auto& r : rec.points) {
+            io::throw_if_interrupted();
+            Obs o;
+            o.row = r.row;
+            o.w = r.speed_in;
+            o.torque = r.torque_in;
+            o.loss = r.loss;
+            o.ambient = r.ambient_temp ? *r.ambient_temp : model.thermal.ambient;
+            o.has_T = r.oil_temp.has_value();
+            // Tests the log criterion rejects carry no equilibrium temperature.
+            o.T_evidence = o.has_T && r.stabilised && model.thermal.mode == solver::ThermalMode::stabilised;
+            o.T_oil = r.oil_temp ? *r.oil_temp : 0.0;
+            o.stabilised = r.stabilised;
+            o.drift = r.stabilisation_drift;
+            std::string why = recorded_fault(model, o);
+            double L = 0, T = 0;
+            if (why.empty()) why = evaluate_point(m, ps, neutral, o, L, T);
+            if (why.empty() && !(std::isfinite(o.loss - L) && std::isfinite(o.T_oil - T)))
+                why = "its residual is not a finite number";
+            if (!why.empty()) {
+                unused.push_back({o.row, "not used: " + why});
+                continue;
+            }
+            obs.push_back(o);
+        }
     }
-    if (obs.size() < 4) throw std::invalid_argument("at least 4 recorded points are needed for a diagnosis");
+    double mean_abs = 0;
+    for (const auto& o : obs) mean_abs += std::abs(o.loss) / obs.size();
+    for (auto& o : obs) o.scale = std::max({std::abs(o.loss), 0.05 * mean_abs, 1.0});
+    if (!unused.empty())
+        d.warnings.push_back(fmt::format("{} recorded point(s) not used, the model cannot be compared with them (first: row "
+                                         "{}, {}); see the outliers",
+                                         unused.size(), unused.front().row, unused.front().reason.substr(10)));
+    if (obs.size() < 4) {
+        std::string why = "at least 4 recorded points are needed for a diagnosis";
+        if (!unused.empty())
+            why += fmt::format(" ({} usable of {}; row {}: {})", obs.size(), rec.points.size(), unused.front().row,
+                               unused.front().reason.substr(10));
+        throw std::invalid_argument(why);
+    }
     if (model.thermal.mode != solver::ThermalMode::stabilised)
         d.warnings.push_back("the case is in fixed-temperature mode: oil temperatures are not used as evidence");
-    Engine E(model, std::move(obs), opt.threads);
+    Engine E(model, std::move(obs), opt.threads, opt.physical_scan_range);
     d.points = static_cast<int>(E.obs().size());
     d.has_temperature = E.has_temperature();
     const auto& all = E.all();
     const size_t N = n_observations(E, all);
 
     // The baseline is the case as described, including any calibration it carries.
-    Hypothesis neutral;
-    neutral.cal = model.calibration;
-    Pred p0;
-    E.predict(neutral, all, p0, 0);
+    const Pred p0 = E.predict_checked(neutral, all);
     const ChannelStats s0 = channel_rmse(E, p0, neutral);
     d.rmse_before = s0.rmse_loss;
     d.temp_rmse_before = s0.rmse_temp;
@@ -560,29 +738,57 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     std::string partial;  // a candidate that matched only part of the residual
     const auto& lib = effect_library();
     for (int round = 0; round < opt.max_findings; ++round) {
-        const double nll_base = E.nll(base, all, 0);
+        const double nll_base = E.score(base, E.predict_checked(base, all), all).nll;
         std::vector<Fit> fits(lib.size());
-        std::vector<double> dbic(lib.size(), -1e300);
+        std::vector<double> dbic(lib.size(), kRejectedBic);
+        // A candidate that cannot be evaluated somewhere in its scan is rejected with the reason;
+        // an interrupt skips the remaining candidates (checked after the region).
 #pragma omp parallel for num_threads(E.threads()) schedule(dynamic, 1)
         for (long k = 0; k < static_cast<long>(lib.size()); ++k) {
+            if (io::interrupted()) continue;
             if (std::find(used.begin(), used.end(), lib[k].id) != used.end()) continue;
-            fits[k] = E.fit(lib[k], base, all, omp_get_thread_num(), true);
-            dbic[k] = delta_bic(nll_base, fits[k], N);
+            try {
+                fits[k] = E.fit(lib[k], base, all, omp_get_thread_num(), true);
+            } catch (const std::exception& ex) {
+                fits[k] = Fit{};
+                fits[k].failed = ex.what();
+            } catch (...) {
+                fits[k] = Fit{};
+                fits[k].failed = "unknown error";
+            }
+            if (fits[k].failed.empty()) dbic[k] = delta_bic(nll_base, fits[k], N);
+            else fits[k].value = std::nan("");
         }
+        io::throw_if_interrupted();
         std::vector<size_t> order(lib.size());
         std::iota(order.begin(), order.end(), 0);
         std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dbic[a] > dbic[b]; });
         if (round == 0)
             for (size_t k : order)
-                d.candidates.push_back({lib[k].id, fits[k].value, dbic[k]});
+                d.candidates.push_back({lib[k].id, fits[k].value, dbic[k], fits[k].failed});
+        else
+            for (size_t k : order)
+                if (!fits[k].failed.empty())
+                    d.warnings.push_back(fmt::format("on top of {}: candidate {} rejected: {}", used.back(), lib[k].id,
+                                                     fits[k].failed));
         // Candidates that pass the BIC threshold, checked by cross-validation in BIC order.
         CvResult cv0 = cross_validate(E, nullptr, base, base);
+        if (!cv0.failed.empty()) throw std::runtime_error("diagnose: the current hypothesis failed in " + cv0.failed);
         int chosen = -1;
         CvResult cv_chosen;
         for (size_t r = 0; r < std::min<size_t>(order.size(), 3); ++r) {
             const size_t k = order[r];
             if (dbic[k] < opt.bic_threshold) break;
             const CvResult cv = cross_validate(E, &lib[k], base, fits[k].h);
+            if (!cv.failed.empty()) {
+                // Rejected with the reason, not fatal: the next candidate in BIC order is checked.
+                const std::string why = fmt::format("{} rejected: {}", lib[k].id, cv.failed);
+                if (round == 0)
+                    for (auto& c : d.candidates)
+                        if (c.effect == lib[k].id) c.rejected = cv.failed;
+                d.warnings.push_back("candidate " + why);
+                continue;
+            }
             if (cv0.nll - cv.nll >= opt.cv_margin) {
                 chosen = static_cast<int>(k);
                 cv_chosen = cv;
@@ -597,27 +803,38 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         if (std::find(contenders.begin(), contenders.end(), static_cast<size_t>(chosen)) == contenders.end())
             contenders.push_back(static_cast<size_t>(chosen));
         std::vector<int> wins(lib.size(), 0);
+        RegionErrors errors;
 #pragma omp parallel for num_threads(E.threads()) schedule(dynamic, 1)
         for (int b = 0; b < opt.bootstrap; ++b) {
-            const int tid = omp_get_thread_num();
-            std::mt19937_64 rng(opt.seed + 7919u * static_cast<unsigned>(b) + 104729u * static_cast<unsigned>(round));
-            std::uniform_int_distribution<int> pick(0, static_cast<int>(all.size()) - 1);
-            std::vector<int> idx(all.size());
-            for (auto& i : idx) i = pick(rng);
-            const double nb = E.nll(base, idx, tid);
-            const size_t Nb = n_observations(E, idx);
-            int winner = -1;
-            double best = opt.bic_threshold;
-            for (size_t k : contenders) {
-                const double db = delta_bic(nb, E.fit(lib[k], base, idx, tid, false), Nb);
-                if (db > best) {
-                    best = db;
-                    winner = static_cast<int>(k);
+            if (io::interrupted()) continue;  // the remaining resamples are skipped; rethrow() throws
+            try {
+                const int tid = omp_get_thread_num();
+                std::mt19937_64 rng(opt.seed + 7919u * static_cast<unsigned>(b) + 104729u * static_cast<unsigned>(round));
+                std::uniform_int_distribution<int> pick(0, static_cast<int>(all.size()) - 1);
+                std::vector<int> idx(all.size());
+                for (auto& i : idx) i = pick(rng);
+                std::string failure;
+                const double nb = E.nll(base, idx, tid, &failure);
+                if (!failure.empty()) throw std::runtime_error("diagnose: the current hypothesis failed at " + failure);
+                const size_t Nb = n_observations(E, idx);
+                int winner = -1;
+                double best = opt.bic_threshold;
+                for (size_t k : contenders) {
+                    const Fit f = E.fit(lib[k], base, idx, tid, false);
+                    if (!f.failed.empty()) continue;  // cannot be evaluated on this resample: does not win it
+                    const double db = delta_bic(nb, f, Nb);
+                    if (db > best) {
+                        best = db;
+                        winner = static_cast<int>(k);
+                    }
                 }
-            }
 #pragma omp critical
-            if (winner >= 0) ++wins[winner];
+                if (winner >= 0) ++wins[winner];
+            } catch (...) {
+                errors.capture();
+            }
         }
+        errors.rethrow();
         const double stability = static_cast<double>(wins[chosen]) / opt.bootstrap;
         Finding f;
         const Effect& e = lib[chosen];
@@ -652,9 +869,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         f.delta_bic = dbic[chosen];
         f.stability = stability;
         f.cv_gain = cv0.nll - cv_chosen.nll;
-        Pred pb, pa;
-        E.predict(base, all, pb, 0);
-        E.predict(fits[chosen].h, all, pa, 0);
+        const Pred pb = E.predict_checked(base, all), pa = E.predict_checked(fits[chosen].h, all);
         // A candidate must explain the bulk of the systematic residual: if the
         // structure it leaves (generic smooth fit, BIC) is more significant than
         // what it explained, it is only a partial match, not the explanation.
@@ -680,8 +895,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     }
     d.calibrated = base;
 
-    Pred pf;
-    E.predict(base, all, pf, 0);
+    const Pred pf = E.predict_checked(base, all);
     const ChannelStats sf = channel_rmse(E, pf, base);
     d.rmse_after = sf.rmse_loss;
     d.temp_rmse_after = sf.rmse_temp;
@@ -747,7 +961,14 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
                 d.outliers.push_back({o.row, r});
             }
         }
+        if (!unused.empty()) {
+            d.outliers.insert(d.outliers.end(), unused.begin(), unused.end());
+            std::stable_sort(d.outliers.begin(), d.outliers.end(), [](const Outlier& a, const Outlier& b) { return a.row < b.row; });
+        }
     }
+    // Every number reported is finite (the rows that could not be compared are not used).
+    for (double v : {d.rmse_before, d.rmse_after, d.cv_rmse_after, d.temp_rmse_before, d.temp_rmse_after})
+        if (!std::isfinite(v)) throw std::runtime_error("diagnose: a residual statistic is not a finite number");
 
     // Per-point residuals before and after.
     for (int i : all) {
@@ -795,10 +1016,14 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         d.summary = fmt::format(
             "the recordings differ systematically from the model, but no candidate effect explains it ({}); the "
             "unexplained residual: {}",
-            partial.empty() ? fmt::format("best: {} with delta BIC {:.1f}", d.candidates.front().effect,
-                                          d.candidates.front().delta_bic)
-                            : partial,
+            !partial.empty() ? partial
+            : d.candidates.front().rejected.empty()
+                ? fmt::format("best: {} with delta BIC {:.1f}", d.candidates.front().effect, d.candidates.front().delta_bic)
+                : std::string("no candidate could be evaluated"),
             baseline_clause);
+    } else if (!d.candidates.front().rejected.empty()) {
+        d.verdict = "unexplained_mismatch";
+        d.summary = "no candidate effect could be evaluated on these recordings (see the candidates); " + baseline_clause;
     } else {
         d.summary = fmt::format("no significant missing physics: the residuals are consistent with measurement noise "
                                 "(loss RMSE {:.3g} W{}); best candidate {} (delta BIC {:.1f}) is below the evidence threshold",
@@ -834,7 +1059,10 @@ std::string diagnosis_text(const Diagnosis& d) {
     }
     if (!d.remaining.empty() && d.verdict == "missing_physics") s += "\n" + d.remaining + "\n";
     s += "\ncandidates (delta BIC, > 10 is very strong evidence):\n";
-    for (const auto& c : d.candidates) s += fmt::format("  {:<24} {:8.1f}   fitted {:.4g}\n", c.effect, c.delta_bic, c.value);
+    for (const auto& c : d.candidates) {
+        if (c.rejected.empty()) s += fmt::format("  {:<24} {:8.1f}   fitted {:.4g}\n", c.effect, c.delta_bic, c.value);
+        else s += fmt::format("  {:<24} rejected: {}\n", c.effect, c.rejected);
+    }
     if (!d.outliers.empty()) {
         s += "\noutliers:\n";
         for (const auto& o : d.outliers) s += fmt::format("  row {}: {}\n", o.row, o.reason);
@@ -905,8 +1133,14 @@ std::string diagnosis_json(const Diagnosis& d) {
     for (const auto& c : d.candidates) {
         j.begin_object();
         j.key("effect").value(c.effect);
-        j.key("delta_bic").value(c.delta_bic);
-        j.key("fitted").value(c.value);
+        if (c.rejected.empty()) {
+            j.key("delta_bic").value(c.delta_bic);
+            j.key("fitted").value(c.value);
+        } else {
+            j.key("delta_bic").null();
+            j.key("fitted").null();
+            j.key("rejected").value(c.rejected);
+        }
         j.end_object();
     }
     j.end_array();

@@ -29,6 +29,10 @@ struct DiagnoseOptions {
     double ambiguity_bic = 2.0;    // candidates this close in BIC are indistinguishable
     int max_findings = 2;
     int threads = 0;
+    // Candidate scans stay where the model is physical at every recorded point (effects.hpp
+    // valid_range: heat flow to ambient positive). false scans each parameter's full bounds;
+    // a candidate that then cannot be evaluated somewhere is rejected with the reason (tests).
+    bool physical_scan_range = true;
 };
 
 struct Estimate {
@@ -50,6 +54,7 @@ struct Finding {
 struct Candidate {
     std::string effect;
     double value = 0, delta_bic = 0;
+    std::string rejected;  // why the candidate could not be evaluated (empty: it was)
 };
 
 struct Outlier {
@@ -70,7 +75,7 @@ struct Diagnosis {
     std::string remaining;          // where an unexplained residual remains (if any)
     std::vector<Finding> findings;
     std::vector<Candidate> candidates;  // every effect, best first
-    std::vector<Outlier> outliers;
+    std::vector<Outlier> outliers;  // also the rows not used (recorded values the model cannot evaluate)
     std::vector<PointResidual> residuals;
     std::vector<std::string> warnings;
     double rmse_before = 0, rmse_after = 0, cv_rmse_after = 0, temp_rmse_before = 0, temp_rmse_after = 0;

@@ -1,5 +1,6 @@
 #include "diagnosis/effects.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gearloss::diagnosis {
@@ -42,6 +43,13 @@ const std::vector<Effect>& effect_library() {
          [](Hypothesis& h, double v) { h.cal.auxiliary_W = v; }},
     };
     return lib;
+}
+
+std::pair<double, double> valid_range(const Effect& e, double max_speed_rpm) {
+    double lo = e.lower;
+    if (e.id == "speed_dependent_cooling" && max_speed_rpm > 0 && std::isfinite(max_speed_rpm))
+        lo = std::max(lo, -0.9 * 1000.0 / max_speed_rpm);
+    return {lo, e.upper};
 }
 
 const Effect* find_effect(const std::string& id) {

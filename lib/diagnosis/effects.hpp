@@ -3,6 +3,7 @@
 // a one-line physical description, one physically bounded parameter and a
 // signature (how it shows in the data) used to suggest a separating measurement.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solver/model.hpp"
@@ -43,6 +44,12 @@ struct Effect {
 };
 
 const std::vector<Effect>& effect_library();
+
+// The part of [lower, upper] in which the model stays physical at every input speed up to
+// `max_speed_rpm`: speed_dependent_cooling multiplies the heat flow to ambient by
+// (1 + a n/1000 rpm), so a >= -0.9 (1000 rpm / n_max) keeps at least a tenth of it (positive,
+// the coupled solve well posed); the other parameters keep their bounds.
+std::pair<double, double> valid_range(const Effect& e, double max_speed_rpm);
 const Effect* find_effect(const std::string& id);
 
 // Suggests the measurement that would tell two effects apart.

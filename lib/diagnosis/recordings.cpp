@@ -4,9 +4,9 @@
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
-#include <fstream>
 #include <sstream>
 #include <map>
+#include <unordered_map>
 #include <numbers>
 #include <optional>
 
@@ -19,6 +19,12 @@ namespace gearloss::diagnosis {
 namespace {
 
 constexpr double rpm = std::numbers::pi / 30.0;
+// A raw log's time stamps, in seconds, within +-kMaxTime: Unix times (1.7e9 s) fit, and the
+// resolution of a double there (1e-4 s) stays far below a sample period; beyond it a
+// 5-minute block could no longer be told from the next one.
+constexpr double kMaxTime = 1e12;
+// Exact duplicate rows named one by one in the warnings; further ones are counted.
+constexpr int kDuplicateWarnings = 10;
 
 using io::split_csv_line;
 
@@ -65,7 +71,7 @@ std::optional<ColumnDef> column_definition(const std::string& name, const std::s
             one.rotation = f.rotation;
             return ColumnDef{q.key, units::as_rotational_speed(one, unit), f.offset};
         } catch (const units::UnitError& e) {
-            throw InputError(file, line, col, name, e.msg);
+            throw InputError(file, line, col, io::excerpt(name), e.msg);
         }
     }
     return std::nullopt;
@@ -77,6 +83,7 @@ struct Table {
     std::vector<ColumnDef> def;         // per column (key empty: unknown)
     std::vector<std::vector<std::string>> rows;
     std::vector<int> lines;
+    std::vector<int> data_rows;         // 1 = first data line of the file (exact duplicates merged keep their number)
 };
 
 Table read_table(const std::string& file, std::istream& in, std::vector<std::string>& warnings) {
@@ -89,31 +96,62 @@ Table read_table(const std::string& file, std::istream& in, std::vector<std::str
         if (line.empty() || line[0] == '#') continue;
         if (line.size() >= 3 && static_cast<unsigned char>(line[0]) == 0xEF) line = line.substr(3);  // UTF-8 BOM
         header = split_csv_line(line);
+        if (header.size() == 1)
+            if (const std::string hint = io::separator_hint(line); !hint.empty()) throw InputError(file, ln, 0, "", hint);
         break;
     }
     if (header.empty()) throw InputError(file, ln, 0, "", "no header line");
     t.header = header;
     t.def.resize(header.size());
+    std::vector<std::string> unknown;
     for (size_t i = 0; i < header.size(); ++i) {
         const auto def = column_definition(header[i], file, ln, static_cast<int>(i + 1));
         if (!def) {
-            warnings.push_back(fmt::format("{}:{}: unknown column '{}' ignored", file, ln, header[i]));
+            unknown.push_back(fmt::format("{}:{}:{}: unknown column '{}' ignored", file, ln, i + 1, io::excerpt(header[i])));
             continue;
         }
         if (t.col.count(def->key))
-            throw InputError(file, ln, static_cast<int>(i + 1), header[i], "column duplicates another for the same quantity");
+            throw InputError(file, ln, static_cast<int>(i + 1), io::excerpt(header[i]),
+                             "column duplicates another for the same quantity");
         t.col[def->key] = i;
         t.def[i] = *def;
     }
+    // Not one known column: not a recordings file at all (a password file, say). Its first
+    // line is not quoted.
+    if (t.col.empty())
+        throw InputError(file, ln, 0, "",
+                         "the header names none of the recordings columns (speed_in_rpm, torque_in_Nm, P_loss_W, "
+                         "oil_temp_C, time_s, ...); this is not a gearloss recordings CSV file");
+    warnings.insert(warnings.end(), unknown.begin(), unknown.end());
+    // Exact duplicates (every cell equal after trimming): a row exported twice would count
+    // twice as evidence. Merged into the first, with a warning naming both lines.
+    std::unordered_map<std::string, int> first_line;
+    int duplicates = 0, data_row = 0;
     while (std::getline(in, line)) {
         ++ln;
         if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r,") == std::string::npos) continue;
+        ++data_row;
         auto cells = split_csv_line(line);
-        if (cells.size() != header.size())
-            throw InputError(file, ln, 0, "", fmt::format("row has {} cells, the header has {}", cells.size(), header.size()));
+        if (cells.size() != header.size()) {
+            std::string msg = fmt::format("row has {} cells, the header has {}", cells.size(), header.size());
+            if (const std::string hint = io::separator_hint(line); !hint.empty()) msg += "; " + hint;
+            throw InputError(file, ln, 0, "", msg);
+        }
+        std::string key;
+        for (const auto& c : cells) key.append(std::to_string(c.size())).append(":").append(c);
+        const auto [it, fresh] = first_line.emplace(std::move(key), ln);
+        if (!fresh) {
+            if (++duplicates <= kDuplicateWarnings)
+                warnings.push_back(fmt::format("{}:{}: row repeats line {} exactly; counted once", file, ln, it->second));
+            continue;
+        }
         t.rows.push_back(std::move(cells));
         t.lines.push_back(ln);
+        t.data_rows.push_back(data_row);
     }
+    if (duplicates > kDuplicateWarnings)
+        warnings.push_back(fmt::format("{}: {} more rows repeat an earlier row exactly; each counted once", file,
+                                       duplicates - kDuplicateWarnings));
     if (t.rows.empty()) throw InputError(file, ln, 0, "", "no data rows");
     return t;
 }
@@ -127,9 +165,21 @@ double cell(const std::string& file, const Table& t, size_t r, const std::string
     }
     const std::string& s = t.rows[r][it->second];
     const std::string& name = t.header[it->second];
-    const double v = io::csv_cell_number(s, file, t.lines[r], static_cast<int>(it->second + 1), name);
+    const int column = static_cast<int>(it->second + 1);
+    const double v = io::csv_cell_number(s, file, t.lines[r], column, name);
     if (present) *present = true;
-    return v * t.def[it->second].scale + t.def[it->second].offset;
+    const double si = v * t.def[it->second].scale + t.def[it->second].offset;
+    if (!std::isfinite(si))
+        throw InputError(file, t.lines[r], column, name, "'" + io::excerpt(s) + "' is out of range (overflows in SI units)");
+    return si;
+}
+
+// Line and column of `key` in row r, for errors about its value.
+[[noreturn]] void fail_cell(const std::string& file, const Table& t, size_t r, const std::string& key,
+                            const std::string& message) {
+    const auto it = t.col.find(key);
+    const int column = it == t.col.end() ? 0 : static_cast<int>(it->second + 1);
+    throw InputError(file, t.lines[r], column, it == t.col.end() ? key : t.header[it->second], message);
 }
 
 void require(const std::string& file, const Table& t, const char* key, const char* name) {
@@ -139,14 +189,16 @@ void require(const std::string& file, const Table& t, const char* key, const cha
 }  // namespace
 
 Recordings read_recordings(const std::string& file, const StabilisationCriterion& crit) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(file, 0, 0, "", "cannot open recordings file");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return read_recordings_text(ss.str(), file, crit);
+    // A regular file of at most 64 MiB (a FIFO or a device is refused by name, unread).
+    return read_recordings_text(io::read_input_file(file, io::kMaxCsvFileBytes), file, crit);
 }
 
 Recordings read_recordings_text(const std::string& text, const std::string& file, const StabilisationCriterion& crit) {
+    // The criterion bounds the block loop below: at most window/block + 1 blocks per test.
+    if (!(crit.window_s > 0 && crit.block_s > 0 && std::isfinite(crit.window_s) && crit.window_s / crit.block_s <= 1e6 &&
+          crit.max_variation >= 0))
+        throw std::invalid_argument("stabilisation criterion: window and block must be positive, at most 1e6 blocks");
+    io::check_input_text(text, file, io::kMaxCsvFileBytes);
     Recordings rec;
     rec.file = file;
     std::istringstream in(text);
@@ -161,7 +213,7 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
                              "required column 'P_loss_W' is missing (or give torque_out_Nm and speed_out_rpm)");
         for (size_t r = 0; r < t.rows.size(); ++r) {
             RecordedPoint p;
-            p.row = static_cast<int>(r + 1);
+            p.row = t.data_rows[r];
             p.line = t.lines[r];
             p.speed_in = get(r, "speed_in");
             p.torque_in = get(r, "torque_in");
@@ -179,10 +231,17 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
             else if (p.torque_out && p.speed_out)
                 p.loss = p.torque_in * p.speed_in - std::abs(*p.torque_out * *p.speed_out);
             else
-                throw InputError(file, p.line, 0, "P_loss_W", "empty loss cell and no output torque and speed");
-            if (t.col.count("label")) p.label = t.rows[r][t.col["label"]];
-            if (p.speed_in < 0) throw InputError(file, p.line, 0, "speed_in_rpm", "negative speed");
-            if (p.oil_temp && *p.oil_temp <= 0) throw InputError(file, p.line, 0, "oil_temp_C", "below absolute zero");
+                fail_cell(file, t, r, "loss", "empty loss cell and no output torque and speed");
+            if (!std::isfinite(p.loss))
+                fail_cell(file, t, r, "torque_out", "the loss from input and output power overflows (not a finite number)");
+            if (t.col.count("label")) {
+                p.label = t.rows[r][t.col["label"]];
+                if (!io::is_printable_utf8(p.label))
+                    fail_cell(file, t, r, "label", "'" + io::excerpt(p.label) +
+                                                       "': a label must be printable UTF-8 text (save the file as UTF-8)");
+            }
+            if (p.speed_in < 0) fail_cell(file, t, r, "speed_in", "negative speed");
+            if (p.oil_temp && *p.oil_temp <= 0) fail_cell(file, t, r, "oil", "below absolute zero");
             rec.points.push_back(p);
         }
         return rec;
@@ -203,8 +262,12 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
     for (size_t r = 0; r < t.rows.size(); ++r) {
         Sample x{get(r, "time"), get(r, "speed_in"), get(r, "torque_in"), get(r, "speed_out"),
                  get(r, "torque_out"), get(r, "oil"), get(r, "ambient"), t.lines[r]};
-        if (!s.empty() && !(x.time > s.back().time))
+        if (!(std::abs(x.time) <= kMaxTime))
+            fail_cell(file, t, r, "time", fmt::format("time {:g} s is out of range (at most {:g} s in magnitude)", x.time, kMaxTime));
+        if (!s.empty() && !(x.time > s.back().time))  // a property of the row, not of a cell
             throw InputError(file, x.line, 0, "time_s", "time must increase from row to row");
+        if (!(x.oil > 0)) fail_cell(file, t, r, "oil", "below absolute zero");
+        if (!(x.room > 0)) fail_cell(file, t, r, "ambient", "below absolute zero");
         s.push_back(x);
     }
     // A new test starts when speed or torque leaves the current set-point for
@@ -270,9 +333,17 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
         p.oil_temp = oil / k;
         p.ambient_temp = room / k;
         p.loss = loss / k;
+        for (double x : {p.speed_in, p.torque_in, *p.speed_out, *p.torque_out, *p.oil_temp, *p.ambient_temp, p.loss})
+            if (!std::isfinite(x))
+                throw InputError(file, p.line, 0, "",
+                                 fmt::format("test {} (lines {}-{}): its means overflow (not finite numbers)", number,
+                                             s[a].line, s[b - 1].line));
         // Criterion: 5-min block means of (T_oil - T_room) over the last 30 min vary < 0.5 K.
+        // The block count is bounded as well as the time: window/block + 1 blocks at most.
         double lo = 1e300, hi = -1e300;
-        for (double b0 = t_end - crit.window_s; b0 < t_end - 1e-9; b0 += crit.block_s) {
+        const double max_blocks = std::ceil(crit.window_s / crit.block_s) + 1;
+        int blocks = 0;
+        for (double b0 = t_end - crit.window_s; b0 < t_end - 1e-9 && ++blocks <= max_blocks; b0 += crit.block_s) {
             double sum = 0;
             int m = 0;
             for (size_t j = w0; j < b; ++j)

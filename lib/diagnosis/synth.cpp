@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "diagnosis/effects.hpp"
+#include "io/interrupt.hpp"
 #include "solver/operating_point.hpp"
 #include "units/units.hpp"
 
@@ -68,6 +69,18 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
     const size_t n = grid.size();
     if (unstabilised > static_cast<int>(n))
         throw InputError("", 0, 0, "--effect unstabilised_test", "more unstabilised points than points in the grid");
+    // The model must stay physical at every point of the grid (diagnose scans the same range).
+    double max_rpm = 0;
+    for (size_t i = 0; i < n; ++i) max_rpm = std::max(max_rpm, std::abs(grid.at(i).first) * to_rpm);
+    for (const auto& [id, v] : opt.effects) {
+        const Effect* e = find_effect(id);
+        const auto [lo, hi] = valid_range(*e, max_rpm);
+        if (id != "unstabilised_test" && !(v >= lo && v <= hi))
+            throw InputError("", 0, 0, "--effect " + id,
+                             fmt::format("{} outside [{:.4g}, {:.4g}], where the heat flow to ambient stays positive up to "
+                                         "{:.0f} rpm",
+                                         v, lo, hi, max_rpm));
+    }
 
     std::mt19937_64 rng(opt.seed);
     std::normal_distribution<double> gauss(0.0, 1.0);
@@ -85,6 +98,7 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
     if (!opt.raw_log) {
         out = "speed_in_rpm,torque_in_Nm,P_loss_W,oil_temp_C,ambient_temp_C,label\n";
         for (size_t i = 0; i < n; ++i) {
+            io::throw_if_interrupted();
             const auto [w, T] = grid.at(i);
             solver::prepare_point(m, w, T, p);
             const auto eq = solver::solve_temperature(m, p, Ta);
@@ -129,6 +143,7 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
         const double e_loss = opt.noise_loss * gauss(rng), e_temp = opt.noise_temp * gauss(rng);
         const double w_out = std::abs(m.layout.ratio) * w;
         for (double s = 0; s < duration; s += dt) {
+            io::throw_if_interrupted();
             stepper.do_step(rhs, x, t, dt);
             t += dt;
             const double loss = solver::total_loss(m, p, x[0]);

@@ -147,8 +147,20 @@ void place_shafts(const Gearbox& gb, Layout& L) {
         const Gear& gear = gb.gears[g];
         return gear.is_planet() ? gear.carrier : gear.shaft;
     };
+    // A mesh whose angle or centre distance is not a finite number would place a shaft at NaN,
+    // which reads as "not placed" and kept the loop below going for ever.
+    for (size_t m = 0; m < gb.meshes.size(); ++m) {
+        if (!std::isfinite(gb.meshes[m].angle))
+            throw TopologyError(fmt::format("mesh '{}': angle is not a finite number", gb.meshes[m].name), "meshes",
+                                gb.meshes[m].name, "angle");
+        if (L.meshes[m].carrier_body < 0 && !std::isfinite(L.meshes[m].geom.a_w))
+            throw TopologyError(fmt::format("mesh '{}': centre distance is not a finite number", gb.meshes[m].name),
+                                "meshes", gb.meshes[m].name, "centre_distance");
+    }
+    // Each pass places at least one more shaft or ends: at most one pass per shaft (plus the last).
     bool progress = true;
-    while (progress) {
+    for (size_t pass = 0; progress; ++pass) {
+        if (pass > ns) throw TopologyError("shaft placement did not finish (a mesh places a shaft at no finite position)");
         progress = false;
         for (size_t m = 0; m < gb.meshes.size(); ++m) {
             const Mesh& mesh = gb.meshes[m];
@@ -173,7 +185,8 @@ void place_shafts(const Gearbox& gb, Layout& L) {
                         "mesh '{}' does not fit: shafts '{}' and '{}' are already placed {:.3f} mm from where its centre "
                         "distance ({:.3f} mm) and angle put them; give the meshes between these shafts the same "
                         "centre_distance and angle",
-                        mesh.name, gb.shafts[s0].name, gb.shafts[s1].name, gap * 1e3, aw * 1e3));
+                        mesh.name, gb.shafts[s0].name, gb.shafts[s1].name, gap * 1e3, aw * 1e3),
+                        "meshes", mesh.name, "angle");
             }
         }
     }
@@ -282,14 +295,19 @@ void shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std::vector
     for (const auto& gl : on_shaft) Fsum += gl.F;
     // A shaft described without bearings has no bearing loss to compute.
     if (supports.empty()) return;
+    // The shaft's support bearings by name, for messages.
+    std::string names;
+    for (const auto& [pos, ids] : supports)
+        for (int i : ids) names += (names.empty() ? "" : ", ") + gb.bearings[i].name;
+    const std::string first = gb.bearings[supports.begin()->second.front()].name;
     if (supports.size() > 2)
         throw TopologyError(fmt::format(
-            "shaft '{}' has bearings at {} axial positions; gearloss solves statically determinate shafts (two support "
+            "shaft '{}' has bearings at {} axial positions ({}); gearloss solves statically determinate shafts (two support "
             "positions; paired bearings share one position)",
-            gb.shafts[shaft].name, supports.size()));
+            gb.shafts[shaft].name, supports.size(), names), "bearings", first, "position");
     if (supports.size() == 1 && Fsum.head<2>().norm() > 1e-12)
-        throw TopologyError(fmt::format("shaft '{}' carries radial gear forces but has bearings at one axial position only",
-                                        gb.shafts[shaft].name));
+        throw TopologyError(fmt::format("shaft '{}' carries radial gear forces but has bearings at one axial position only ({})",
+                                        gb.shafts[shaft].name, names), "bearings", first, "position");
     const double zA = supports.begin()->first;
     Eigen::Vector2d RA(0, 0), RB(0, 0);
     if (supports.size() == 2) {
@@ -317,8 +335,8 @@ void shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std::vector
     if (std::abs(Fsum.z()) > 1e-9) {
         if (loc.empty())
             throw TopologyError(fmt::format(
-                "shaft '{}' carries an axial gear force but no bearing on it is marked 'locating: true'",
-                gb.shafts[shaft].name));
+                "shaft '{}' carries an axial gear force but no bearing on it is marked 'locating: true' (its bearings: {})",
+                gb.shafts[shaft].name, names), "bearings", first, "locating");
         for (int i : loc) Fa[i] = std::abs(Fsum.z()) / static_cast<double>(loc.size());
     }
 }
@@ -338,12 +356,14 @@ Layout analyse(const Gearbox& gb) {
         const Gear& G0 = gb.gears[mesh.gear[0]];
         const Gear& G1 = gb.gears[mesh.gear[1]];
         if (!G0.is_planet() && !G1.is_planet() && G0.shaft == G1.shaft)
-            throw TopologyError(fmt::format("mesh '{}': both gears sit on shaft '{}'", mesh.name, gb.shafts[G0.shaft].name));
+            throw TopologyError(fmt::format("mesh '{}': both gears sit on shaft '{}'", mesh.name, gb.shafts[G0.shaft].name),
+                                "meshes", mesh.name, "gears");
         auto& md = L.meshes[m];
         if (G0.is_planet() || G1.is_planet()) {
             const int c0 = G0.is_planet() ? G0.carrier : -1, c1 = G1.is_planet() ? G1.carrier : -1;
             if (c0 >= 0 && c1 >= 0 && c0 != c1)
-                throw TopologyError(fmt::format("mesh '{}': the two planets sit on different carriers", mesh.name));
+                throw TopologyError(fmt::format("mesh '{}': the two planets sit on different carriers", mesh.name), "meshes",
+                                    mesh.name, "gears");
             const int c = c0 >= 0 ? c0 : c1;
             md.carrier_body = L.body_of_shaft[c];
             md.planets = std::max(G0.planets, G1.planets);
@@ -357,7 +377,7 @@ Layout analyse(const Gearbox& gb) {
             md.L_min = sweep.L_min;
             md.L_mean = sweep.L_mean;
         } catch (const geometry::GeometryError& e) {
-            throw TopologyError(fmt::format("mesh '{}': {}", mesh.name, e.msg));
+            throw TopologyError(fmt::format("mesh '{}': {}", mesh.name, e.msg), "meshes", mesh.name, "");
         }
     }
     // Planetary sets: every planet's meshes share one planet centre distance, and

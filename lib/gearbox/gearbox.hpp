@@ -73,10 +73,15 @@ struct Gearbox {
     double oil_volume = 0;      // m^3
 };
 
+// Where the error is in the case description, when one item is to blame: the section
+// ("meshes", "bearings", "gears"), the item's name and the key, so a reader can point at
+// its line (solver::Issue's convention); empty for the train as a whole.
 struct TopologyError : std::exception {
-    explicit TopologyError(std::string m) : msg(std::move(m)) {}
+    explicit TopologyError(std::string m, std::string section_ = {}, std::string item_ = {}, std::string key_ = {})
+        : msg(std::move(m)), section(std::move(section_)), item(std::move(item_)), key(std::move(key_)) {}
     const char* what() const noexcept override { return msg.c_str(); }
     std::string msg;
+    std::string section, item, key;
 };
 
 // Immutable data derived from the topology: speeds per unit input speed,

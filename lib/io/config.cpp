@@ -59,7 +59,7 @@ lubricant::Oil load_oil(const YamlNode& n) {
                   "thermal_conductivity", "specific_heat", "bearing_friction", "gear_friction", "traction",
                   "max_temperature", "note"});
     lubricant::Oil oil;
-    oil.name = n.at("name").as_string();
+    oil.name = n.at("name").as_title();
     oil.base = parse_base(n.at("base"));
     oil.max_temperature = lubricant::default_max_temperature(oil.base);
     if (auto t = n.get("max_temperature")) {
@@ -305,10 +305,10 @@ struct Loader {
         for (const auto& item : s.items()) {
             std::string name;
             bool fixed = false;
-            if (item.is_scalar()) name = item.as_string();
+            if (item.is_scalar()) name = item.as_name();
             else {
                 item.allow_keys({"name", "fixed", "note"});
-                name = item.at("name").as_string();
+                name = item.at("name").as_name();
                 if (auto f = item.get("fixed")) fixed = f->as_bool();
             }
             if (shaft_index.count(name)) item.fail("duplicate shaft name '" + name + "'");
@@ -325,7 +325,7 @@ struct Loader {
                           "dedendum_coefficient", "internal", "carrier", "planets", "tip_diameter", "tip_alteration_factor", "note"});
             gearbox::Gear g;
             auto& s = g.spec;
-            s.name = n.at("name").as_string();
+            s.name = n.at("name").as_name();
             if (gear_index.count(s.name)) n.at("name").fail("duplicate gear name '" + s.name + "'");
             if (auto c = n.get("carrier")) {
                 // A planet: it turns on pins of the carrier, N identical ones equally spaced.
@@ -387,6 +387,7 @@ struct Loader {
 
     void load_meshes() {
         std::set<int> used;
+        std::set<std::string> names;
         for (const auto& n : root.at("meshes").items()) {
             n.allow_keys({"name", "gears", "angle", "centre_distance", "note"});
             gearbox::Mesh m;
@@ -395,8 +396,12 @@ struct Loader {
             m.gear[0] = gear_ref(g[0]);
             m.gear[1] = gear_ref(g[1]);
             if (m.gear[0] == m.gear[1]) n.at("gears").fail("a gear cannot mesh with itself");
-            m.name = n.has("name") ? n.at("name").as_string()
+            m.name = n.has("name") ? n.at("name").as_name()
                                    : model.gearbox.gears[m.gear[0]].spec.name + "-" + model.gearbox.gears[m.gear[1]].spec.name;
+            if (!names.insert(m.name).second)
+                (n.has("name") ? n.at("name") : n.at("gears"))
+                    .fail("duplicate mesh name '" + m.name + "'" +
+                          (n.has("name") ? "" : " (the default name, from its gears; give the mesh a 'name')"));
             m.angle = n.has("angle") ? n.quantity("angle", dim::angle, "30 deg") : 0.0;
             m.centre_distance = n.opt_quantity("centre_distance", dim::length, "95 mm");
             if (m.centre_distance && *m.centre_distance <= 0) n.at("centre_distance").fail("must be positive");
@@ -418,7 +423,7 @@ struct Loader {
                           "under_gear", "locating", "lubrication", "seals", "seal_counterface", "constants", "oil_bath",
                           "note", "count"});
             gearbox::Bearing b;
-            b.name = n.at("name").as_string();
+            b.name = n.at("name").as_name();
             if (!names.insert(b.name).second) n.at("name").fail("duplicate bearing name '" + b.name + "'");
             auto& s = b.spec;
             const YamlNode tn = n.at("type");
@@ -527,7 +532,11 @@ struct Loader {
             }
             for (int i = 0; i < count; ++i) {
                 gearbox::Bearing bi = b;
-                if (count > 1) bi.name = b.name + "." + std::to_string(i + 1);
+                if (count > 1) {
+                    bi.name = b.name + "." + std::to_string(i + 1);
+                    if (!names.insert(bi.name).second)
+                        n.at("count").fail("bearing name '" + bi.name + "' (of 'count' side by side) is already taken");
+                }
                 model.gearbox.bearings.push_back(bi);
             }
         }
@@ -545,10 +554,12 @@ struct Loader {
 
     void load_seals() {
         if (!root.has("seals")) return;
+        std::set<std::string> names;
         for (const auto& n : root.at("seals").items()) {
             n.allow_keys({"name", "shaft", "diameter", "note"});
             gearbox::Seal s;
-            s.name = n.at("name").as_string();
+            s.name = n.at("name").as_name();
+            if (!names.insert(s.name).second) n.at("name").fail("duplicate seal name '" + s.name + "'");
             s.shaft = shaft_ref(n.at("shaft"));
             s.diameter = n.positive_quantity("diameter", dim::length, "40 mm");
             model.gearbox.seals.push_back(s);
@@ -557,11 +568,13 @@ struct Loader {
 
     void load_clutches() {
         if (!root.has("clutches")) return;
+        std::set<std::string> names;
         for (const auto& n : root.at("clutches").items()) {
             n.allow_keys({"name", "engages", "interfaces", "r_inner", "r_outer", "clearance", "roughness", "oil_supply",
                           "note"});
             gearbox::ClutchPack c;
-            c.pack.name = n.at("name").as_string();
+            c.pack.name = n.at("name").as_name();
+            if (!names.insert(c.pack.name).second) n.at("name").fail("duplicate clutch name '" + c.pack.name + "'");
             c.gear = gear_ref(n.at("engages"));
             if (!model.gearbox.gears[c.gear].free)
                 n.at("engages").fail("a clutch engages a 'mount: free' gear (it locks that gear to its shaft)");
@@ -744,11 +757,8 @@ void replace_oil(Case& c, const lubricant::Oil& oil) {
 }
 
 Case load_case(const std::string& file, const std::optional<std::string>& ratio_override) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(file, 0, 0, "", "cannot open file");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return load_case_text(ss.str(), file, fs::path(file).parent_path().string(), ratio_override);
+    const std::string text = read_input_file(file, kMaxYamlFileBytes);  // a regular file, bounded (io/csv_read.hpp)
+    return load_case_text(text, file, fs::path(file).parent_path().string(), ratio_override);
 }
 
 namespace {
@@ -778,7 +788,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
                      "sweep"});
     c.sweep = read_sweep(root);
     auto& m = c.model;
-    m.name = root.has("name") ? root.at("name").as_string() : fs::path(file).stem().string();
+    m.name = root.has("name") ? root.at("name").as_title() : fs::path(file).stem().string();
 
     const YamlNode oil = root.at("oil");
     if (oil.is_scalar()) {

@@ -19,6 +19,8 @@ std::string status_line(const solver::Model& m, const solver::PointResult& r) {
     if (r.status == solver::PointStatus::no_equilibrium)
         return fmt::format("status: no_equilibrium (losses exceed heat rejection up to {:.1f} degC)\n",
                            r.oil_temperature - 273.15);
+    if (r.status == solver::PointStatus::out_of_range)
+        return "status: " + solver::status_text(r) + " (no losses computed)\n";
     if (r.status == solver::PointStatus::above_oil_limit)
         return fmt::format("status: above_oil_limit (the oil settles above its permissible {:.1f} degC)\n",
                            m.oil.max_temperature - 273.15);

@@ -1,5 +1,7 @@
 #include "io/sweep.hpp"
 
+#include "io/interrupt.hpp"
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -113,6 +115,7 @@ std::vector<SweepVariant> expand_sweep(const std::string& file, const std::optio
     size_t n = 1;
     for (const auto& a : axes) n *= a.values.size();
     for (size_t v = 0; v < n; ++v) {
+        throw_if_interrupted();  // io/interrupt.hpp: SIGINT / SIGTERM stop the expansion
         YAML::Node doc = YAML::Clone(root.raw());
         doc.remove("sweep");
         SweepVariant sv;

@@ -10,15 +10,22 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "io/csv_read.hpp"
 #include "units/units.hpp"
 
 namespace gearloss::io {
 
+// Never assign one YamlNode to another: YAML::Node assignment rebinds the document's
+// data. Construct a new one instead.
 class YamlNode {
 public:
     YamlNode(YAML::Node node, std::string file, std::string path);
+    // Reads a regular file of at most kMaxYamlFileBytes (see read_input_file), then load_text.
     static YamlNode load_file(const std::string& file);
-    // Parses `text`; `name` is the file name used in messages.
+    // Parses `text`; `name` is the file name used in messages. Bounded: the text as in
+    // check_input_text, one document only, at most 64 levels of nesting and at most
+    // 1,000,000 nodes once aliases are expanded, no alias inside the node it names, no
+    // duplicate keys; the top level is a mapping.
     static YamlNode load_text(const std::string& text, const std::string& name);
 
     const std::string& file() const { return file_; }
@@ -42,6 +49,14 @@ public:
     void allow_keys(std::initializer_list<const char*> allowed) const;
 
     std::string as_string() const;
+    // The name of a component (gear, shaft, mesh, bearing, seal, clutch) or of a case or oil:
+    // not empty, at most kMaxNameBytes, printable UTF-8 (no control character, no line
+    // break), and no ',' or '"' (names become CSV column names).
+    static constexpr std::size_t kMaxNameBytes = 64;
+    std::string as_name() const;
+    // The title of a case or an oil: not empty, at most kMaxTitleBytes, printable UTF-8 on one line.
+    static constexpr std::size_t kMaxTitleBytes = 200;
+    std::string as_title() const;
     double as_number() const;             // plain number, no unit
     int as_int() const;
     bool as_bool() const;
@@ -57,7 +72,7 @@ public:
             if (s == name) return value;
             list += (list.empty() ? "" : ", ") + std::string(name);
         }
-        fail("'" + s + "' is not one of: " + list);
+        fail("'" + excerpt(s) + "' is not one of: " + list);
     }
 
     // Shorthands for required/optional keys.

@@ -1,6 +1,7 @@
 #include "map/job.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
 #include <map>
@@ -9,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "io/csv_format.hpp"
+#include "io/interrupt.hpp"
 #include "io/sweep.hpp"
 
 namespace gearloss::map {
@@ -54,6 +56,7 @@ Fingerprint MapJob::fingerprint() const {
     for (const auto& v : variants) {
         const std::string p = prefix(v.values);
         for (size_t i = 0; i < v.c.grid.size(); ++i) {
+            if ((i & 4095) == 0) io::throw_if_interrupted();  // a million points take a second
             const auto [w, T] = v.c.grid.at(i);
             f.add(p + io::csv_number(w * kRpm) + "," + io::csv_number(T));
         }
@@ -111,8 +114,12 @@ JobOutput run_job(const MapJob& job, const MapOptions& opt, const std::optional<
                 part_opt.progress = [&opt, before, all](size_t d, size_t) { opt.progress(before + d, all); };
             }
             const auto results = run_map(v.c.model, part, part_opt);
+            io::throw_if_interrupted();  // the points run_map skipped are not rows
             const std::string p = prefix(v.values);
-            for (const auto& r : results) out += p + csv_row(v.c.model, r, opt.detail);
+            for (size_t i = 0; i < results.size(); ++i) {
+                if ((i & 4095) == 0) io::throw_if_interrupted();
+                out += p + csv_row(v.c.model, results[i], opt.detail);
+            }
             res.results.insert(res.results.end(), results.begin(), results.end());
         }
         offset += n;
@@ -129,6 +136,12 @@ std::string merge_shards(const std::vector<std::string>& files) {
     };
     std::vector<Part> parts;
     for (const auto& file : files) {
+        io::throw_if_interrupted();
+        // Only a regular file: opening a FIFO would block before any interrupt could be seen.
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(file, ec))
+            throw InputError(file, 0, 0, "", std::filesystem::exists(file, ec) ? "not a regular file (a shard is a CSV file)"
+                                                                                : "cannot open shard file");
         std::ifstream in(file, std::ios::binary);
         if (!in) throw InputError(file, 0, 0, "", "cannot open shard file");
         std::stringstream ss;
@@ -190,7 +203,10 @@ std::string merge_shards(const std::vector<std::string>& files) {
     if (!missing.empty())
         throw InputError("", 0, 0, "merge", fmt::format("missing shard(s) {} of {}", missing, f.count));
     std::string out = f.header;
-    for (const auto& p : parts) out += p.body;
+    for (const auto& p : parts) {
+        io::throw_if_interrupted();
+        out += p.body;
+    }
     return out;
 }
 

@@ -3,12 +3,18 @@
 #include "io/csv_format.hpp"
 
 #include <atomic>
+#include <filesystem>
+#include <optional>
+#include <cmath>
 #include <fmt/format.h>
 #include <numbers>
 #include <omp.h>
 
+#include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json.hpp"
+#include "io/yaml_reader.hpp"
+#include "solver/validate.hpp"
 
 namespace gearloss::map {
 
@@ -19,7 +25,134 @@ std::string num(double v) { return csv_number(v); }
 std::string fixed(double v, int d) { return io::csv_fixed(v, d); }
 }  // namespace
 
+namespace {
+// Finds the item of a list by its `name` (or its scalar value); a bearing of `count: N` is
+// listed once under the name without its ".k" suffix.
+std::optional<io::YamlNode> find_item(const io::YamlNode& list, const std::string& name) {
+    if (!list.is_sequence()) return std::nullopt;
+    for (int pass = 0; pass < 2; ++pass) {
+        std::string want = name;
+        if (pass == 1) {
+            const auto dot = name.rfind('.');
+            if (dot == std::string::npos || dot + 1 == name.size() ||
+                name.find_first_not_of("0123456789", dot + 1) != std::string::npos)
+                break;
+            want = name.substr(0, dot);
+        }
+        for (const auto& it : list.items()) {
+            if (it.is_scalar() && it.as_string() == want) return it;
+            if (it.is_map())
+                if (auto n = it.get("name"); n && n->is_scalar() && n->as_string() == want) return it;
+        }
+    }
+    return std::nullopt;
+}
+
+// Descends a dotted key path as far as it exists.
+io::YamlNode descend(io::YamlNode n, const std::string& key) {
+    size_t start = 0;
+    while (start < key.size()) {
+        const size_t dot = key.find('.', start);
+        const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+        auto next = n.get(part);
+        if (!next) break;
+        n = *next;
+        if (dot == std::string::npos) break;
+        start = dot + 1;
+    }
+    return n;
+}
+
+// The issue as an error at the line of its item (the node's position in the YAML text).
+InputError locate(const io::Case& k, const solver::Issue& is, const std::string& message, const CaseOverrides& o) {
+    if (is.section == "thermal" && is.key == "oil_temperature" && !o.oil_temp.empty())
+        return InputError("", 0, 0, "--oil-temp", message);
+    if (is.section == "operating" && is.key == "speeds" && o.speeds) return InputError("", 0, 0, "--speed", message);
+    if (is.section == "operating" && is.key == "torques" && o.torques) return InputError("", 0, 0, "--torque", message);
+    try {
+        std::optional<io::YamlNode> node;
+        const auto in_oil_file = [&](const std::string& file) {
+            const io::YamlNode oil_root = io::YamlNode::load_file(file);
+            node = oil_root.has("oil") ? oil_root.at("oil") : oil_root;
+        };
+        if (is.section == "oil" && !o.oil.empty()) {
+            in_oil_file(o.oil);
+        } else {
+            const io::YamlNode root = io::YamlNode::load_file(k.file);
+            node = root.get(is.section);
+            if (node && is.section == "oil" && node->is_scalar()) {
+                const auto p = std::filesystem::path(k.file).parent_path() / node->as_string();
+                std::error_code ec;
+                if (std::filesystem::is_regular_file(p, ec)) in_oil_file(p.string());
+            }
+            if (!node) node = root;
+        }
+        if (!is.item.empty())
+            if (auto it = find_item(*node, is.item)) node = *it;
+        node = descend(*node, is.key);
+        node->fail(message);
+    } catch (const InputError& e) {
+        if (e.line > 0) return InputError(e.file, e.line, e.column, is.path(), message);
+    } catch (const std::exception&) {
+        // the file is no longer readable: the issue without its line
+    }
+    return InputError(k.file, 0, 0, is.path(), message);
+}
+
+[[noreturn]] void raise(const io::Case* k, const std::vector<solver::Issue>& issues, const CaseOverrides& o) {
+    const auto& first = issues.front();
+    std::string message = first.message;
+    if (issues.size() > 1) {
+        message += fmt::format(" ({} more: ", issues.size() - 1);
+        for (size_t i = 1; i < issues.size() && i < 4; ++i) message += (i > 1 ? "; " : "") + issues[i].path();
+        message += issues.size() > 4 ? "; ...)" : ")";
+    }
+    if (k) throw locate(*k, first, message, o);
+    throw InputError("", 0, 0, first.section == "operating" ? (first.key == "speeds" ? "--speed" : "--torque") : first.path(),
+                     message);
+}
+}  // namespace
+
+void validate_case(const io::Case& k, const CaseOverrides& o) {
+    std::vector<solver::Issue> issues = solver::validate(k.model);
+    if (o.grid) {
+        const auto& g = k.grid;
+        if (g.size() > kMaxGridPoints)
+            issues.push_back({"operating", "", g.is_grid ? "speeds" : "points",
+                              fmt::format("{} operating points; a map holds at most {}", g.size(), kMaxGridPoints)});
+        auto check = [&](const std::vector<double>& v, const char* key, bool speed) {
+            for (double x : v)
+                if (auto f = speed ? solver::speed_fault(x) : solver::torque_fault(x)) {
+                    issues.push_back({"operating", "", key, *f});
+                    return;
+                }
+        };
+        if (g.is_grid) {
+            check(g.speeds, "speeds", true);
+            check(g.torques, "torques", false);
+        } else {
+            for (const auto& [w, T] : g.points) {
+                auto f = solver::speed_fault(w);
+                if (!f) f = solver::torque_fault(T);
+                if (f) {
+                    issues.push_back({"operating", "", "points", *f});
+                    break;
+                }
+            }
+        }
+    }
+    if (!issues.empty()) raise(&k, issues, o);
+}
+
+void validate_point(double omega_in, double torque_in) {
+    const auto issues = solver::validate_operating_point(omega_in, torque_in);
+    if (!issues.empty()) raise(nullptr, issues, {});
+}
+
 std::vector<solver::PointResult> run_map(const solver::Model& m, const io::OperatingGrid& grid, const MapOptions& opt) {
+    if (grid.size() > kMaxGridPoints)
+        throw InputError("", 0, 0, "operating",
+                         fmt::format("{} operating points; a map holds at most {}", grid.size(), kMaxGridPoints));
     const long n = static_cast<long>(grid.size());
     std::vector<solver::PointResult> out(static_cast<size_t>(n));
     const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
@@ -75,7 +208,7 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
     } else {
         s += ",,,,,,,,,,,,";
     }
-    s += solver::to_string(r.status);
+    s += solver::status_text(r);
     if (detail) {
         const auto& gb = m.gearbox;
         const auto& L = r.losses;
@@ -99,11 +232,15 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
 }
 
 std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds) {
-    size_t ok = 0, above_limit = 0;
+    size_t ok = 0, above_limit = 0, no_equilibrium = 0, out_of_range = 0;
     double eff_min = 1, eff_max = 0, eff_sum = 0, P_min = 1e300, P_max = 0, T_min = 1e300, T_max = -1e300;
     size_t n_eff = 0;
     for (const auto& r : results) {
+        no_equilibrium += r.status == solver::PointStatus::no_equilibrium;
+        out_of_range += r.status == solver::PointStatus::out_of_range;
         if (!solver::has_values(r.status)) continue;
+        // A point with values has finite ones (solve_point); the ranges skip anything else.
+        if (!std::isfinite(r.losses.total()) || !std::isfinite(r.oil_temperature)) continue;
         ++ok;
         above_limit += r.status == solver::PointStatus::above_oil_limit;
         const double P = r.losses.total();
@@ -111,7 +248,7 @@ std::string map_summary_json(const std::vector<solver::PointResult>& results, do
         P_max = std::max(P_max, P);
         T_min = std::min(T_min, r.oil_temperature);
         T_max = std::max(T_max, r.oil_temperature);
-        if (r.has_efficiency) {
+        if (r.has_efficiency && std::isfinite(r.efficiency)) {
             eff_min = std::min(eff_min, r.efficiency);
             eff_max = std::max(eff_max, r.efficiency);
             eff_sum += r.efficiency;
@@ -123,7 +260,8 @@ std::string map_summary_json(const std::vector<solver::PointResult>& results, do
     j.key("points").value(results.size());
     j.key("ok").value(ok - above_limit);
     j.key("above_oil_limit").value(above_limit);
-    j.key("no_equilibrium").value(results.size() - ok);
+    j.key("no_equilibrium").value(no_equilibrium);
+    j.key("out_of_range").value(out_of_range);
     j.key("seconds").value(seconds);
     j.key("points_per_second").value(seconds > 0 ? results.size() / seconds : 0.0);
     if (ok > 0) {

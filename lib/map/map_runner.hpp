@@ -16,8 +16,27 @@ struct MapOptions {
     std::function<void(size_t done, size_t total)> progress;
 };
 
+// Largest operating grid of one map (one sweep variant): results are held in memory.
+inline constexpr size_t kMaxGridPoints = 10'000'000;
+
+// Where a case's values came from besides its file: command-line overrides.
+struct CaseOverrides {
+    std::string oil_temp;                  // --oil-temp as given (empty: none)
+    std::string oil;                       // --oil FILE (empty: none)
+    bool speeds = false, torques = false;  // --speed / --torque given
+    bool grid = true;                      // also check the operating points of k.grid
+};
+
+// solver::validate on the model, and the stated range of every operating point of the grid
+// (and its size): the first issue (with the count of the others) as an InputError pointing at
+// the line of the offending item in the case (or its oil file), or at the command-line option
+// that set the value.
+void validate_case(const io::Case& k, const CaseOverrides& o = {});
+// The same for one operating point (--speed / --torque of `point`).
+void validate_point(double omega_in, double torque_in);
+
 // Results are stored by grid index, so the output does not depend on the
-// number of threads or on the scheduling.
+// number of threads or on the scheduling. A grid above kMaxGridPoints is an InputError.
 std::vector<solver::PointResult> run_map(const solver::Model& m, const io::OperatingGrid& grid, const MapOptions& opt);
 
 std::string csv_header(const solver::Model& m, bool detail);

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "io/interrupt.hpp"
 
 namespace gearloss::map {
 
@@ -26,6 +27,7 @@ std::vector<VectoRow> vecto_loss_map(const solver::Model& m, const std::vector<d
     for (double w : speeds) grid.speeds.push_back(w == 0.0 ? kVectoZeroSpeed : std::abs(w));
     grid.torques = vecto_torque_axis(torques);
     const auto results = run_map(m, grid, opt);
+    io::throw_if_interrupted();  // the points run_map skipped are not holes
     std::vector<VectoRow> rows;
     for (size_t i = 0; i < results.size(); ++i) {
         const auto& r = results[i];
@@ -47,6 +49,7 @@ std::vector<VectoRow> vecto_loss_map(const solver::Model& m, const std::vector<d
 std::string vecto_csv(const std::vector<VectoRow>& rows) {
     std::string s = "Input Speed [rpm],Input Torque [Nm],Torque Loss [Nm]\n";
     for (const auto& r : rows) {
+        if ((&r - rows.data()) % 4096 == 0) io::throw_if_interrupted();
         const double T = r.torque == 0.0 ? 0.0 : r.torque;
         s += fmt::format("{:.2f},{:.2f},{:.4f}\n", std::abs(r.speed) * 30 / 3.14159265358979323846, T, r.loss_torque);
     }

@@ -4,6 +4,7 @@
 #include <array>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace gearloss::mesh {
@@ -149,11 +150,15 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
         if (converged) T = x;
         else if (glo >= 0) T = lo;
         else if (ghi <= 0) T = hi;
-        else {
+        else if (glo < 0 && ghi > 0) {
             std::uintmax_t it = 60;
             const auto [a, b] = boost::math::tools::toms748_solve(
                 g, lo, hi, glo, ghi, [](double x, double y) { return std::abs(y - x) < 0.05; }, it);
             T = 0.5 * (a + b);
+        } else {
+            // g is not a number at the ends (inputs out of range): no film temperature, and the
+            // result says so (NaN) instead of the root finder throwing.
+            T = std::numeric_limits<double>::quiet_NaN();
         }
         r.residual = std::abs(g(T));
     }

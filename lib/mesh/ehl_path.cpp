@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gearloss::mesh {
 
@@ -128,8 +129,11 @@ double helical_mesh_loss(const geometry::PairGeometry& g, double w0, double F_bn
     std::vector<double> Ls(kPhases, 0.0);
     for (int j = 0; j < kPhases; ++j) {
         const double s = A + (j + 0.5) / kPhases * pbt;
-        const int k0 = static_cast<int>(std::floor((A - span - s) / pbt)) - 1;
-        const int k1 = static_cast<int>(std::ceil((E - s) / pbt)) + 1;
+        const double f0 = std::floor((A - span - s) / pbt), f1 = std::ceil((E - s) / pbt);
+        // Bounded line loop (as in sweep_contact_lines): no result for a geometry that is not finite.
+        if (!(std::isfinite(f0) && std::isfinite(f1) && f1 - f0 < 1e5)) return std::numeric_limits<double>::quiet_NaN();
+        const int k0 = static_cast<int>(f0) - 1;
+        const int k1 = static_cast<int>(f1) + 1;
         for (int k = k0; k <= k1; ++k) {
             const double xi0 = s + k * pbt;
             const double y0 = std::max(0.0, (A - xi0) / t), y1 = std::min(b, (E - xi0) / t);

@@ -49,8 +49,16 @@ ContactSweep sweep_contact_lines(const geometry::PairGeometry& g, int phases) {
     double sum_ratio = 0.0, L_min = std::numeric_limits<double>::max(), L_sum = 0.0;
     for (int j = 0; j < phases; ++j) {
         const double s = A + (j + 0.5) / phases * pbt;
-        const int k0 = static_cast<int>(std::floor((A - span - s) / pbt)) - 1;
-        const int k1 = static_cast<int>(std::ceil((E - s) / pbt)) + 1;
+        const double f0 = std::floor((A - span - s) / pbt), f1 = std::ceil((E - s) / pbt);
+        // A few contact lines for any real pair; a geometry that is not finite (or a pitch
+        // next to nothing) would make the line loop unbounded: no result instead.
+        if (!(std::isfinite(f0) && std::isfinite(f1) && f1 - f0 < 1e5)) {
+            ContactSweep bad;
+            bad.H_V = bad.L_min = bad.L_mean = std::numeric_limits<double>::quiet_NaN();
+            return bad;
+        }
+        const int k0 = static_cast<int>(f0) - 1;
+        const int k1 = static_cast<int>(f1) + 1;
         double L = 0.0, S = 0.0;
         for (int k = k0; k <= k1; ++k) {
             const double xi0 = s + k * pbt;  // line position at y = 0

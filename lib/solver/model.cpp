@@ -1,5 +1,7 @@
 #include "solver/model.hpp"
 
+#include "solver/validate.hpp"
+
 #include <algorithm>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
@@ -46,6 +48,10 @@ double Model::heat_flow(double T_oil, double T_amb, double omega_in) const {
 }
 
 void Model::finalise() {
+    // Indices that would make the analysis read out of bounds (a model built in code): a
+    // topology error before anything else. The other checks are validate()'s (solver/validate.hpp).
+    for (const Issue& is : validate(*this))
+        if (is.structural) throw gearbox::TopologyError(is.text());
     layout = gearbox::analyse(gearbox);
     mesh_E_prime.resize(gearbox.meshes.size());
     for (size_t i = 0; i < gearbox.meshes.size(); ++i) {

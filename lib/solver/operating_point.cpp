@@ -1,10 +1,13 @@
 #include "solver/operating_point.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "mesh/ehl_path.hpp"
 #include "seals/radial_lip_seal.hpp"
+#include "solver/validate.hpp"
 
 namespace gearloss::solver {
 
@@ -13,13 +16,63 @@ const char* to_string(PointStatus s) {
         case PointStatus::ok: return "ok";
         case PointStatus::no_equilibrium: return "no_equilibrium";
         case PointStatus::above_oil_limit: return "above_oil_limit";
+        case PointStatus::out_of_range: return "out_of_range";
     }
     return "?";
 }
 
+std::string status_text(const PointResult& r) {
+    std::string s = to_string(r.status);
+    if (r.status != PointStatus::out_of_range || r.cause.empty()) return s;
+    s += ": ";
+    for (char c : r.cause) s += (c == ',' || c == '"' || c == '\n' || c == '\r') ? ' ' : c;
+    return s;
+}
+
 namespace {
 constexpr double rad_s_to_rpm = 30.0 / std::numbers::pi;
+
+bool finite(double v) { return std::isfinite(v); }
+bool finite_non_negative(double v) { return std::isfinite(v) && v >= 0.0; }
+
+// The oil-independent terms of every component at the point, first fault found.
+std::string point_fault(const Model& m, const PointState& p) {
+    const auto& gb = m.gearbox;
+    if (!finite(p.omega_in)) return "input speed";
+    if (!finite(p.torque_in)) return "input torque";
+    if (!finite(p.power_in)) return "input power";
+    for (size_t i = 0; i < p.meshes.size(); ++i) {
+        const auto& ms = p.meshes[i];
+        const std::string name = "mesh " + gb.meshes[i].name;
+        if (!finite(ms.power) || !finite(ms.F_bn) || !finite(ms.contact.w_line)) return name + " load";
+        if (!finite(ms.contact.u_e) || !finite(ms.omega_rel)) return name + " speed";
+        if (!finite(ms.mu_prefactor)) return name + " friction coefficient";
+        if (!finite(ms.H_V) || !finite(ms.sigma)) return name + " loss factor";
+    }
+    for (size_t g = 0; g < p.churn.size(); ++g) {
+        const auto& c = p.churn[g];
+        if (!finite(c.omega) || !finite(c.coef_low) || !finite(c.coef_high) || !finite(c.ReC_times_nu))
+            return "churning gear " + gb.gears[g].spec.name;
+    }
+    for (size_t i = 0; i < p.bearings.size(); ++i) {
+        if (!finite(p.bearing_omega[i])) return "bearing " + gb.bearings[i].name + " speed";
+        if (const char* f = p.bearings[i].fault()) return "bearing " + gb.bearings[i].name + " " + f;
+        if (!finite(p.bearing_drag_coef[i])) return "bearing " + gb.bearings[i].name + " drag";
+    }
+    for (size_t i = 0; i < p.seal_power.size(); ++i)
+        if (!finite_non_negative(p.seal_power[i])) return "seal " + gb.seals[i].name;
+    for (size_t i = 0; i < p.clutch_slip.size(); ++i)
+        if (!finite(p.clutch_slip[i])) return "clutch " + gb.clutches[i].pack.name + " slip";
+    if (!finite_non_negative(p.windage)) return "windage";
+    return {};
 }
+
+std::string degC(double T) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.1f degC", T - 273.15);
+    return buf;
+}
+}  // namespace
 
 PointState prepare_point(const Model& m, double omega_in, double torque_in) {
     PointState p;
@@ -137,6 +190,7 @@ void prepare_point(const Model& m, double omega_in, double torque_in, PointState
                               seals::radial_seal_power(gb.seals[i].diameter, L.seal_speed_ratio[i] * omega_in);
             p.seal_total += p.seal_power[i];
         }
+    p.fault = point_fault(m, p);
 }
 
 LossBreakdown evaluate_losses(const Model& m, const PointState& p, const lubricant::OilState& s, bool detail,
@@ -259,6 +313,35 @@ double total_loss(const Model& m, const PointState& p, double T_oil) {
     return evaluate_losses(m, p, m.oil_state(T_oil), false).total();
 }
 
+std::string loss_fault(const Model& m, const PointState& p, double T, double ambient) {
+    const auto& gb = m.gearbox;
+    if (auto f = oil_temperature_fault(m.oil, T)) return "oil temperature " + *f;
+    const lubricant::OilState s = m.oil_state(T);
+    const std::string at = " at " + degC(T);
+    if (!(s.nu > 0 && finite(s.nu) && finite(s.eta) && s.eta > 0)) return "oil '" + m.oil.name + "' viscosity" + at;
+    if (!(s.rho > 0 && finite(s.rho))) return "oil '" + m.oil.name + "' density" + at;
+    if (!(finite(s.alpha_p) && finite(s.beta_T) && s.k > 0 && finite(s.k) && finite(s.cp)))
+        return "oil '" + m.oil.name + "' properties" + at;
+    const LossBreakdown L = evaluate_losses(m, p, s, true, true);
+    for (size_t i = 0; i < gb.meshes.size(); ++i) {
+        if (!finite_non_negative(L.mesh_each[i])) return "mesh " + gb.meshes[i].name + " friction loss" + at;
+        if (p.meshes[i].power > 0 && !finite(L.mesh_lambda[i])) return "mesh " + gb.meshes[i].name + " film thickness" + at;
+    }
+    for (size_t g = 0; g < gb.gears.size(); ++g)
+        if (!finite_non_negative(L.churn_each[g])) return "churning gear " + gb.gears[g].spec.name + at;
+    for (size_t i = 0; i < gb.bearings.size(); ++i)
+        if (!finite_non_negative(L.bearing_each[i])) return "bearing " + gb.bearings[i].name + " loss" + at;
+    for (size_t i = 0; i < gb.seals.size(); ++i)
+        if (!finite_non_negative(L.seal_each[i])) return "seal " + gb.seals[i].name + at;
+    for (size_t i = 0; i < gb.clutches.size(); ++i)
+        if (!finite_non_negative(L.clutch_each[i])) return "clutch " + gb.clutches[i].pack.name + " drag" + at;
+    if (!finite_non_negative(L.windage)) return "windage" + at;
+    if (!finite_non_negative(L.auxiliary)) return "auxiliary loss" + at;
+    if (!finite_non_negative(L.total())) return "total loss" + at;
+    if (!finite(m.heat_flow(T, ambient, p.omega_in))) return "heat rejection" + at;
+    return {};
+}
+
 thermal::Equilibrium solve_temperature(const Model& m, const PointState& p, double ambient) {
     auto F = [&](double Toil) { return total_loss(m, p, Toil) - m.heat_flow(Toil, ambient, p.omega_in); };
     auto G = [&](double Toil) {
@@ -273,21 +356,52 @@ PointResult solve_point(const Model& m, double omega_in, double torque_in, bool 
     r.speed_in = omega_in;
     r.torque_in = torque_in;
     r.ambient = ambient;
+    r.power_in = omega_in * torque_in;
+    // Out of range: no numbers, the cause in the status.
+    auto out_of_range = [&r](std::string cause) {
+        r.status = PointStatus::out_of_range;
+        r.cause = std::move(cause);
+        r.losses = LossBreakdown{};
+        r.oil_temperature = std::numeric_limits<double>::quiet_NaN();
+        r.power_out = r.torque_out = r.omega_out = r.efficiency = 0.0;
+        r.has_efficiency = false;
+        return r;
+    };
+    if (auto f = speed_fault(omega_in)) return out_of_range(*f);
+    if (auto f = torque_fault(torque_in)) return out_of_range(*f);
+    const bool fixed = m.thermal.mode == ThermalMode::fixed;
+    if (!fixed) {
+        if (auto f = ambient_fault(ambient)) return out_of_range(*f);
+        if (auto f = oil_temperature_fault(m.oil, ambient)) return out_of_range("ambient " + *f);
+    } else if (auto f = oil_temperature_fault(m.oil, m.thermal.oil_temperature)) {
+        return out_of_range("fixed oil temperature " + *f);
+    }
     // Per-thread storage: a map solves many points per thread without allocating.
     thread_local PointState p;
     prepare_point(m, omega_in, torque_in, p);
+    if (!p.fault.empty()) return out_of_range(p.fault);
     r.power_in = p.power_in;
     double T;
-    if (m.thermal.mode == ThermalMode::fixed) {
+    if (fixed) {
         T = m.thermal.oil_temperature;
     } else {
         const thermal::Equilibrium eq = solve_temperature(m, p, ambient);
         r.evaluations = eq.evaluations;
         r.thermal_residual = eq.residual;
-        if (eq.status == thermal::EquilibriumStatus::no_equilibrium) {
-            r.status = PointStatus::no_equilibrium;
-            r.oil_temperature = eq.T;
-            return r;
+        switch (eq.status) {
+            case thermal::EquilibriumStatus::ok: break;
+            case thermal::EquilibriumStatus::no_equilibrium:
+                r.status = PointStatus::no_equilibrium;
+                r.oil_temperature = eq.T;
+                return r;
+            case thermal::EquilibriumStatus::non_finite: {
+                const std::string f = loss_fault(m, p, eq.T, ambient);
+                return out_of_range(f.empty() ? "thermal equilibrium: a value that is not finite at " + degC(eq.T) : f);
+            }
+            case thermal::EquilibriumStatus::iteration_limit:
+                return out_of_range("thermal equilibrium: no bracket within " +
+                                    std::to_string(m.thermal.equilibrium.max_bracket_steps) + " steps (last at " +
+                                    degC(eq.T) + ")");
         }
         T = eq.T;
         if (T > m.oil.max_temperature) r.status = PointStatus::above_oil_limit;
@@ -295,6 +409,13 @@ PointResult solve_point(const Model& m, double omega_in, double torque_in, bool 
     r.oil_temperature = T;
     r.losses = evaluate_losses(m, p, m.oil_state(T), detail, true);
     const double Ploss = r.losses.total();
+    // Every component's loss a finite, non-negative number (the film too), else the cause.
+    if (!finite_non_negative(Ploss) || !finite(r.losses.lambda_min) || !finite_non_negative(r.losses.churning) ||
+        !finite_non_negative(r.losses.mesh) || !finite_non_negative(r.losses.bearings) ||
+        !finite_non_negative(r.losses.seals) || !finite_non_negative(r.losses.clutches)) {
+        const std::string f = loss_fault(m, p, T, ambient);
+        return out_of_range(f.empty() ? "losses at " + degC(T) + " are not finite" : f);
+    }
     r.power_out = r.power_in - Ploss;
     r.omega_out = m.layout.ratio * omega_in;
     // Output torque in the output's own sense of rotation: positive when power
@@ -314,6 +435,8 @@ PointResult solve_point(const Model& m, double omega_in, double torque_in, bool 
         r.efficiency = -r.power_in / (-r.power_in + Ploss);
         r.has_efficiency = true;
     }
+    if (!finite(r.power_out) || !finite(r.torque_out) || !finite(r.omega_out) || !finite(r.efficiency))
+        return out_of_range("output power, torque or efficiency is not finite");
     return r;
 }
 

@@ -36,6 +36,9 @@ struct PointState {
     // Calibration terms fixed by the point.
     double windage = 0;                       // W
     std::vector<double> bearing_drag_coef;    // W per (nu_cSt)^(2/3), per bearing
+    // First component whose oil-independent terms are out of the model's range at this point
+    // ("bearing B1_RMS11 contact angle", "churning gear w5", ...); empty when all are valid.
+    std::string fault;
 };
 
 PointState prepare_point(const Model& m, double omega_in, double torque_in);
@@ -67,11 +70,19 @@ thermal::Equilibrium solve_temperature(const Model& m, const PointState& p, doub
 
 // ok; above_oil_limit: a stabilised oil temperature above the oil's permissible
 // temperature (the numbers are computed, the operating point is not admissible);
-// no_equilibrium: no stable temperature up to max_oil_temperature (no numbers).
-enum class PointStatus { ok, above_oil_limit, no_equilibrium };
+// no_equilibrium: no stable temperature up to max_oil_temperature (no numbers);
+// out_of_range: an input or a component left the model's range, or a value that is not a
+// finite number appeared (no numbers; PointResult::cause names it, e.g. "bearing B1_RMS11
+// contact angle").
+enum class PointStatus { ok, above_oil_limit, no_equilibrium, out_of_range };
 const char* to_string(PointStatus s);
 // Whether the result carries losses, temperatures and efficiency.
-inline bool has_values(PointStatus s) { return s != PointStatus::no_equilibrium; }
+inline bool has_values(PointStatus s) { return s == PointStatus::ok || s == PointStatus::above_oil_limit; }
+
+// What is out of the model's range in the losses at oil temperature T (the oil's validity,
+// then each component's loss and the heat flow, first found); empty when every value is a
+// finite, non-negative number.
+std::string loss_fault(const Model& m, const PointState& p, double T_oil, double ambient_K);
 
 struct PointResult {
     double speed_in = 0, torque_in = 0, power_in = 0;  // rad/s, N*m, W
@@ -80,11 +91,19 @@ struct PointResult {
     double efficiency = 0;
     bool has_efficiency = false;
     PointStatus status = PointStatus::ok;
+    std::string cause;             // out_of_range: what left the range ("input speed ...", "mesh m12 friction loss")
     double thermal_residual = 0;   // W, P - Q at the solution (stabilised)
     int evaluations = 0;
     LossBreakdown losses;
 };
 
+// The status cell of a result: "ok", "no_equilibrium", "out_of_range: <cause>" (a cause
+// never contains a comma, a quote or a line break, so the cell needs no CSV quoting).
+std::string status_text(const PointResult& r);
+
+// Every input is checked here too (speed, torque, ambient, oil temperature within the oil's
+// validity) and every component at the point: out of range, the result says out_of_range
+// with its cause and carries no numbers.
 PointResult solve_point(const Model& m, double omega_in, double torque_in, bool detail, double ambient_K);
 inline PointResult solve_point(const Model& m, double omega_in, double torque_in, bool detail = false) {
     return solve_point(m, omega_in, torque_in, detail, m.thermal.ambient);

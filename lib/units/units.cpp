@@ -101,6 +101,33 @@ const std::map<std::string, Unit, std::less<>>& unit_table() {
     return t;
 }
 
+// Bounds of the parser (README "Reliability"): parentheses nest at most kMaxDepth deep
+// (the parser recurses once per level), and no base dimension goes beyond kMaxExponent,
+// so that neither the stack nor an int can overflow whatever the expression.
+constexpr int kMaxDepth = 32;
+constexpr int kMaxExponent = 24;
+constexpr std::size_t kExcerpt = 60;
+
+// At most kExcerpt characters of an input for a message, printable only ('?' for a
+// control byte or a byte that is not UTF-8), "..." where it was cut.
+std::string excerpt(std::string_view s) {
+    std::string out;
+    std::size_t chars = 0;
+    for (std::size_t i = 0; i < s.size(); ++chars) {
+        if (chars == kExcerpt) return out + "...";
+        const unsigned char c = static_cast<unsigned char>(s[i]);
+        std::size_t n = c < 0x80 ? 1 : c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+        bool ok = n > 0 && i + n <= s.size();
+        for (std::size_t k = 1; ok && k < n; ++k) ok = (static_cast<unsigned char>(s[i + k]) & 0xC0) == 0x80;
+        if (ok && n == 1) ok = c >= 0x20 && c != 0x7F;
+        if (ok && n == 2) ok = !(c == 0xC2 && static_cast<unsigned char>(s[i + 1]) < 0xA0);  // C1 controls
+        if (ok) out.append(s.substr(i, n));
+        else out += '?';
+        i += ok ? n : 1;
+    }
+    return out;
+}
+
 Dimension add(const Dimension& a, const Dimension& b, int sign) {
     Dimension r;
     for (int i = 0; i < 4; ++i) r.e[i] = a.e[i] + sign * b.e[i];
@@ -122,16 +149,23 @@ public:
     Unit parse() {
         Unit u = expr();
         skip_ws();
-        if (pos_ != s_.size()) fail("unexpected '" + std::string(s_.substr(pos_, 1)) + "'");
+        if (pos_ != s_.size()) fail("unexpected '" + excerpt(s_.substr(pos_, 1)) + "'");
         return u;
     }
 
 private:
     std::string_view s_;
     size_t pos_ = 0;
+    int depth_ = 0;  // parentheses open at pos_
 
     [[noreturn]] void fail(const std::string& what) const {
-        throw UnitError("cannot read unit '" + std::string(s_) + "': " + what);
+        throw UnitError("cannot read unit '" + excerpt(s_) + "': " + what);
+    }
+    // The result of combining two units: every base exponent within +-kMaxExponent.
+    Unit checked(const Unit& u) const {
+        for (int e : u.d.e)
+            if (e > kMaxExponent || e < -kMaxExponent) fail("exponent out of range");
+        return u;
     }
     void skip_ws() {
         while (pos_ < s_.size() && s_[pos_] == ' ') ++pos_;
@@ -145,11 +179,11 @@ private:
             if (c == '*' || c == '.') {
                 ++pos_;
                 Unit v = factor();
-                u = {u.scale * v.scale, add(u.d, v.d, +1), u.angle || v.angle, u.rotation || v.rotation};
+                u = checked({u.scale * v.scale, add(u.d, v.d, +1), u.angle || v.angle, u.rotation || v.rotation});
             } else if (c == '/') {
                 ++pos_;
                 Unit v = factor();
-                u = {u.scale / v.scale, add(u.d, v.d, -1), u.angle || v.angle, u.rotation || v.rotation};
+                u = checked({u.scale / v.scale, add(u.d, v.d, -1), u.angle || v.angle, u.rotation || v.rotation});
             } else {
                 break;
             }
@@ -173,7 +207,7 @@ private:
             if (pos_ - start > 2) fail("exponent out of range");
             int p = std::stoi(std::string(s_.substr(start, pos_ - start))) * sign;
             if (p > 6 || p < -6) fail("exponent out of range");
-            u = {std::pow(u.scale, p), mul(u.d, p), u.angle, u.rotation};
+            u = checked({std::pow(u.scale, p), mul(u.d, p), u.angle, u.rotation});
         } else {
             // "m2" / "m3" shorthand for squared / cubed units
             size_t start = pos_;
@@ -182,7 +216,7 @@ private:
                 if (pos_ - start > 2) fail("exponent out of range");
                 int p = std::stoi(std::string(s_.substr(start, pos_ - start)));
                 if (p > 6) fail("exponent out of range");
-                u = {std::pow(u.scale, p), mul(u.d, p), u.angle, u.rotation};
+                u = checked({std::pow(u.scale, p), mul(u.d, p), u.angle, u.rotation});
             }
         }
         return u;
@@ -191,11 +225,15 @@ private:
         skip_ws();
         if (pos_ >= s_.size()) fail("unit expected");
         if (s_[pos_] == '(') {
+            if (depth_ == kMaxDepth)
+                fail("unit nested too deeply (more than " + std::to_string(kMaxDepth) + " levels of parentheses)");
             ++pos_;
+            ++depth_;
             Unit u = expr();
             skip_ws();
             if (pos_ >= s_.size() || s_[pos_] != ')') fail("missing ')'");
             ++pos_;
+            --depth_;
             return u;
         }
         if (s_[pos_] == '1') {
@@ -209,10 +247,10 @@ private:
             if (std::isalpha(c) || c == '%' || c >= 0x80) ++pos_;
             else break;
         }
-        if (start == pos_) fail("unit name expected at '" + std::string(s_.substr(pos_)) + "'");
+        if (start == pos_) fail("unit name expected at '" + excerpt(s_.substr(pos_)) + "'");
         std::string_view name = s_.substr(start, pos_ - start);
         auto it = unit_table().find(name);
-        if (it == unit_table().end()) fail("unknown unit '" + std::string(name) + "'");
+        if (it == unit_table().end()) fail("unknown unit '" + excerpt(name) + "'");
         return it->second;
     }
 };
@@ -234,6 +272,10 @@ UnitFactor parse_unit(std::string_view expr) {
     if (expr == "K") return {1.0, 0.0, dim::temperature, true};
     if (expr.empty()) return {1.0, 0.0, dim::none, false};
     Unit u = UnitParser(expr).parse();
+    // "((km^6)^4)^6" is 1e144 m^144 before the exponent check stops it; a scale that
+    // overflows or underflows would turn every value into inf, 0 or NaN.
+    if (!std::isnormal(u.scale))
+        throw UnitError("cannot read unit '" + excerpt(expr) + "': its scale to SI units is out of range");
     return {u.scale, 0.0, u.d, false, u.angle, u.rotation};
 }
 
@@ -244,13 +286,17 @@ Quantity parse_quantity(std::string_view text) {
     const char* b = s.data();
     const char* e = s.data() + s.size();
     auto [ptr, ec] = std::from_chars(b, e, v);
-    if (ec != std::errc() || ptr == b) throw UnitError("'" + std::string(s) + "' does not start with a number");
-    if (!std::isfinite(v)) throw UnitError("'" + std::string(s) + "' is not a finite number");
+    if (ec == std::errc::result_out_of_range)
+        throw UnitError("'" + excerpt(s) + "' is out of range (the number is not a finite double)");
+    if (ec != std::errc() || ptr == b) throw UnitError("'" + excerpt(s) + "' does not start with a number");
+    if (!std::isfinite(v)) throw UnitError("'" + excerpt(s) + "' is not a finite number");
     std::string_view rest = trim(std::string_view(ptr, static_cast<size_t>(e - ptr)));
     // "10/s" reads as 10 (1/s).
     const UnitFactor f = !rest.empty() && rest.front() == '/' ? parse_unit("1" + std::string(rest)) : parse_unit(rest);
     Quantity q;
     q.value = v * f.scale + f.offset;
+    // "1e308 km" is 1e311 m: inf, which would pass any "must be positive" check downstream.
+    if (!std::isfinite(q.value)) throw UnitError("'" + excerpt(s) + "' is out of range (its value in SI units overflows)");
     q.dim = f.dim;
     q.absolute_temperature = f.affine;
     q.explicit_angle = f.angle;
@@ -263,7 +309,7 @@ double as_rotational_speed(const Quantity& q, std::string_view text) {
     if (q.explicit_angle) return q.value;                     // rpm, rev/min, rad/s, deg/s
     if (q.rotation) return 2.0 * std::numbers::pi * q.value;  // Hz, 1/min, min^-1: revolutions per time
     // "1/s" is the angular velocity in rad/s to some and revolutions per second (DIN 1301) to others.
-    throw UnitError("'" + std::string(trim(text)) +
+    throw UnitError("'" + excerpt(trim(text)) +
                     "' is ambiguous as a rotational speed: write 'rad/s' for an angular velocity, or 'Hz', 'rev/s', "
                     "'rpm' or '1/min' for revolutions per time");
 }
