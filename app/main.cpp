@@ -57,7 +57,7 @@ void apply_overrides(io::Case& k, const Common& c) {
             throw InputError("", 0, 0, "--oil-temp", e.msg + " (expected e.g. '70degC')");
         }
         if (!q.absolute_temperature || q.value <= 0)
-            throw InputError("", 0, 0, "--oil-temp", "'" + c.oil_temp + "' is not a temperature (e.g. '70degC')");
+            throw InputError("", 0, 0, "--oil-temp", "'" + io::excerpt(c.oil_temp) + "' is not a temperature (e.g. '70degC')");
         k.model.thermal.mode = gearloss::solver::ThermalMode::fixed;
         k.model.thermal.oil_temperature = q.value;
     }
@@ -84,7 +84,7 @@ double absolute_temperature(const std::string& text, const char* what) {
         throw InputError("", 0, 0, what, e.msg + " (expected e.g. '-10degC')");
     }
     if (!q.absolute_temperature || !(q.value > 0))
-        throw InputError("", 0, 0, what, "'" + text + "' is not a temperature (e.g. '-10degC')");
+        throw InputError("", 0, 0, what, "'" + io::excerpt(text) + "' is not a temperature (e.g. '-10degC')");
     return q.value;
 }
 
@@ -106,7 +106,7 @@ double temperature_difference(const std::string& text, const char* what) {
         if (f.dim != gearloss::units::dim::temperature) throw gearloss::units::UnitError("not a temperature difference");
         return q.value - f.offset;
     } catch (const gearloss::units::UnitError& e) {
-        throw InputError("", 0, 0, what, "'" + text + "': " + e.msg + " (expected e.g. '0.4K')");
+        throw InputError("", 0, 0, what, "'" + io::excerpt(text) + "': " + e.msg + " (expected e.g. '0.4K')");
     }
 }
 
@@ -485,12 +485,8 @@ int main(int argc, char** argv) {
             gearloss::map::validate_case(k, {.speeds = !speeds.empty(), .torques = !torques.empty()});
             gearloss::diagnosis::SynthOptions so;
             for (const auto& e : effects) so.effects.push_back(gearloss::diagnosis::parse_effect_assignment(e));
-            const double nl = single_value(noise_loss, gearloss::units::dim::none, "--noise-loss", "1.5%");
-            const double nt = temperature_difference(noise_temp, "--noise-temp");
-            if (nl < 0 || nl > 0.5) throw InputError("", 0, 0, "--noise-loss", "must be between 0 and 50 %");
-            if (nt < 0 || nt > 20) throw InputError("", 0, 0, "--noise-temp", "must be between 0 and 20 K");
-            so.noise_loss = nl;
-            so.noise_temp = nt;
+            so.noise_loss = single_value(noise_loss, gearloss::units::dim::none, "--noise-loss", "1.5%");
+            so.noise_temp = temperature_difference(noise_temp, "--noise-temp");
             so.seed = seed;
             so.raw_log = format == "log";
             const std::string csv = gearloss::diagnosis::synthesize(k.model, k.grid, so);
@@ -543,13 +539,8 @@ int main(int argc, char** argv) {
             so.start_temperature = absolute_temperature(start_temp, "--start-temp");
             so.ambient = ambient_temp.empty() ? so.start_temperature : absolute_temperature(ambient_temp, "--ambient");
             so.warm_temperature = absolute_temperature(warm_temp, "--warm-temp");
-            if (!prewarm_temp.empty()) {
-                so.prewarm_target = absolute_temperature(prewarm_temp, "--prewarm");
-                if (*so.prewarm_target <= so.start_temperature)
-                    throw InputError("", 0, 0, "--prewarm", "the pre-warm target must be above the start temperature");
-            }
+            if (!prewarm_temp.empty()) so.prewarm_target = absolute_temperature(prewarm_temp, "--prewarm");
             so.heater_power = single_value(heater, gearloss::units::dim::power, "--heater", "100W");
-            if (!(so.heater_power > 0)) throw InputError("", 0, 0, "--heater", "heater power must be positive");
             const auto study = io::run_cycle_study(pt, dc, so);
             io::throw_if_interrupted();
             io::write_stdout(io::cycle_summary_text(pt, study, so));

@@ -4,6 +4,7 @@
 // the test process) instead of blocking CI.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,8 +17,11 @@
 
 #include "core/errors.hpp"
 #include "cycle/simulate.hpp"
+#include "diagnosis/diagnose.hpp"
+#include "diagnosis/synth.hpp"
 #include "io/config.hpp"
 #include "io/cycle_report.hpp"
+#include "map/compare.hpp"
 #include "map/map_runner.hpp"
 #include "mesh/ehl_contact.hpp"
 #include "solver/operating_point.hpp"
@@ -143,15 +147,25 @@ TEST_CASE("robustness: speed 1e300 rpm and torque beyond 1e8 N m are input error
 }
 
 TEST_CASE("robustness: ambient 5000 degC is an error at its line and out_of_range in code", "[robustness]") {
+    // The loader validates the model it built (solver::validate) and points at the line.
     const std::string text = test_support::replace_once(base(), "ambient: 25 degC", "ambient: 5000 degC");
     TempConfig cfg(text);
-    const io::Case k = io::load_case(cfg.path);
-    const auto e = validation_error(k);
+    InputError e("", 0, 0, "", "");
+    try {
+        (void)io::load_case(cfg.path);
+        FAIL("no error raised");
+    } catch (const InputError& err) {
+        e = err;
+    }
     INFO(e.what());
     CHECK(e.file == cfg.path);
     CHECK(e.key == "thermal.ambient");
     CHECK(e.line == test_support::line_of(text, "ambient: 5000 degC"));
     CHECK_THAT(e.message, Catch::Contains("-100..300 degC"));
+    // The same value set in code: validate() names it and every point is out_of_range.
+    io::Case k = transfer_box();
+    k.model.thermal.ambient = 5273.15;
+    CHECK(validation_error(k).key == "thermal.ambient");
     CHECK_FALSE(solver::is_valid(k.model));
     require_out_of_range(solve(k.model, 800, 200), "ambient temperature");
     // The ambient passed to solve_point is checked as well.
@@ -170,6 +184,70 @@ TEST_CASE("robustness: deep groove ball bearing with C0 0.1 N is out_of_range at
     INFO(json);
     CHECK_THAT(json, Catch::Contains("\"out_of_range\":9") && Catch::Contains("\"ok\":0"));
     CHECK_THAT(json, !Catch::Contains("loss_W") && !Catch::Contains("oil_temp_C") && !Catch::Contains("1e+300"));
+}
+
+TEST_CASE("robustness: each command's options are checked where they are used (Ceres-style)", "[robustness]") {
+    const auto key_of = [](auto&& f) -> std::string {
+        try {
+            f();
+        } catch (const InputError& e) {
+            return e.key;
+        }
+        return "(no error)";
+    };
+    const io::Case k = transfer_box();
+    map::MapOptions mo;
+    mo.threads = 5000;
+    CHECK(key_of([&] { map::run_map(k.model, k.grid, mo); }) == "--threads");
+    diagnosis::SynthOptions so;
+    so.noise_loss = kNaN;
+    CHECK(key_of([&] { diagnosis::synthesize(k.model, k.grid, so); }) == "--noise-loss");
+    so = {};
+    so.noise_temp = -1;
+    CHECK(key_of([&] { diagnosis::synthesize(k.model, k.grid, so); }) == "--noise-temp");
+    so = {};
+    so.effects = {{"windage", kInf}};
+    CHECK(key_of([&] { diagnosis::synthesize(k.model, k.grid, so); }) == "--effect");
+    diagnosis::DiagnoseOptions d;
+    d.stability_min = 1.5;
+    CHECK(key_of([&] { d.validate(); }) == "stability_min");
+    d = {};
+    d.bootstrap = 2;
+    CHECK(key_of([&] { d.validate(); }) == "--bootstrap");
+    CHECK_NOTHROW(diagnosis::DiagnoseOptions{}.validate());
+    io::CycleStudyOptions c;
+    CHECK_NOTHROW(c.validate());
+    c.start_temperature = 1e300;
+    CHECK(key_of([&] { c.validate(); }) == "--start-temp");
+    c = {};
+    c.ambient = kNaN;
+    CHECK(key_of([&] { c.validate(); }) == "--ambient");
+    c = {};
+    c.prewarm_target = c.start_temperature - 1;
+    CHECK(key_of([&] { c.validate(); }) == "--prewarm");
+    c = {};
+    c.heater_power = kInf;
+    CHECK(key_of([&] { c.validate(); }) == "--heater");
+}
+
+TEST_CASE("robustness: synth and compare name the cause of an out_of_range point", "[robustness]") {
+    // C0 = 0.1 N drives the deep-groove contact angle past 180 deg at every point.
+    const io::Case k = load(test_support::replace_once(base(), "C0: 22 kN", "C0: 0.1 N"));
+    for (bool raw : {false, true}) {
+        diagnosis::SynthOptions o;
+        o.raw_log = raw;
+        o.test_minutes = o.short_test_minutes = 1;
+        try {
+            (void)within([&] { return diagnosis::synthesize(k.model, k.grid, o); });
+            FAIL("no error raised");
+        } catch (const InputError& e) {
+            CHECK_THAT(e.message, Catch::Contains("out_of_range") && Catch::Contains("bearing B1_RMS11 contact angle"));
+        }
+    }
+    const auto r = solve(k.model, 800, 200);
+    const std::string row = map::compare_row(r, r);
+    CHECK_THAT(row, Catch::Contains("out_of_range: bearing B1_RMS11 contact angle"));
+    CHECK(std::count(row.begin(), row.end(), ',') == 12);  // the cause keeps the CSV's columns
 }
 
 TEST_CASE("robustness: mesh angle 1e308 rev is an input error and a non-finite angle ends shaft placement",

@@ -33,6 +33,8 @@ struct DiagnoseOptions {
     // valid_range: heat flow to ambient positive). false scans each parameter's full bounds;
     // a candidate that then cannot be evaluated somewhere is rejected with the reason (tests).
     bool physical_scan_range = true;
+    // Ceres-style check of the options (diagnose calls it): throws InputError naming the option.
+    void validate() const;
 };
 
 struct Estimate {
@@ -86,6 +88,8 @@ struct Diagnosis {
 
 Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const DiagnoseOptions& opt = {});
 
+// A parameter value with its unit for reports: "1.234 W", "0.95".
+std::string fmt_value(double v, const std::string& unit);
 std::string diagnosis_text(const Diagnosis& d);
 std::string diagnosis_json(const Diagnosis& d);
 std::string residuals_csv(const Diagnosis& d);

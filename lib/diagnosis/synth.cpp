@@ -50,7 +50,19 @@ std::pair<std::string, double> parse_effect_assignment(const std::string& text) 
     return {name, q.value};
 }
 
+void SynthOptions::validate() const {
+    const auto bad = [](const char* key, const std::string& message) { throw InputError("", 0, 0, key, message); };
+    if (!(noise_loss >= 0 && noise_loss <= 0.5)) bad("--noise-loss", "must be between 0 and 50 %");
+    if (!(noise_temp >= 0 && noise_temp <= 20)) bad("--noise-temp", "must be between 0 and 20 K");
+    if (!(test_minutes > 0 && test_minutes <= 1e4)) bad("test_minutes", "a test lasts more than 0 and at most 10^4 min");
+    if (!(short_test_minutes > 0 && short_test_minutes <= 1e4))
+        bad("short_test_minutes", "a test lasts more than 0 and at most 10^4 min");
+    for (const auto& [id, v] : effects)
+        if (!std::isfinite(v)) bad("--effect", "'" + id + "': the value is not a finite number");
+}
+
 std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& grid, const SynthOptions& opt) {
+    opt.validate();
     solver::Model m = model_in;
     Hypothesis h;
     h.cal = model_in.calibration;  // concealed effects come on top of the case as described
@@ -94,13 +106,20 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
     const double gain = h.art.torque_gain, offset = h.art.torque_offset;
     std::string out;
     solver::PointState p;
+    // A point the model cannot evaluate (solver/validate.hpp) stops the campaign with its cause.
+    const auto prepare = [&](double w, double T) {
+        solver::prepare_point(m, w, T, p);
+        if (!p.fault.empty())
+            throw InputError("", 0, 0, "operating",
+                             fmt::format("out_of_range at {:.0f} rpm / {:.0f} N*m: {}", w * to_rpm, T, p.fault));
+    };
 
     if (!opt.raw_log) {
         out = "speed_in_rpm,torque_in_Nm,P_loss_W,oil_temp_C,ambient_temp_C,label\n";
         for (size_t i = 0; i < n; ++i) {
             io::throw_if_interrupted();
             const auto [w, T] = grid.at(i);
-            solver::prepare_point(m, w, T, p);
+            prepare(w, T);
             const auto eq = solver::solve_temperature(m, p, Ta);
             if (eq.status != thermal::EquilibriumStatus::ok)
                 throw InputError("", 0, 0, "operating",
@@ -114,6 +133,10 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
                 label = "warming";
             }
             const double loss = solver::total_loss(m, p, T_oil);
+            if (!std::isfinite(loss))
+                throw InputError("", 0, 0, "operating",
+                                 fmt::format("out_of_range at {:.0f} rpm / {:.0f} N*m: {}", w * to_rpm, T,
+                                             solver::loss_fault(m, p, T_oil, Ta)));
             const double T_rec = gain * T + offset;
             const double loss_rec = (loss + (T_rec - T) * w) * (1.0 + opt.noise_loss * gauss(rng));
             const double T_oil_rec = T_oil + opt.noise_temp * gauss(rng);
@@ -134,7 +157,7 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
     odeint::runge_kutta4<State> stepper;
     for (size_t i = 0; i < n; ++i) {
         const double w = grid.at(i).first, T = grid.at(i).second;  // plain locals: captured below
-        solver::prepare_point(m, w, T, p);
+        prepare(w, T);
         auto rhs = [&](const State& s, State& dxdt, double) {
             dxdt[0] = (solver::total_loss(m, p, s[0]) - m.heat_flow(s[0], Ta, w)) / C;
         };
@@ -147,6 +170,10 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
             stepper.do_step(rhs, x, t, dt);
             t += dt;
             const double loss = solver::total_loss(m, p, x[0]);
+            if (!std::isfinite(loss) || !std::isfinite(x[0]))
+                throw InputError("", 0, 0, "operating",
+                                 fmt::format("out_of_range at {:.0f} rpm / {:.0f} N*m, t = {:.0f} s: the loss or the oil "
+                                             "temperature is not a finite number", w * to_rpm, T, t));
             const double T_rec = (gain * T + offset) * (1.0 + 0.002 * gauss(rng));
             const double loss_rec = (loss + (gain * T + offset - T) * w) * (1.0 + e_loss) * (1.0 + 0.01 * gauss(rng));
             const double T_out = (T_rec * w - loss_rec) / w_out;

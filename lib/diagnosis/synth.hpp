@@ -18,6 +18,8 @@ struct SynthOptions {
     bool raw_log = false;          // a 0.5 Hz rig log instead of steady points
     double test_minutes = 240;     // duration of a stabilised test (log)
     double short_test_minutes = 60;  // duration of an unstabilised test (log)
+    // Ceres-style check of the options (synthesize calls it): throws InputError naming the option.
+    void validate() const;
 };
 
 // Returns the CSV text. Throws InputError for an unknown effect or a value

@@ -13,7 +13,9 @@
 
 #include "bearings/skf_constants.hpp"
 #include "io/case_plausibility.hpp"
+#include "io/issue_location.hpp"
 #include "io/sweep.hpp"
+#include "solver/validate.hpp"
 
 namespace gearloss::io {
 
@@ -877,10 +879,15 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
                 v->at("gears").items()[i].fail("'" + c.vehicle->gears[i] + "' is not one of gearbox.ratios");
     }
 
+    // Errors found once the model is assembled point at the item they come from.
     try {
         m.finalise();
     } catch (const gearbox::TopologyError& e) {
-        gbn.fail(e.msg);
+        (e.section.empty() ? gbn : locate_in_case(root, e.section, e.item, e.key)).fail(e.msg);
+    }
+    if (const auto issues = solver::validate(m); !issues.empty()) {
+        const auto& first = issues.front();
+        locate_in_case(root, first.section, first.item, first.key).fail(solver::summarise(issues));
     }
     // Ohlendorf's closed form (and the single-pair average) assume 1 <= eps_alpha < 2.
     if (m.options.loss_factor != mesh::LossFactorModel::wimmer)

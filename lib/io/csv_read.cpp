@@ -76,6 +76,12 @@ struct Fd {
 }  // namespace
 
 std::string read_input_file(const std::string& file, std::size_t max_bytes) {
+    std::string data = read_regular_file(file, max_bytes);
+    check_input_text(data, file, max_bytes);
+    return data;
+}
+
+std::string read_regular_file(const std::string& file, std::size_t max_bytes) {
     struct stat st {};
     // stat first: a FIFO or a device is refused without ever being opened (opening a FIFO blocks).
     if (::stat(file.c_str(), &st) != 0) {
@@ -106,7 +112,6 @@ std::string read_input_file(const std::string& file, std::size_t max_bytes) {
         if (data.size() + static_cast<std::size_t>(n) > max_bytes) too_large(file, max_bytes);  // grew while read
         data.append(buf, static_cast<std::size_t>(n));
     }
-    check_input_text(data, file, max_bytes);
     return data;
 }
 

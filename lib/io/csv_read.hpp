@@ -17,6 +17,7 @@ namespace gearloss::io {
 // Bounds on input files (README "Reliability").
 inline constexpr std::size_t kMaxYamlFileBytes = std::size_t{16} << 20;  // case, oil and sweep files: 16 MiB
 inline constexpr std::size_t kMaxCsvFileBytes = std::size_t{64} << 20;   // recordings and cycles: 64 MiB
+inline constexpr std::size_t kMaxShardFileBytes = std::size_t{4} << 30; // map shards (merge): 4 GiB
 inline constexpr std::size_t kMaxLineBytes = 65536;                       // any line of any input file
 inline constexpr std::size_t kExcerptChars = 60;                          // quoted input in messages
 
@@ -25,6 +26,8 @@ inline constexpr std::size_t kExcerptChars = 60;                          // quo
 // is refused without reading it all; the text must pass check_input_text. Failures are
 // InputErrors naming `file` and never quoting its content.
 std::string read_input_file(const std::string& file, std::size_t max_bytes);
+// The same without the text check, for content that is only hashed.
+std::string read_regular_file(const std::string& file, std::size_t max_bytes);
 
 // The bounds on text already in memory (the *_text entry points): at most `max_bytes`,
 // every line at most kMaxLineBytes, and text only: a NUL or another control byte (other

@@ -4,8 +4,10 @@
 #include <fmt/format.h>
 #include <numbers>
 
+#include "core/errors.hpp"
 #include "io/csv_format.hpp"
 #include "io/json.hpp"
+#include "solver/validate.hpp"
 
 namespace gearloss::io {
 
@@ -29,7 +31,25 @@ cycle::Powertrain load_powertrain(const Case& c, const std::optional<std::string
     return pt;
 }
 
+void CycleStudyOptions::validate() const {
+    const auto temperature = [](const char* key, double T) {
+        if (!(T >= solver::kMinAmbient_K && T <= solver::kMaxAmbient_K))
+            throw InputError("", 0, 0, key, fmt::format("{:.1f} degC is outside the stated range -100..300 degC", T - 273.15));
+    };
+    temperature("--start-temp", start_temperature);
+    temperature("--ambient", ambient);
+    temperature("--warm-temp", warm_temperature);
+    if (prewarm_target) {
+        temperature("--prewarm", *prewarm_target);
+        if (!(*prewarm_target > start_temperature))
+            throw InputError("", 0, 0, "--prewarm", "the pre-warm temperature must be above the start temperature");
+    }
+    if (!(heater_power > 0 && heater_power <= 1e6))
+        throw InputError("", 0, 0, "--heater", "heater power must be positive and at most 1 MW");
+}
+
 CycleStudy run_cycle_study(const cycle::Powertrain& pt, const cycle::DriveCycle& dc, const CycleStudyOptions& o) {
+    o.validate();
     CycleStudy s;
     s.cycle_name = dc.name;
     const auto t0 = std::chrono::steady_clock::now();

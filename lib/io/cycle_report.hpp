@@ -19,6 +19,10 @@ struct CycleStudyOptions {
     double warm_temperature = 363.15;    // K, reference warm start
     std::optional<double> prewarm_target;  // K
     double heater_power = 100.0;         // W
+    // Ceres-style check of the options (run_cycle_study calls it): throws InputError naming the
+    // option. Temperatures within the stated ambient range (-100..300 degC), the pre-warm target
+    // above the start, the heater power positive and at most 1 MW.
+    void validate() const;
 };
 
 struct CycleStudy {

@@ -18,6 +18,15 @@ namespace gearloss::io {
 YamlNode::YamlNode(YAML::Node node, std::string file, std::string path)
     : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {}
 
+YamlNode& YamlNode::operator=(const YamlNode& other) {
+    if (this != &other) {
+        node_.reset(other.node_);
+        file_ = other.file_;
+        path_ = other.path_;
+    }
+    return *this;
+}
+
 YamlNode YamlNode::load_file(const std::string& file) { return load_text(read_input_file(file, kMaxYamlFileBytes), file); }
 
 namespace {

@@ -15,11 +15,16 @@
 
 namespace gearloss::io {
 
-// Never assign one YamlNode to another: YAML::Node assignment rebinds the document's
-// data. Construct a new one instead.
+// Assignment rebinds the handle only (YAML::Node::reset): YAML::Node's own assignment
+// would overwrite the document's data with the other node's.
 class YamlNode {
 public:
     YamlNode(YAML::Node node, std::string file, std::string path);
+    YamlNode(const YamlNode&) = default;
+    YamlNode(YamlNode&&) = default;
+    YamlNode& operator=(const YamlNode& other);
+    YamlNode& operator=(YamlNode&& other) { return *this = static_cast<const YamlNode&>(other); }
+    ~YamlNode() = default;
     // Reads a regular file of at most kMaxYamlFileBytes (see read_input_file), then load_text.
     static YamlNode load_file(const std::string& file);
     // Parses `text`; `name` is the file name used in messages. Bounded: the text as in

@@ -26,7 +26,7 @@ std::string compare_row(const solver::PointResult& a, const solver::PointResult&
     const double ea = oa && a.has_efficiency ? a.efficiency : NAN, eb = ob && b.has_efficiency ? b.efficiency : NAN;
     return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(a.speed_in * 30 / std::numbers::pi),
                        num(a.torque_in), num(Pa), num(Pb), num(Pb - Pa), num(Ta), num(Tb), num(Tb - Ta), num(ea), num(eb),
-                       num(eb - ea), solver::to_string(a.status), solver::to_string(b.status));
+                       num(eb - ea), solver::status_text(a), solver::status_text(b));
 }
 
 }  // namespace gearloss::map

@@ -8,6 +8,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/errors.hpp"
+#include "io/csv_read.hpp"
 
 namespace gearloss::map {
 
@@ -34,14 +35,6 @@ std::string token(std::string s) {
     return s.empty() ? "-" : s;
 }
 
-std::string read_whole(const std::string& file, const std::string& what) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(file, 0, 0, "", "cannot open " + what);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
 // Every scalar of the case that names a regular file next to the case (as the loader
 // resolves it) is an input: its content is hashed under the key path that names it, so
 // neither the working directory nor the path used for the case enters the fingerprint.
@@ -52,7 +45,7 @@ void add_named_files(const YAML::Node& n, const std::string& path, const fs::pat
         std::error_code ec;
         const fs::path p = base / v;
         if (!v.empty() && v.size() < 4096 && fs::is_regular_file(p, ec))
-            fp.add("file:" + token(path), Fnv1a().add(read_whole(p.string(), "file named in the case")).hex());
+            fp.add("file:" + token(path), Fnv1a().add(io::read_regular_file(p.string(), io::kMaxCsvFileBytes)).hex());
     } else if (n.IsMap()) {
         for (const auto& kv : n) {
             const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : "?";
@@ -149,9 +142,9 @@ Fingerprint input_fingerprint(const JobInputs& in) {
     fp.add("format", in.format);
     fp.add("detail", in.detail ? "1" : "0");
     fp.add("oil-temp", in.oil_temperature ? fmt::format("{}K", *in.oil_temperature) : "-");
-    fp.add("oil-file", in.oil_file.empty() ? "-" : Fnv1a().add(read_whole(in.oil_file, "oil file")).hex());
+    fp.add("oil-file", in.oil_file.empty() ? "-" : Fnv1a().add(io::read_input_file(in.oil_file, io::kMaxYamlFileBytes)).hex());
     fp.add("ratio", in.ratio.empty() ? "-" : Fnv1a().add(in.ratio).hex());
-    const std::string text = read_whole(in.config, "case file");
+    const std::string text = io::read_input_file(in.config, io::kMaxYamlFileBytes);
     fp.add("case", Fnv1a().add(text).hex());
     try {
         add_named_files(YAML::Load(text), "", fs::path(in.config).parent_path(), fp, 0);

@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "io/csv_format.hpp"
+#include "io/csv_read.hpp"
 #include "io/interrupt.hpp"
 #include "io/sweep.hpp"
 
@@ -80,10 +81,10 @@ Shard parse_shard(const std::string& text) {
         s.count = std::stoi(text.substr(slash + 1), &p2);
         if (p1 != slash || p2 != text.size() - slash - 1) throw std::invalid_argument("trailing text");
     } catch (const std::exception&) {
-        throw InputError("", 0, 0, "--shard", "'" + text + "' is not K/N (e.g. 3/16)");
+        throw InputError("", 0, 0, "--shard", "'" + io::excerpt(text) + "' is not K/N (e.g. 3/16)");
     }
     if (s.count < 1 || s.count > 100000 || s.index < 1 || s.index > s.count)
-        throw InputError("", 0, 0, "--shard", "'" + text + "': need 1 <= K <= N <= 100000");
+        throw InputError("", 0, 0, "--shard", "'" + io::excerpt(text) + "': need 1 <= K <= N <= 100000");
     return s;
 }
 
@@ -142,11 +143,7 @@ std::string merge_shards(const std::vector<std::string>& files) {
         if (!std::filesystem::is_regular_file(file, ec))
             throw InputError(file, 0, 0, "", std::filesystem::exists(file, ec) ? "not a regular file (a shard is a CSV file)"
                                                                                 : "cannot open shard file");
-        std::ifstream in(file, std::ios::binary);
-        if (!in) throw InputError(file, 0, 0, "", "cannot open shard file");
-        std::stringstream ss;
-        ss << in.rdbuf();
-        const std::string text = ss.str();
+        const std::string text = io::read_input_file(file, io::kMaxShardFileBytes);
         Part p;
         p.file = file;
         const auto nl1 = text.find('\n');

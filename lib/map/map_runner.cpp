@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json.hpp"
+#include "io/issue_location.hpp"
 #include "io/yaml_reader.hpp"
 #include "solver/validate.hpp"
 
@@ -26,43 +27,6 @@ std::string fixed(double v, int d) { return io::csv_fixed(v, d); }
 }  // namespace
 
 namespace {
-// Finds the item of a list by its `name` (or its scalar value); a bearing of `count: N` is
-// listed once under the name without its ".k" suffix.
-std::optional<io::YamlNode> find_item(const io::YamlNode& list, const std::string& name) {
-    if (!list.is_sequence()) return std::nullopt;
-    for (int pass = 0; pass < 2; ++pass) {
-        std::string want = name;
-        if (pass == 1) {
-            const auto dot = name.rfind('.');
-            if (dot == std::string::npos || dot + 1 == name.size() ||
-                name.find_first_not_of("0123456789", dot + 1) != std::string::npos)
-                break;
-            want = name.substr(0, dot);
-        }
-        for (const auto& it : list.items()) {
-            if (it.is_scalar() && it.as_string() == want) return it;
-            if (it.is_map())
-                if (auto n = it.get("name"); n && n->is_scalar() && n->as_string() == want) return it;
-        }
-    }
-    return std::nullopt;
-}
-
-// Descends a dotted key path as far as it exists.
-io::YamlNode descend(io::YamlNode n, const std::string& key) {
-    size_t start = 0;
-    while (start < key.size()) {
-        const size_t dot = key.find('.', start);
-        const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-        auto next = n.get(part);
-        if (!next) break;
-        n = *next;
-        if (dot == std::string::npos) break;
-        start = dot + 1;
-    }
-    return n;
-}
-
 // The issue as an error at the line of its item (the node's position in the YAML text).
 InputError locate(const io::Case& k, const solver::Issue& is, const std::string& message, const CaseOverrides& o) {
     if (is.section == "thermal" && is.key == "oil_temperature" && !o.oil_temp.empty())
@@ -71,25 +35,12 @@ InputError locate(const io::Case& k, const solver::Issue& is, const std::string&
     if (is.section == "operating" && is.key == "torques" && o.torques) return InputError("", 0, 0, "--torque", message);
     try {
         std::optional<io::YamlNode> node;
-        const auto in_oil_file = [&](const std::string& file) {
-            const io::YamlNode oil_root = io::YamlNode::load_file(file);
-            node = oil_root.has("oil") ? oil_root.at("oil") : oil_root;
-        };
         if (is.section == "oil" && !o.oil.empty()) {
-            in_oil_file(o.oil);
+            const io::YamlNode oil_root = io::YamlNode::load_file(o.oil);
+            node = io::locate_in_case(oil_root.has("oil") ? oil_root.at("oil") : oil_root, "", "", is.key);
         } else {
-            const io::YamlNode root = io::YamlNode::load_file(k.file);
-            node = root.get(is.section);
-            if (node && is.section == "oil" && node->is_scalar()) {
-                const auto p = std::filesystem::path(k.file).parent_path() / node->as_string();
-                std::error_code ec;
-                if (std::filesystem::is_regular_file(p, ec)) in_oil_file(p.string());
-            }
-            if (!node) node = root;
+            node = io::locate_in_case(io::YamlNode::load_file(k.file), is.section, is.item, is.key);
         }
-        if (!is.item.empty())
-            if (auto it = find_item(*node, is.item)) node = *it;
-        node = descend(*node, is.key);
         node->fail(message);
     } catch (const InputError& e) {
         if (e.line > 0) return InputError(e.file, e.line, e.column, is.path(), message);
@@ -101,12 +52,7 @@ InputError locate(const io::Case& k, const solver::Issue& is, const std::string&
 
 [[noreturn]] void raise(const io::Case* k, const std::vector<solver::Issue>& issues, const CaseOverrides& o) {
     const auto& first = issues.front();
-    std::string message = first.message;
-    if (issues.size() > 1) {
-        message += fmt::format(" ({} more: ", issues.size() - 1);
-        for (size_t i = 1; i < issues.size() && i < 4; ++i) message += (i > 1 ? "; " : "") + issues[i].path();
-        message += issues.size() > 4 ? "; ...)" : ")";
-    }
+    const std::string message = solver::summarise(issues);
     if (k) throw locate(*k, first, message, o);
     throw InputError("", 0, 0, first.section == "operating" ? (first.key == "speeds" ? "--speed" : "--torque") : first.path(),
                      message);
@@ -149,7 +95,13 @@ void validate_point(double omega_in, double torque_in) {
     if (!issues.empty()) raise(nullptr, issues, {});
 }
 
+void MapOptions::validate() const {
+    if (threads < 0 || threads > 1024)
+        throw InputError("", 0, 0, "--threads", fmt::format("{} threads: give 1 to 1024 (0 = all cores)", threads));
+}
+
 std::vector<solver::PointResult> run_map(const solver::Model& m, const io::OperatingGrid& grid, const MapOptions& opt) {
+    opt.validate();
     if (grid.size() > kMaxGridPoints)
         throw InputError("", 0, 0, "operating",
                          fmt::format("{} operating points; a map holds at most {}", grid.size(), kMaxGridPoints));

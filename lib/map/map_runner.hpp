@@ -14,6 +14,8 @@ struct MapOptions {
     bool detail = false;    // per-component columns
     // Called from one thread now and then with the number of points done.
     std::function<void(size_t done, size_t total)> progress;
+    // Ceres-style check of the options (run_map calls it): throws InputError naming the option.
+    void validate() const;
 };
 
 // Largest operating grid of one map (one sweep variant): results are held in memory.

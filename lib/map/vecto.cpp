@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <numbers>
 
 #include "core/errors.hpp"
 #include "io/interrupt.hpp"
@@ -34,9 +35,11 @@ std::vector<VectoRow> vecto_loss_map(const solver::Model& m, const std::vector<d
         const auto [w, T] = grid.at(i);
         if (!solver::has_values(r.status))
             throw InputError("", 0, 0, "--format vecto",
-                             fmt::format("no thermal equilibrium at {:.0f} rpm, {:.1f} N m: a VECTO map cannot have holes "
-                                         "(give --oil-temp for a temperature-controlled map)",
-                                         w * 30 / 3.14159265358979323846, T));
+                             fmt::format("{} at {:.0f} rpm, {:.1f} N m: a VECTO map cannot have holes{}",
+                                         solver::status_text(r), w * 30 / std::numbers::pi, T,
+                                         r.status == solver::PointStatus::no_equilibrium
+                                             ? " (give --oil-temp for a temperature-controlled map)"
+                                             : ""));
         VectoRow v;
         v.speed = speeds[i / grid.torques.size()];
         v.torque = T;

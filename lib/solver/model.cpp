@@ -51,7 +51,7 @@ void Model::finalise() {
     // Indices that would make the analysis read out of bounds (a model built in code): a
     // topology error before anything else. The other checks are validate()'s (solver/validate.hpp).
     for (const Issue& is : validate(*this))
-        if (is.structural) throw gearbox::TopologyError(is.text());
+        if (is.structural) throw gearbox::TopologyError(is.text(), is.section, is.item, is.key);
     layout = gearbox::analyse(gearbox);
     mesh_E_prime.resize(gearbox.meshes.size());
     for (size_t i = 0; i < gearbox.meshes.size(); ++i) {

@@ -271,6 +271,17 @@ void validate_layout(const Model& m, std::vector<Issue>& out) {
 
 }  // namespace
 
+std::string summarise(const std::vector<Issue>& issues) {
+    if (issues.empty()) return {};
+    std::string message = issues.front().message;
+    if (issues.size() > 1) {
+        message += fmt::format(" ({} more: ", issues.size() - 1);
+        for (size_t i = 1; i < issues.size() && i < 4; ++i) message += (i > 1 ? "; " : "") + issues[i].path();
+        message += issues.size() > 4 ? "; ...)" : ")";
+    }
+    return message;
+}
+
 std::string Issue::path() const {
     std::string p = section;
     if (!item.empty()) p += (p.empty() ? "" : ".") + item;

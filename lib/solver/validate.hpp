@@ -52,6 +52,8 @@ std::optional<std::string> ambient_fault(double T_K);
 // Every issue of the model (empty: valid). Checks the description (finite numbers, ranges,
 // indices) and, once finalise() has run, the derived layout (finite ratios and loads).
 std::vector<Issue> validate(const Model& m);
+// The first issue's message, followed by the paths of up to three more: "... (2 more: a.b; c)".
+std::string summarise(const std::vector<Issue>& issues);
 inline bool is_valid(const Model& m) { return validate(m).empty(); }
 
 // An operating point at the input (section "operating", keys "speeds" / "torques").

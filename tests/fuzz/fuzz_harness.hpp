@@ -8,12 +8,14 @@
 // a negative loss, a broken energy balance) is a finding.
 #include <yaml-cpp/yaml.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <string>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "cycle/simulate.hpp"
@@ -30,14 +32,37 @@ namespace fuzz {
     std::abort();
 }
 
+// A "nan" or "inf" (any case, as a whole word) in an output text: a value that is not finite
+// reached a report, a JSON document or a CSV row.
+inline bool has_non_finite_token(const std::string& text) {
+    auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (size_t i = 0; i < text.size();) {
+        if (!word(text[i])) {
+            ++i;
+            continue;
+        }
+        size_t j = i;
+        while (j < text.size() && word(text[j])) ++j;
+        std::string w = text.substr(i, j - i);
+        for (char& c : w) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (w == "nan" || w == "inf" || w == "infinity") return true;
+        i = j;
+    }
+    return false;
+}
+
+inline void check_text(const std::string& what, const std::string& text) {
+    if (has_non_finite_token(text)) finding("non-finite value in " + what + ": " + text.substr(0, 2000));
+}
+
 inline std::string configs_dir() { return std::string(GEARLOSS_SOURCE_DIR) + "/configs"; }
 
 // Every number a solved point reports must be finite, every loss non-negative,
 // and the energy balance must hold.
-inline void check_result(const gearloss::solver::Model& m, const gearloss::solver::PointResult& r) {
-    const std::string row = gearloss::map::csv_row(m, r, true);
-    if (row.find("nan") != std::string::npos || row.find("inf") != std::string::npos)
-        finding("non-finite cell in CSV row: " + row);
+inline void check_result(const gearloss::io::Case& c, const gearloss::solver::PointResult& r) {
+    const std::string row = gearloss::map::csv_row(c.model, r, true);
+    check_text("CSV row", row);
+    check_text("point report", gearloss::io::point_report(c, r));
     if (!gearloss::solver::has_values(r.status)) return;
     const auto& L = r.losses;
     for (double v : {L.mesh, L.churning, L.bearings, L.seals, L.auxiliary, r.oil_temperature, r.power_out, r.torque_out})
@@ -80,11 +105,11 @@ inline int config_one(const uint8_t* data, size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
     try {
         const auto c = gearloss::io::load_case_text(text, "fuzz.yaml", configs_dir());
-        (void)gearloss::io::check_report(c);
-        (void)gearloss::io::check_json(c);
+        check_text("check report", gearloss::io::check_report(c));
+        check_text("check --json", gearloss::io::check_json(c));
         if (c.grid.size() > 0) {
             const auto [w, T] = c.grid.at(0);
-            check_result(c.model, gearloss::solver::solve_point(c.model, w, T, true));
+            check_result(c, gearloss::solver::solve_point(c.model, w, T, true));
         }
         if (c.vehicle) check_cycle(text, c);
     } catch (const gearloss::InputError&) {
@@ -115,6 +140,8 @@ public:
         return v / 65535.0;
     }
     double range(double lo, double hi) { return lo + (hi - lo) * unit(); }
+    // Log-uniform magnitude in [1e-300, 1e300] with a random sign.
+    double extreme() { return (flag() ? -1.0 : 1.0) * std::pow(10.0, range(-300, 300)); }
     bool flag() { return next() & 1; }
     int pick(int n) { return static_cast<int>(next() % n); }
 
@@ -149,10 +176,10 @@ inline int map_one(const uint8_t* data, size_t size) {
     if (dr.flag()) root["housing"]["oil_level"] = fmt::format("{} mm", dr.range(-600, 600));
     if (dr.flag()) root["housing"]["oil_volume"] = fmt::format("{} L", dr.range(0.001, 200));
     auto th = root["thermal"];
-    th["ambient"] = fmt::format("{} degC", dr.range(-50, 60));
+    th["ambient"] = fmt::format("{} degC", dr.pick(16) == 0 ? dr.range(-300, 5000) : dr.range(-50, 60));
     if (dr.flag()) {
         th["mode"] = "fixed";
-        th["oil_temperature"] = fmt::format("{} degC", dr.range(-45, 250));
+        th["oil_temperature"] = fmt::format("{} degC", dr.pick(16) == 0 ? dr.range(-300, 5000) : dr.range(-45, 250));
     }
     if (dr.flag()) {
         YAML::Node hr;
@@ -164,9 +191,12 @@ inline int map_one(const uint8_t* data, size_t size) {
     const int n = 1 + dr.pick(6);
     for (int i = 0; i < n; ++i) {
         YAML::Node p;
-        const double speed = dr.flag() ? dr.range(0, 40000) : dr.range(0, 3);
+        // One point in eight is hostile (a speed or torque of any magnitude): it must be an
+        // input error or an out_of_range point, never a hang or a value that is not finite.
+        const bool hostile = dr.pick(8) == 0;
+        const double speed = hostile ? dr.extreme() : dr.flag() ? dr.range(0, 40000) : dr.range(0, 3);
         p.push_back(fmt::format("{} rpm", speed));
-        p.push_back(fmt::format("{} N*m", dr.range(-5000, 5000)));
+        p.push_back(fmt::format("{} N*m", hostile ? dr.extreme() : dr.range(-5000, 5000)));
         pts.push_back(p);
     }
     op["points"] = pts;
@@ -175,10 +205,13 @@ inline int map_one(const uint8_t* data, size_t size) {
     em << root;
     try {
         const auto c = gearloss::io::load_case_text(em.c_str(), "fuzz-map.yaml", configs_dir());
+        std::vector<gearloss::solver::PointResult> results;
         for (size_t i = 0; i < c.grid.size(); ++i) {
             const auto [w, T] = c.grid.at(i);
-            check_result(c.model, gearloss::solver::solve_point(c.model, w, T, true));
+            results.push_back(gearloss::solver::solve_point(c.model, w, T, true));
+            check_result(c, results.back());
         }
+        check_text("map --json summary", gearloss::map::map_summary_json(results, 0.1));
     } catch (const gearloss::InputError&) {
     }
     return 0;
