@@ -56,6 +56,12 @@ stopped() {
 stopped "map" INT 130 "$bin" map "$spur" --speed "$speeds" --torque "$torques" -o out/map.csv --json out/map.json
 stopped "map --detail" TERM 143 "$bin" map "$spur" --speed "$speeds" --torque "$torques" --detail -o out/map.csv
 
+# map of 4 million points of the transfer box: stops at once, also before the first second
+# (the result array is filled block by block, not initialised up front)
+big_speeds="$(list 300 1 2000)rpm"
+big_torques="$(list 10 0.1 2000)Nm"
+after=0.3 stopped "map 4e6 points" INT 130 "$bin" map "$tb" --speed "$big_speeds" --torque "$big_torques" -o out/big.csv
+
 # map with a sweep of 2000 variants (the expansion re-reads each variant) and a shard
 mkdir -p sweep
 cp -r "$src/configs/oils" sweep/

@@ -2,6 +2,7 @@
 
 #include "io/csv_format.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <optional>
@@ -106,7 +107,11 @@ std::vector<solver::PointResult> run_map(const solver::Model& m, const io::Opera
         throw InputError("", 0, 0, "operating",
                          fmt::format("{} operating points; a map holds at most {}", grid.size(), kMaxGridPoints));
     const long n = static_cast<long>(grid.size());
-    std::vector<solver::PointResult> out(static_cast<size_t>(n));
+    // Reserved, then filled block by block: initialising all results at once (~0.5 kB a
+    // point) would take seconds on a large map before the first interrupt check.
+    std::vector<solver::PointResult> out;
+    out.reserve(static_cast<size_t>(n));
+    constexpr long kBlock = 1L << 16;
     const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
     std::atomic<size_t> done{0};
     std::atomic<bool> stop{false};
@@ -115,17 +120,21 @@ std::vector<solver::PointResult> run_map(const solver::Model& m, const io::Opera
     // The empty region places the team before the work starts.
 #pragma omp parallel num_threads(threads) proc_bind(close)
     { (void)omp_get_thread_num(); }
+    for (long b0 = 0; b0 < n && !stop.load(); b0 += kBlock) {
+        const long b1 = std::min(n, b0 + kBlock);
+        out.resize(static_cast<size_t>(b1));
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 64) proc_bind(close)
-    for (long i = 0; i < n; ++i) {
-        if (stop.load(std::memory_order_relaxed)) continue;
-        if (io::g_interrupted.load(std::memory_order_relaxed)) {
-            stop = true;
-            continue;
+        for (long i = b0; i < b1; ++i) {
+            if (stop.load(std::memory_order_relaxed)) continue;
+            if (io::g_interrupted.load(std::memory_order_relaxed)) {
+                stop = true;
+                continue;
+            }
+            const auto [w, T] = grid.at(static_cast<size_t>(i));
+            out[static_cast<size_t>(i)] = solver::solve_point(m, w, T, opt.detail);
+            const size_t d = ++done;
+            if (opt.progress && omp_get_thread_num() == 0 && (d & 255) == 0) opt.progress(d, static_cast<size_t>(n));
         }
-        const auto [w, T] = grid.at(static_cast<size_t>(i));
-        out[static_cast<size_t>(i)] = solver::solve_point(m, w, T, opt.detail);
-        const size_t d = ++done;
-        if (opt.progress && omp_get_thread_num() == 0 && (d & 255) == 0) opt.progress(d, static_cast<size_t>(n));
     }
     if (opt.progress) opt.progress(done.load(), static_cast<size_t>(n));
     return out;

@@ -39,6 +39,8 @@ void validate_point(double omega_in, double torque_in);
 
 // Results are stored by grid index, so the output does not depend on the
 // number of threads or on the scheduling. A grid above kMaxGridPoints is an InputError.
+// After SIGINT/SIGTERM (io::g_interrupted) it stops within a block of points and the result
+// is incomplete (shorter, or with unsolved entries): callers check io::g_interrupted first.
 std::vector<solver::PointResult> run_map(const solver::Model& m, const io::OperatingGrid& grid, const MapOptions& opt);
 
 std::string csv_header(const solver::Model& m, bool detail);
