@@ -438,6 +438,12 @@ int main(int argc, char** argv) {
         if (map->parsed()) io::require_distinct_outputs({{"--output", out}, {"--json", map_json}});
         if (cyc->parsed()) io::require_distinct_outputs({{"--output", cycle_out}, {"--json", cycle_json}});
         if (diag->parsed()) io::require_distinct_outputs({{"--json", json_out}, {"--residuals", residuals_out}, {"--write-config", write_config}});
+        std::vector<std::pair<std::string, std::string>> inputs = {{"config", common.config}, {"--oil", common.oil},
+            {"config", cmp.config}, {"recordings", recordings}, {"--cycle", cycle_name}};
+        for (const auto& f : compare_oils) inputs.emplace_back("--oil", f);
+        for (const auto& f : shard_files) inputs.emplace_back("shards", f);
+        io::require_outputs_not_inputs({{"--output", out}, {"--json", map_json}, {"--output", cycle_out}, {"--json", cycle_json},
+            {"--json", json_out}, {"--residuals", residuals_out}, {"--write-config", write_config}, {"--output", merge_out}}, inputs);
         if (map->parsed()) {
             if (map_format == "vecto" && !shard.empty())
                 throw InputError("", 0, 0, "--shard", "--format vecto writes whole tables per gear; it cannot be sharded");

@@ -451,12 +451,25 @@ TEST_CASE("recordings: bad cells are errors with line and column", "[bounded][re
     CHECK(kw.line == 2);
     CHECK(kw.column == 3);
     CHECK_THAT(kw.message, Catch::Contains("out of range"));
-    // A loss from input and output power that overflows.
+    // Speeds, torques and losses beyond the ranges the model states (solver/validate.hpp) are
+    // errors at their cell: a loss of 1e155 W made a residual statistic of the diagnosis
+    // overflow (an internal error) before.
     const auto pw = input_error([] {
         diagnosis::read_recordings_text("speed_in_rpm,torque_in_Nm,speed_out_rpm,torque_out_Nm\n1e300,1e300,1,1\n", "pw.csv");
     });
     CHECK(pw.line == 2);
-    CHECK_THAT(pw.message, Catch::Contains("overflows"));
+    CHECK(pw.column == 1);
+    CHECK_THAT(pw.message, Catch::Contains("beyond the stated range"));
+    const auto big = input_error([] {
+        diagnosis::read_recordings_text("speed_in_rpm,torque_in_Nm,P_loss_W\n600,150,210\n800,150,1e155\n", "big.csv");
+    });
+    CHECK(big.line == 3);
+    CHECK(big.column == 3);
+    CHECK_THAT(big.message, Catch::Contains("beyond the stated range"));
+    const auto tq = input_error([] {
+        diagnosis::read_recordings_text("speed_in_rpm,torque_in_Nm,P_loss_W\n600,-2e8,210\n", "tq.csv");
+    });
+    CHECK(tq.column == 2);
     // A label that is not UTF-8 (JSON output must stay valid).
     const auto lab = input_error([] {
         diagnosis::read_recordings_text("speed_in_rpm,torque_in_Nm,P_loss_W,label\n600,150,210,caf\xe9\n", "lab.csv");

@@ -29,6 +29,9 @@ double wetted_outer_radius(const WetClutchPack& c, double eta, double rho, doubl
     auto f = [&](double r) { return outflow(c, eta, rho, w, r) - c.oil_supply; };
     const double lo = c.r_inner * (1 + 1e-9);
     if (f(lo) >= 0.0) return c.r_inner;
+    // Oil properties that are not finite (a solver's trial state) give no bracket: the drag
+    // is then not finite and the caller reports it instead of the root finder throwing.
+    if (!(f(lo) < 0.0 && f(c.r_outer) > 0.0)) return c.r_outer;
     std::uintmax_t it = 60;
     const auto [a, b] = boost::math::tools::toms748_solve(
         f, lo, c.r_outer, [](double x, double y) { return std::abs(y - x) < 1e-7; }, it);

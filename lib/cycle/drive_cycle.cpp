@@ -114,7 +114,7 @@ DriveCycle resolve_cycle(const std::string& name_or_file, const std::vector<std:
         if (fs::exists(fs::status(name_or_file, ec))) return load_cycle_csv(name_or_file);
         std::string names;
         for (const auto& n : cycle_names()) names += (names.empty() ? "" : ", ") + n;
-        throw InputError("", 0, 0, "--cycle", "'" + name_or_file + "' is neither a cycle file nor one of: " + names);
+        throw InputError("", 0, 0, "--cycle", "'" + io::excerpt(name_or_file) + "' is neither a cycle file nor one of: " + names);
     }
     DriveCycle out;
     for (size_t k = 0; k < it->second.size(); ++k) {

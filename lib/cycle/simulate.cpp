@@ -85,7 +85,10 @@ constexpr double kMaxDuration = 1e6;             // s
 constexpr size_t kMaxSteps = 100000;             // per interval
 constexpr double kMaxVehicleSpeed = 500.0 / 3.6; // m/s
 
-std::string celsius(double T) { return fmt::format("{:.1f} degC", T - 273.15); }
+std::string celsius(double T) {
+    if (!std::isfinite(T)) return "(not finite)";
+    return std::abs(T) < 1e6 ? fmt::format("{:.1f} degC", T - 273.15) : fmt::format("{:.4g} degC", T - 273.15);
+}
 
 [[noreturn]] void fail(const std::string& key, const std::string& message) { throw InputError("", 0, 0, key, message); }
 
@@ -115,7 +118,10 @@ void integrate(const Powertrain& pt, const StepLoad& load, double ambient, State
     auto stepper = odeint::make_controlled(1e-4, 1e-7, odeint::runge_kutta_dopri5<State>());
     size_t steps = 0;
     try {
-        odeint::integrate_adaptive(stepper, Rates{pt, load, ambient}, x, t0, t1, t1 - t0, StepGuard{load, ambient, &steps});
+        // First trial step at most 1 s: a cycle sampled every 100 s would otherwise start with a
+        // trial of 100 s, whose stages leave the range where the oil's description holds.
+        odeint::integrate_adaptive(stepper, Rates{pt, load, ambient}, x, t0, t1, std::min(t1 - t0, 1.0),
+                                   StepGuard{load, ambient, &steps});
     } catch (const odeint::step_adjustment_error& e) {
         fail("cycle", fmt::format("the integration from t = {:g} s failed: {}", t0, e.what()));
     }
@@ -213,8 +219,9 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
             if (!load.point.fault.empty() || !std::isfinite(last_loss) || !std::isfinite(T_in)) {
                 std::string cause = load.point.fault;
                 if (cause.empty()) cause = solver::loss_fault(gm, load.point, x[kOil], ambient);
-                fail("cycle", fmt::format("at t = {:g} s (gear {}, {:.0f} rpm, {:.1f} N m, oil {}): out_of_range: {}",
-                                          cycle.time[i], gear, w_in * 30 / 3.14159265358979323846, T_in,
+                const auto value = [](double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : std::string("(not finite)"); };
+                fail("cycle", fmt::format("at t = {:g} s (gear {}, {} rpm, {} N m, oil {}): out_of_range: {}",
+                                          cycle.time[i], gear, value(w_in * 30 / 3.14159265358979323846), value(T_in),
                                           celsius(x[kOil]), cause.empty() ? "gearbox loss not finite" : cause));
             }
             load.gearbox = &gm;

@@ -12,6 +12,7 @@
 
 #include "core/errors.hpp"
 #include "io/csv_read.hpp"
+#include "solver/validate.hpp"
 #include "units/units.hpp"
 
 namespace gearloss::diagnosis {
@@ -156,6 +157,9 @@ Table read_table(const std::string& file, std::istream& in, std::vector<std::str
     return t;
 }
 
+constexpr double kMaxRecordedLoss = 1e10;             // W
+constexpr double kMaxRecordedTemperature = 20273.15;  // K: 20 000 degC (a 9999 degC typo stays an outlier to report)
+
 // Value of `key` in row r, converted to SI by the definition of its header.
 double cell(const std::string& file, const Table& t, size_t r, const std::string& key, bool* present = nullptr) {
     const auto it = t.col.find(key);
@@ -171,6 +175,17 @@ double cell(const std::string& file, const Table& t, size_t r, const std::string
     const double si = v * t.def[it->second].scale + t.def[it->second].offset;
     if (!std::isfinite(si))
         throw InputError(file, t.lines[r], column, name, "'" + io::excerpt(s) + "' is out of range (overflows in SI units)");
+    // The ranges the model states (solver/validate.hpp), so that no statistic of the diagnosis
+    // overflows: a recording outside them is an error at its cell, not a point to fit.
+    std::optional<std::string> fault;
+    if (key == "speed_in" || key == "speed_out") fault = solver::speed_fault(si);
+    else if (key == "torque_in" || key == "torque_out") fault = solver::torque_fault(si);
+    else if (key == "loss" && !(std::abs(si) <= kMaxRecordedLoss))
+        fault = fmt::format("loss {:.4g} W beyond the stated range (|P| <= {:g} W)", si, kMaxRecordedLoss);
+    else if ((key == "oil" || key == "ambient") && !(si <= kMaxRecordedTemperature))
+        fault = fmt::format("temperature {:.4g} degC beyond the stated range (at most {:g} degC)", si - 273.15,
+                            kMaxRecordedTemperature - 273.15);
+    if (fault) throw InputError(file, t.lines[r], column, name, *fault);
     return si;
 }
 

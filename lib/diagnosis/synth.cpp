@@ -28,7 +28,7 @@ std::pair<std::string, double> parse_effect_assignment(const std::string& text) 
     if (!e) {
         std::string all;
         for (const auto& x : effect_library()) all += (all.empty() ? "" : ", ") + x.id;
-        throw InputError("", 0, 0, "--effect", "unknown effect '" + name + "'; known: " + all);
+        throw InputError("", 0, 0, "--effect", "unknown effect '" + io::excerpt(name) + "'; known: " + all);
     }
     units::Quantity q;
     try {
@@ -69,7 +69,7 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
     int unstabilised = 0;
     for (const auto& [id, v] : opt.effects) {
         const Effect* e = find_effect(id);
-        if (!e) throw InputError("", 0, 0, "--effect", "unknown effect '" + id + "'");
+        if (!e) throw InputError("", 0, 0, "--effect", "unknown effect '" + io::excerpt(id) + "'");
         if (id == "unstabilised_test") unstabilised = static_cast<int>(v);
         else e->apply(h, v);
     }

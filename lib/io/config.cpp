@@ -270,13 +270,13 @@ struct Loader {
     int shaft_ref(const YamlNode& n) {
         const std::string s = n.as_string();
         auto it = shaft_index.find(s);
-        if (it == shaft_index.end()) n.fail("unknown shaft '" + s + "'");
+        if (it == shaft_index.end()) n.fail("unknown shaft '" + excerpt(s) + "'");
         return it->second;
     }
     int gear_ref(const YamlNode& n) {
         const std::string s = n.as_string();
         auto it = gear_index.find(s);
-        if (it == gear_index.end()) n.fail("unknown gear '" + s + "'");
+        if (it == gear_index.end()) n.fail("unknown gear '" + excerpt(s) + "'");
         return it->second;
     }
 
@@ -284,7 +284,7 @@ struct Loader {
         if (n.is_scalar()) {
             const std::string s = n.as_string();
             auto it = materials.find(s);
-            if (it == materials.end()) n.fail("unknown material '" + s + "'; define it under 'materials'");
+            if (it == materials.end()) n.fail("unknown material '" + excerpt(s) + "'; define it under 'materials'");
             return it->second;
         }
         n.allow_keys({"E", "poisson", "density"});
@@ -313,7 +313,7 @@ struct Loader {
                 name = item.at("name").as_name();
                 if (auto f = item.get("fixed")) fixed = f->as_bool();
             }
-            if (shaft_index.count(name)) item.fail("duplicate shaft name '" + name + "'");
+            if (shaft_index.count(name)) item.fail("duplicate shaft name '" + excerpt(name) + "'");
             shaft_index[name] = static_cast<int>(model.gearbox.shafts.size());
             model.gearbox.shafts.push_back({name, fixed});
         }
@@ -433,7 +433,7 @@ struct Loader {
             if (!t) {
                 std::string all;
                 for (const auto& x : bearings::bearing_type_names()) all += (all.empty() ? "" : ", ") + x;
-                tn.fail("unknown bearing type '" + tn.as_string() + "'; known: " + all);
+                tn.fail("unknown bearing type '" + excerpt(tn.as_string()) + "'; known: " + all);
             }
             s.type = *t;
             s.d = n.positive_quantity("d", dim::length, "35 mm") * 1e3;
@@ -455,7 +455,7 @@ struct Loader {
                 (n.has("series") ? n.at("series") : n)
                     .fail(fmt::format("no SKF constants for a {} bearing of series '{}'; known series: {} (or give "
                                       "'constants')",
-                                      bearings::to_string(s.type), series, all));
+                                      bearings::to_string(s.type), excerpt(series), all));
             }
             if (k) s.k = *k;
             if (auto c = n.get("constants")) {
@@ -796,7 +796,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     if (oil.is_scalar()) {
         const fs::path p = fs::path(base_dir) / oil.as_string();
         std::error_code ec;  // non-throwing: a malformed name is an input error, not a crash
-        if (!fs::is_regular_file(p, ec)) oil.fail("oil file '" + p.string() + "' does not exist or is not a file");
+        if (!fs::is_regular_file(p, ec)) oil.fail("oil file '" + excerpt(p.string(), 200) + "' does not exist or is not a file");
         m.oil = load_oil_file(p.string());
     } else {
         m.oil = load_oil(oil);
@@ -818,6 +818,8 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     if (auto rs = gbn.get("ratios")) {
         std::map<std::string, std::vector<int>> ratios;
         for (auto& [name, rn] : rs->entries()) {
+            if (const std::string why = name_problem(name, YamlNode::kMaxNameBytes); !why.empty())
+                rn.fail("ratio '" + excerpt(name) + "': " + why);
             rn.allow_keys({"engage", "note"});
             std::vector<int> eng;
             for (const auto& g : rn.at("engage").items()) {
@@ -835,7 +837,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
             std::string all;
             for (const auto& n : c.ratio_names) all += (all.empty() ? "" : ", ") + n;
             if (ratio_override) throw InputError(file, 0, 0, "--ratio", "unknown ratio '" + sel + "'; defined: " + all);
-            gbn.at("ratio").fail("unknown ratio '" + sel + "'; defined: " + all);
+            gbn.at("ratio").fail("unknown ratio '" + excerpt(sel) + "'; defined: " + all);
         }
         m.gearbox.engaged = it->second;
         c.ratio = sel;
@@ -876,7 +878,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
         load_vehicle(*v, c);
         for (size_t i = 0; i < c.vehicle->gears.size(); ++i)
             if (std::find(c.ratio_names.begin(), c.ratio_names.end(), c.vehicle->gears[i]) == c.ratio_names.end())
-                v->at("gears").items()[i].fail("'" + c.vehicle->gears[i] + "' is not one of gearbox.ratios");
+                v->at("gears").items()[i].fail("'" + excerpt(c.vehicle->gears[i]) + "' is not one of gearbox.ratios");
     }
 
     // Errors found once the model is assembled point at the item they come from.

@@ -166,6 +166,43 @@ bool is_printable_utf8(std::string_view s) {
     return true;
 }
 
+namespace {
+// The code point of the valid UTF-8 sequence of n bytes at i.
+char32_t code_point(std::string_view s, std::size_t i, std::size_t n) {
+    const auto b = [&](std::size_t k) { return static_cast<char32_t>(static_cast<unsigned char>(s[i + k])); };
+    if (n == 1) return b(0);
+    char32_t c = b(0) & (n == 2 ? 0x1F : n == 3 ? 0x0F : 0x07);
+    for (std::size_t k = 1; k < n; ++k) c = (c << 6) | (b(k) & 0x3F);
+    return c;
+}
+
+// Characters that print as nothing or as a blank: they would make two names look alike.
+bool invisible(char32_t c) {
+    return c == 0x00A0 || c == 0x00AD || c == 0x034F || c == 0x061C || c == 0x180E || (c >= 0x2000 && c <= 0x200F) ||
+           (c >= 0x2028 && c <= 0x202F) || (c >= 0x205F && c <= 0x206F) || c == 0x3000 || (c >= 0xFE00 && c <= 0xFE0F) ||
+           c == 0xFEFF || (c >= 0xE0000 && c <= 0xE007F);
+}
+}  // namespace
+
+std::string name_problem(std::string_view s, std::size_t max_bytes) {
+    if (s.empty()) return "a name cannot be empty";
+    if (!is_printable_utf8(s)) return "a name must be printable UTF-8 text without control characters or line breaks";
+    for (std::size_t i = 0; i < s.size();) {
+        const std::size_t n = utf8_length(s, i);
+        if (invisible(code_point(s, i, n)))
+            return fmt::format("a name cannot contain the invisible character U+{:04X} (a no-break or other Unicode space, "
+                               "a zero-width or direction mark)", static_cast<unsigned>(code_point(s, i, n)));
+        i += n;
+    }
+    if (s.front() == ' ' || s.back() == ' ' || s.front() == '\t' || s.back() == '\t')
+        return "a name cannot begin or end with a blank";
+    if (s.find_first_of(",\"") != std::string_view::npos) return "a name cannot contain ',' or '\"' (names become CSV column names)";
+    if (s.find('/') != std::string_view::npos || s == "." || s == "..")
+        return "a name cannot contain '/' or be '.' or '..' (names become parts of file names)";
+    if (s.size() > max_bytes) return "a name is at most " + std::to_string(max_bytes) + " bytes long";
+    return {};
+}
+
 std::string separator_hint(const std::string& line) {
     // Called once a line is known to be wrong (one header cell, a cell count that differs):
     // a semicolon there is a separator (with decimal commas in the cells, as Excel writes it

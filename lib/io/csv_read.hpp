@@ -41,6 +41,13 @@ std::string excerpt(std::string_view s, std::size_t max = kExcerptChars);
 // Valid UTF-8 (no overlong forms, no surrogates) without control characters (C0, DEL, C1).
 bool is_printable_utf8(std::string_view s);
 
+// Why `s` cannot name a component (empty when it can): printable UTF-8 without invisible
+// characters (no-break and other Unicode spaces, zero-width and direction marks, variation
+// selectors, byte-order mark), no blank at either end, no ',' or '"' (names become CSV
+// column names), no '/' and not "." or ".." (a ratio's name becomes part of a file name),
+// at most max_bytes. Two names that look alike are then the same bytes.
+std::string name_problem(std::string_view s, std::size_t max_bytes);
+
 // A hint when a CSV line is separated by semicolons or tabs instead of commas ("" otherwise).
 std::string separator_hint(const std::string& line);
 

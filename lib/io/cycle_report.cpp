@@ -34,7 +34,7 @@ cycle::Powertrain load_powertrain(const Case& c, const std::optional<std::string
 void CycleStudyOptions::validate() const {
     const auto temperature = [](const char* key, double T) {
         if (!(T >= solver::kMinAmbient_K && T <= solver::kMaxAmbient_K))
-            throw InputError("", 0, 0, key, fmt::format("{:.1f} degC is outside the stated range -100..300 degC", T - 273.15));
+            throw InputError("", 0, 0, key, fmt::format("{:.4g} degC is outside the stated range -100..300 degC", T - 273.15));
     };
     temperature("--start-temp", start_temperature);
     temperature("--ambient", ambient);
@@ -123,7 +123,9 @@ std::string totals_text(const cycle::Powertrain& pt, const cycle::CycleTotals& t
     if (pt.torque_converter) s += fmt::format(", converter {:.1f} kJ", t.E_tc / 1e3);
     s += fmt::format("; mean gearbox efficiency {:.2f} %", 100 * t.mean_efficiency());
     if (t.has_fuel)
-        s += fmt::format("; fuel {:.3f} L ({:.2f} L/100 km)", litres(pt, t.fuel), litres(pt, t.fuel) / (t.distance / 1e5));
+        s += t.distance > 0
+                 ? fmt::format("; fuel {:.3f} L ({:.2f} L/100 km)", litres(pt, t.fuel), litres(pt, t.fuel) / (t.distance / 1e5))
+                 : fmt::format("; fuel {:.3f} L (no distance driven)", litres(pt, t.fuel));
     return s + "\n";
 }
 

@@ -1,5 +1,7 @@
 #include "io/output_paths.hpp"
 
+#include "io/csv_read.hpp"
+
 #include <cctype>
 #include <cerrno>
 #include <climits>
@@ -172,6 +174,22 @@ void require_distinct_outputs(const std::vector<std::pair<std::string, std::stri
                                      "; give two different files");
         }
         ids.push_back(std::move(id));
+    }
+}
+
+void require_outputs_not_inputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                                const std::vector<std::pair<std::string, std::string>>& inputs) {
+    for (const auto& [in_option, in_path] : inputs) {
+        struct stat in {};
+        if (in_path.empty() || in_path == "-" || ::stat(in_path.c_str(), &in) != 0 || !S_ISREG(in.st_mode)) continue;
+        for (const auto& [option, path] : outputs) {
+            if (path.empty() || path == "-") continue;
+            struct stat out {};
+            if (::stat(path.c_str(), &out) != 0 || out.st_dev != in.st_dev || out.st_ino != in.st_ino) continue;
+            throw InputError("", 0, 0, option,
+                             option + " '" + excerpt(path, 200) + "' is the input " + in_option + " '" + excerpt(in_path, 200) +
+                                 "'; write the output to another file");
+        }
     }
 }
 

@@ -46,6 +46,12 @@ void remove_stale_temporaries(const std::string& dir, const std::string& name);
 // options. A character device (terminal, /dev/null) may take several outputs.
 void require_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs);
 
+// An output that is one of the command's input files (same file after links) throws
+// InputError (exit 2) naming both: `map case.yaml -o case.yaml` must not replace the case.
+// Pairs are (option, path); empty paths and inputs that do not exist are skipped.
+void require_outputs_not_inputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                                const std::vector<std::pair<std::string, std::string>>& inputs);
+
 // The process umask, read without changing it.
 mode_t current_umask();
 

@@ -259,12 +259,12 @@ std::string mesh_profile_csv(const Case& c, const std::string& mesh_name, double
         names += (names.empty() ? "" : ", ") + m.gearbox.meshes[i].name;
         if (m.gearbox.meshes[i].name == mesh_name) k = static_cast<int>(i);
     }
-    if (k < 0) throw InputError("", 0, 0, "--mesh", "unknown mesh '" + mesh_name + "'; meshes: " + names);
+    if (k < 0) throw InputError("", 0, 0, "--mesh", "unknown mesh '" + excerpt(mesh_name) + "'; meshes: " + names);
     const solver::PointState p = solver::prepare_point(m, omega_in, torque_in);
     const auto& ms = p.meshes[static_cast<size_t>(k)];
     const auto& md = m.layout.meshes[static_cast<size_t>(k)];
     if (ms.F_bn <= 0.0 || ms.omega_rel == 0.0)
-        throw InputError("", 0, 0, "--mesh", "mesh '" + mesh_name + "' carries no load or does not turn at this point");
+        throw InputError("", 0, 0, "--mesh", "mesh '" + excerpt(mesh_name) + "' carries no load or does not turn at this point");
     const auto prof = mesh::ehl_path(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime, ms.sigma,
                                      oil_temperature, m.oil, m.oil.traction, positions);
     std::string s =

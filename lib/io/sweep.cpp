@@ -92,7 +92,7 @@ std::vector<SweepAxis> read_sweep(const YamlNode& root) {
             std::string key;
             long index = 0;
             if (!locate(root.raw(), path, parent, key, index))
-                p.fail("'" + path + "' names no value of this case (use keys separated by '.', list items by name)");
+                p.fail("'" + excerpt(path) + "' names no value of this case (use keys separated by '.', list items by name)");
         }
         a.label = a.paths.front();
         for (const auto& v : item.at("values").items()) {

@@ -362,13 +362,7 @@ std::string YamlNode::as_string() const {
 
 std::string YamlNode::as_name() const {
     const std::string s = as_string();
-    if (s.empty()) fail("a name cannot be empty");
-    if (!is_printable_utf8(s))
-        fail("'" + excerpt(s) + "': a name must be printable UTF-8 text without control characters or line breaks");
-    if (s.find_first_of(",\"") != std::string::npos)
-        fail("'" + excerpt(s) + "': a name cannot contain ',' or '\"' (names become CSV column names)");
-    if (s.size() > kMaxNameBytes)
-        fail("'" + excerpt(s) + "': a name is at most " + std::to_string(kMaxNameBytes) + " bytes long");
+    if (const std::string why = name_problem(s, kMaxNameBytes); !why.empty()) fail("'" + excerpt(s) + "': " + why);
     return s;
 }
 

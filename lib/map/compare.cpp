@@ -12,7 +12,19 @@ namespace {
 std::string num(double v) { return io::csv_number(v); }
 }  // namespace
 
-std::string compare_header(const std::string& a, const std::string& b) {
+std::string compare_header(const std::string& name_a, const std::string& name_b) {
+    // Oil names are titles (commas and quotes allowed): made safe as parts of column names,
+    // and told apart when the two oils carry the same name.
+    auto column_safe = [](std::string s) {
+        for (char& c : s)
+            if (c == ',' || c == '"') c = '_';
+        return s;
+    };
+    std::string a = column_safe(name_a), b = column_safe(name_b);
+    if (a == b) {
+        a += "_A";
+        b += "_B";
+    }
     return fmt::format(
         "speed_in_rpm,torque_in_Nm,P_total_{0}_W,P_total_{1}_W,dP_loss_W,oil_temp_{0}_C,oil_temp_{1}_C,dT_oil_K,"
         "efficiency_{0},efficiency_{1},d_efficiency,status_{0},status_{1}\n",

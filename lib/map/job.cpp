@@ -1,6 +1,10 @@
 #include "map/job.hpp"
 
 #include <algorithm>
+#include <string_view>
+#include <cctype>
+#include <cstdlib>
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
@@ -128,6 +132,34 @@ JobOutput run_job(const MapJob& job, const MapOptions& opt, const std::optional<
     return res;
 }
 
+namespace {
+// Every row of a shard has the header's number of cells, and no cell is a value that is not
+// finite ("nan", "inf", "1e999"): an edited or damaged shard is not merged into a map.
+void check_shard_rows(const std::string& file, const std::string& header, const std::string& body) {
+    const size_t cells = static_cast<size_t>(std::count(header.begin(), header.end(), ',')) + 1;
+    int line = 3;
+    for (size_t a = 0; a < body.size(); ++line) {
+        const size_t e = body.find('\n', a);
+        const std::string_view row(body.data() + a, e - a);
+        size_t n = 0;
+        for (size_t c0 = 0;; ++n) {
+            const size_t c1 = std::min(row.find(',', c0), row.size());
+            std::string cell(row.substr(c0, c1 - c0));
+            char* end = nullptr;
+            const double v = cell.empty() ? 0.0 : std::strtod(cell.c_str(), &end);
+            if (!cell.empty() && end && *end == '\0' && !std::isfinite(v))
+                throw InputError(file, line, static_cast<int>(n + 1), "",
+                                 "'" + io::excerpt(cell) + "' is not a finite number (an edited or damaged shard)");
+            if (c1 == row.size()) break;
+            c0 = c1 + 1;
+        }
+        if (n + 1 != cells)
+            throw InputError(file, line, 0, "", fmt::format("{} cells, the header has {}", n + 1, cells));
+        a = e + 1;
+    }
+}
+}  // namespace
+
 std::string merge_shards(const std::vector<std::string>& files) {
     struct Part {
         int index = 0, count = 0;
@@ -162,6 +194,7 @@ std::string merge_shards(const std::vector<std::string>& files) {
         if (rows != p.end - p.begin || (!p.body.empty() && p.body.back() != '\n'))
             throw InputError(file, 0, 0, "", fmt::format("has {} rows, the shard line promises {} (incomplete run?)", rows,
                                                          p.end - p.begin));
+        check_shard_rows(file, p.header, p.body);
         parts.push_back(std::move(p));
     }
     if (parts.empty()) throw InputError("", 0, 0, "merge", "no shard files given");

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <set>
+#include <string_view>
 #include <filesystem>
 #include <optional>
 #include <cmath>
@@ -152,6 +154,16 @@ std::string csv_header(const solver::Model& m, bool detail) {
         for (const auto& b : gb.bearings) h += fmt::format(",P_bearing_{}_W", b.name);
         for (const auto& s : gb.seals) h += fmt::format(",P_seal_{}_W", s.name);
         for (const auto& c : gb.clutches) h += fmt::format(",P_clutch_{}_W", c.pack.name);
+        // A name can make a column of another (mesh "min": lambda_min): every column once.
+        std::set<std::string_view> seen;
+        for (size_t a = 0; a <= h.size();) {
+            const size_t e = std::min(h.find(',', a), h.size());
+            if (!seen.insert(std::string_view(h).substr(a, e - a)).second)
+                throw InputError("", 0, 0, "--detail",
+                                 fmt::format("column '{}' would appear twice: rename the component it comes from",
+                                             h.substr(a, e - a)));
+            a = e + 1;
+        }
     }
     return h + "\n";
 }

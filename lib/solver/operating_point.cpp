@@ -69,7 +69,7 @@ std::string point_fault(const Model& m, const PointState& p) {
 
 std::string degC(double T) {
     char buf[48];
-    std::snprintf(buf, sizeof buf, "%.1f degC", T - 273.15);
+    std::snprintf(buf, sizeof buf, std::abs(T - 273.15) < 1e6 ? "%.1f degC" : "%.4g degC", T - 273.15);
     return buf;
 }
 }  // namespace

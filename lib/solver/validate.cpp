@@ -14,9 +14,14 @@ constexpr double kDeg = 180.0 / std::numbers::pi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 bool finite(double v) { return std::isfinite(v); }
-std::string degC(double T_K) { return fmt::format("{:.1f} degC", T_K - 273.15); }
 // A value as written in a message (not-a-number and infinities spelt out).
 std::string show(double v) { return finite(v) ? fmt::format("{:g}", v) : std::isnan(v) ? "not a number" : v > 0 ? "+infinity" : "-infinity"; }
+// At most a dozen characters for any value (a typo of 1e300 degC is not spelt out in full).
+std::string degC(double T_K) {
+    const double c = T_K - 273.15;
+    if (!finite(c)) return show(c) + " degC";
+    return std::abs(c) < 1e6 ? fmt::format("{:.1f} degC", c) : fmt::format("{:.4g} degC", c);
+}
 
 // Collects issues of one section/item.
 struct Collector {
@@ -56,6 +61,18 @@ void validate_oil(const lubricant::Oil& oil, std::vector<Issue>& out) {
         const auto& w = std::get<lubricant::WaltherLaw>(oil.viscosity);
         c.is_finite("viscosity", w.A, "ASTM D341 constant A");
         c.positive("viscosity", w.B, "ASTM D341 constant B");
+        // Constants that are finite but describe no oil (nu(40 degC) of 10^300 mm^2/s, or a
+        // slope that makes nu(T) rise): the datasheet range of a lubricant, checked at 40 and 100 degC.
+        if (finite(w.A) && finite(w.B) && w.B > 0)
+            for (double T_C : {40.0, 100.0}) {
+                const double nu = w.nu_mm2s(T_C + 273.15), dln = w.dlnnu_dT(T_C + 273.15);
+                if (!(nu >= 0.5 && nu <= 1e7 && finite(dln) && dln < 0)) {
+                    c.add("viscosity", fmt::format("the ASTM D341 constants give nu({:g} degC) = {} mm^2/s (d ln nu/dT = {}): "
+                                                   "not an oil (0.5..1e7 mm^2/s, falling with temperature)",
+                                                   T_C, show(nu), show(dln)));
+                    break;
+                }
+            }
     }
     c.range("density", oil.rho15, 300.0, 2500.0, "density at 15 degC [kg/m^3]");
     c.range("thermal_expansion", oil.expansion, 0.0, 5e-3, "thermal expansion coefficient [1/K]");
@@ -166,9 +183,9 @@ void validate_gearbox(const Model& m, std::vector<Issue>& out) {
         if (g.carrier >= 0 && !index_ok(g.carrier, gb.shafts)) c.structural("carrier", "not one of the shafts");
         if (g.planets < 1 || g.planets > 12) c.structural("planets", fmt::format("number of planets {} outside 1..12", g.planets));
         if (s.z < 5 || s.z > 100000) c.add("teeth", fmt::format("number of teeth {} outside 5..100000", s.z));
-        c.range("module", s.mn, 0.0, 1.0, "module [m]", true);
+        c.range("module", s.mn, 1e-5, 1.0, "module [m]");  // 0.01 mm .. 1 m
         c.range("profile_shift", s.x, -1.5, 2.5, "profile shift coefficient", true, true);
-        c.range("face_width", s.b, 0.0, 10.0, "face width [m]", true);
+        c.range("face_width", s.b, 1e-5, 10.0, "face width [m]");
         c.range("pressure_angle", s.alpha_n * kDeg, 10.0, 35.0, "pressure angle [deg]", true, true);
         c.range("helix_angle", s.beta * kDeg, 0.0, 45.0, "helix angle [deg]", false, true);
         c.range("addendum_coefficient", s.ha_star, 0.0, 5.0, "addendum coefficient", true);
@@ -195,8 +212,8 @@ void validate_gearbox(const Model& m, std::vector<Issue>& out) {
         Collector c{out, "bearings", b.name};
         if (!index_ok(b.shaft, gb.shafts)) c.structural("shaft", "not one of the shafts");
         if (b.under_gear >= 0 && !index_ok(b.under_gear, gb.gears)) c.structural("under_gear", "not one of the gears");
-        c.range("d", s.d, 0.0, 1e5, "bore d [mm]", true);
-        c.range("D", s.D, 0.0, 1e5, "outer diameter D [mm]", true);
+        c.range("d", s.d, 0.5, 1e5, "bore d [mm]");  // the smallest catalogue bearings: 0.6 mm
+        c.range("D", s.D, 1.0, 1e5, "outer diameter D [mm]");
         if (finite(s.d) && finite(s.D) && !(s.D > s.d)) c.add("D", fmt::format("outer diameter {:g} mm must exceed the bore {:g} mm", s.D, s.d));
         c.range("B", s.B, 0.0, 1e5, "width B [mm]", true);
         c.non_negative("C0", s.C0, "static load rating C0 [N]");
@@ -332,14 +349,15 @@ std::optional<std::string> oil_temperature_fault(const lubricant::Oil& oil, doub
 std::optional<std::string> speed_fault(double w) {
     if (!finite(w)) return "input speed is " + show(w);
     if (!(std::abs(w) * kRpm <= kMaxSpeed_rpm))
-        return fmt::format("input speed {:g} rpm beyond the stated range |n| <= {:g} rpm", w * kRpm, kMaxSpeed_rpm);
+        return fmt::format("input speed {:.4g} rpm beyond the stated range |n| <= {:g} rpm", finite(w * kRpm) ? w * kRpm : w,
+                           kMaxSpeed_rpm) + (finite(w * kRpm) ? "" : " (in rad/s)");
     return std::nullopt;
 }
 
 std::optional<std::string> torque_fault(double T) {
     if (!finite(T)) return "input torque is " + show(T);
     if (!(std::abs(T) <= kMaxTorque_Nm))
-        return fmt::format("input torque {:g} N m beyond the stated range |T| <= {:g} N m", T, kMaxTorque_Nm);
+        return fmt::format("input torque {:.4g} N m beyond the stated range |T| <= {:g} N m", T, kMaxTorque_Nm);
     return std::nullopt;
 }
 

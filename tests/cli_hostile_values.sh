@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# End-to-end regression cases of an independent hostile-input review (issue 13): values that
+# are finite but absurd, names that look alike, outputs onto inputs, damaged shards. Each
+# ends with the stated exit code, a located message without raw control bytes or hundreds of
+# digits, and no "nan"/"inf" anywhere in the output.
+# Usage: cli_hostile_values.sh GEARLOSS_BINARY SOURCE_DIR
+# Every file is made inside the private mktemp -d directory (cli_common.sh).
+set -u
+source "$(dirname "$0")/cli_common.sh" "$@"
+cp -r "$src/configs/oils" "$tmp/oils"
+cp "$src/configs/spur-seed000.yaml" "$tmp/spur.yaml"
+cp "$src/configs/automatic-6speed.yaml" "$tmp/auto.yaml"
+spur=$tmp/spur.yaml
+T="timeout -k 5 60"
+
+# no_nonfinite FILE...: no nan/inf printed as a number in the files (a bad cell quoted in a
+# message, 'nan', and a value spelt out as "+infinity" are words, not numbers).
+no_nonfinite() { ! cat "$@" | sed "s/'[^']*'//g" | grep -qiwE -- '[-+]?(nan|inf)'; }
+
+# expect NAME CODE PATTERN COMMAND...: exit CODE, PATTERN (grep -E) in stderr, a short message
+# without an ESC byte, and no nan/inf in stdout or stderr.
+expect() {
+    local name=$1 code=$2 pattern=$3
+    shift 3
+    $T "$@" > "$tmp/out" 2> "$tmp/err"
+    local rc=$?
+    check "$name: exit $code (got $rc)" test $rc -eq "$code"
+    [ -n "$pattern" ] && check "$name: message /$pattern/" grep -qE -- "$pattern" "$tmp/err"
+    check "$name: message under 800 bytes" test "$(wc -c < "$tmp/err")" -lt 800
+    check "$name: no ESC byte in the message" test "$(tr -dc '\033' < "$tmp/err" | wc -c)" -eq 0
+    check "$name: no nan/inf in the output" no_nonfinite "$tmp/out" "$tmp/err"
+}
+
+# 1. A cycle sampled every 100 s (the integrator's first trial step was 100 s: its stages left
+#    the oil's validity and a root finder threw, exit 4); a cycle that never moves (inf L/100 km).
+printf 'time_s,speed_kmh\n0,50\n100,50\n' > "$tmp/steady50.csv"
+expect "cycle at constant 50 km/h sampled every 100 s" 0 "" \
+    "$bin" cycle "$tmp/auto.yaml" --cycle "$tmp/steady50.csv" --start-temp -10degC
+printf 'time_s,speed_kmh\n0,0\n1,0\n' > "$tmp/standstill.csv"
+expect "cycle standing still" 0 "" "$bin" cycle "$tmp/auto.yaml" --cycle "$tmp/standstill.csv" --start-temp -10degC
+check "cycle standing still: says no distance" grep -q "no distance driven" "$tmp/out"
+expect "cycle --start-temp 1e308degC" 2 "--start-temp: .*outside the stated range" \
+    "$bin" cycle "$tmp/auto.yaml" --cycle nedc --start-temp 1e308degC
+check "cycle --start-temp 1e308degC: no 300-digit number" test "$(grep -cE '[0-9]{40}' "$tmp/err")" -eq 0
+
+# 2. Values that describe no oil, gear or bearing.
+sed 's/astm_d341: {A: 9.0658, B: 3.4730}/astm_d341: {A: 1e308, B: 2.7865}/' "$tmp/oils/MINR.yaml" > "$tmp/oils/absurd.yaml"
+expect "oil with ASTM D341 A = 1e308" 2 "absurd.yaml:[0-9]+:[0-9]+: oil.viscosity: .*not an oil" \
+    "$bin" check "$spur" --oil "$tmp/oils/absurd.yaml"
+sed 's/face_width: 20 mm/face_width: 1e-300 m/g' "$spur" > "$tmp/thin.yaml"
+expect "face width 1e-300 m" 2 "thin.yaml:[0-9]+:[0-9]+: gears\[0\].face_width: " "$bin" check "$tmp/thin.yaml"
+sed 's/d: 40 mm, D: 90 mm/d: 1e-300 mm, D: 1e-299 mm/' "$spur" > "$tmp/tiny.yaml"
+expect "bearing bore 1e-300 mm" 2 "tiny.yaml:[0-9]+:[0-9]+: bearings\[0\].d: " "$bin" check "$tmp/tiny.yaml"
+expect "point --speed '1e308 rad/s'" 2 "--speed: .*beyond the stated range" \
+    "$bin" point "$spur" --speed '1e308 rad/s' --torque 250Nm
+
+# 3. Recordings with a loss of 1e155 W (a residual statistic overflowed: exit 4).
+"$bin" synth "$spur" -o "$tmp/rec.csv" 2> /dev/null
+awk -F, 'NR == 3 { $3 = "1e155" } { print }' OFS=, "$tmp/rec.csv" > "$tmp/rec-big.csv"
+expect "diagnose with a loss of 1e155 W" 2 "rec-big.csv:3:3: P_loss_W: .*beyond the stated range" \
+    "$bin" diagnose "$spur" "$tmp/rec-big.csv"
+
+# 4. Names: references echoed short and without control bytes; names that look alike; a ratio
+#    name that would leave the output directory; a name that makes a column twice.
+esc=$(printf 'in\033[31mRED-%0200d' 0)
+sed "s/shaft: input,  position: -60 mm/shaft: \"$(printf 'in\\e[31mRED')-$(printf '%0200d' 0)\",  position: -60 mm/" "$spur" > "$tmp/escname.yaml"
+expect "unknown shaft with ESC and 200 digits" 2 "escname.yaml:[0-9]+:[0-9]+: bearings\[0\].shaft: unknown shaft" \
+    "$bin" check "$tmp/escname.yaml"
+sed 's/name: in_b,/name: "in_a\xe2\x80\x8b",/' "$spur" > "$tmp/zwsp.yaml"
+expect "a name with a zero-width space" 2 "zwsp.yaml:[0-9]+:[0-9]+: bearings\[1\].name: .*U\+200B" "$bin" check "$tmp/zwsp.yaml"
+sed 's/name: in_b,/name: "in_b ",/' "$spur" > "$tmp/blank.yaml"
+expect "a name ending in a blank" 2 "blank.yaml:[0-9]+:[0-9]+: bearings\[1\].name: .*blank" "$bin" check "$tmp/blank.yaml"
+sed 's/^    g1: {engage/    "\/..\/..\/pwned": {engage/; s/gears: \[g1,/gears: ["\/..\/..\/pwned",/' "$src/configs/manual-6speed.yaml" > "$tmp/pwn.yaml"
+mkdir -p "$tmp/sub"
+expect "a ratio named /../../pwned" 2 "pwn.yaml:[0-9]+:[0-9]+: .*cannot contain '/'" \
+    "$bin" map "$tmp/pwn.yaml" --format vecto --oil-temp 70degC -o "$tmp/sub/man.vtlm"
+check "a ratio named /../../pwned: nothing written" test -z "$(find "$tmp" -name 'pwned*')"
+sed 's/name: m, gears/name: min, gears/' "$spur" > "$tmp/min.yaml"
+expect "a mesh named min with --detail" 2 "--detail: column 'lambda_min' would appear twice" \
+    "$bin" map "$tmp/min.yaml" --speed 800rpm --torque 100Nm --oil-temp 70degC --detail -o "$tmp/min.csv"
+sed 's/^name: .*/name: "oil,b"/' "$tmp/oils/75W90-syn-A.yaml" > "$tmp/oils/comma.yaml"
+expect "compare of two oils of one name with a comma" 0 "" "$bin" compare "$spur" --oil "$tmp/oils/comma.yaml" \
+    --oil "$tmp/oils/comma.yaml" --speed 800rpm --torque 100Nm --oil-temp 70degC -o "$tmp/cmp.csv"
+check "compare: header and rows have 13 cells" test "$(awk -F, '{ print NF }' "$tmp/cmp.csv" | sort -u)" = 13
+
+# 5. An output onto an input: the input stays.
+cp "$spur" "$tmp/keep.yaml"
+expect "map -o onto its own case" 2 "--output .* is the input config" \
+    "$bin" map "$tmp/keep.yaml" --speed 800rpm --torque 100Nm -o "$tmp/keep.yaml"
+check "map -o onto its own case: case unchanged" cmp -s "$spur" "$tmp/keep.yaml"
+cp "$tmp/rec.csv" "$tmp/rec-keep.csv"
+expect "diagnose --residuals onto the recordings" 2 "--residuals .* is the input recordings" \
+    "$bin" diagnose "$spur" "$tmp/rec-keep.csv" --residuals "$tmp/rec-keep.csv"
+check "diagnose --residuals onto the recordings: recordings unchanged" cmp -s "$tmp/rec.csv" "$tmp/rec-keep.csv"
+
+# 6. A damaged shard: a cell edited to nan, a row with an extra cell.
+for k in 1 2; do "$bin" map "$spur" --speed 600,800rpm --torque 100,200Nm --oil-temp 70degC --shard $k/2 -o "$tmp/s$k.csv"; done
+awk -F, 'NR == 3 { $6 = "nan" } { print }' OFS=, "$tmp/s1.csv" > "$tmp/s1-edited.csv"
+expect "merge of a shard with a nan cell" 2 "s1-edited.csv:3:6: .*not a finite number" \
+    "$bin" merge "$tmp/s1-edited.csv" "$tmp/s2.csv" -o "$tmp/merged.csv"
+awk 'NR == 3 { $0 = $0 ",extra" } { print }' "$tmp/s1.csv" > "$tmp/s1-extra.csv"
+expect "merge of a shard with an extra cell" 2 "s1-extra.csv:3: .*cells, the header has" \
+    "$bin" merge "$tmp/s1-extra.csv" "$tmp/s2.csv" -o "$tmp/merged.csv"
+check "merge: nothing written" test ! -e "$tmp/merged.csv"
+
+echo "$pass passed, $fail failed"
+test $fail -eq 0
