@@ -83,6 +83,16 @@ expect "compare of two oils of one name with a comma" 0 "" "$bin" compare "$spur
     --oil "$tmp/oils/comma.yaml" --speed 800rpm --torque 100Nm --oil-temp 70degC -o "$tmp/cmp.csv"
 check "compare: header and rows have 13 cells" test "$(awk -F, '{ print NF }' "$tmp/cmp.csv" | sort -u)" = 13
 
+# 4b. Effects: a count that does not fit an int (a float-to-int overflow before), one effect twice;
+#     a prescribed gear the vehicle does not have (it was clamped silently).
+expect "synth --effect unstabilised_test=1e308" 2 "--effect: unstabilised_test: give a whole number" \
+    "$bin" synth "$spur" --effect unstabilised_test=1e308 -o "$tmp/syn.csv"
+expect "synth --effect windage twice" 2 "--effect: 'windage' given twice" \
+    "$bin" synth "$spur" --effect windage=10W --effect windage=20W -o "$tmp/syn.csv"
+printf 'time_s,speed_kmh,gear\n0,0,0\n1,10,1\n2,20,7\n' > "$tmp/gear7.csv"
+expect "cycle with gear 7 on a six-speed" 2 "cycle: sample 3: gear 7 but the vehicle has gears 1..6" \
+    "$bin" cycle "$src/configs/manual-6speed.yaml" --cycle "$tmp/gear7.csv" --start-temp 20degC
+
 # 5. An output onto an input: the input stays.
 cp "$spur" "$tmp/keep.yaml"
 expect "map -o onto its own case" 2 "--output .* is the input config" \

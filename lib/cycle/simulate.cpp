@@ -147,8 +147,11 @@ void check_run(const Powertrain& pt, const DriveCycle& cycle, const thermal::Nod
         if (!std::isfinite(t[i])) fail("cycle", fmt::format("sample {}: time is not a finite number", i + 1));
         if (i > 0 && !(t[i] > t[i - 1])) fail("cycle", fmt::format("sample {}: time does not increase", i + 1));
         if (!(cycle.speed[i] >= 0 && cycle.speed[i] <= kMaxVehicleSpeed))
-            fail("cycle", fmt::format("sample {}: vehicle speed {:g} km/h outside 0..{:g} km/h", i + 1,
+            fail("cycle", fmt::format("sample {}: vehicle speed {:.4g} km/h outside 0..{:g} km/h", i + 1,
                                       cycle.speed[i] * 3.6, kMaxVehicleSpeed * 3.6));
+        if (!cycle.gear.empty() && (cycle.gear[i] < 0 || cycle.gear[i] > static_cast<int>(pt.gears.size())))
+            fail("cycle", fmt::format("sample {}: gear {} but the vehicle has gears 1..{} (0 = neutral)", i + 1,
+                                      cycle.gear[i], pt.gears.size()));
     }
     if (!t.empty() && !(t.back() - t.front() <= kMaxDuration))
         fail("cycle", fmt::format("the cycle lasts {:g} s; at most {:g} s (11.6 days) are simulated",

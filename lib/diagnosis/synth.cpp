@@ -57,8 +57,14 @@ void SynthOptions::validate() const {
     if (!(test_minutes > 0 && test_minutes <= 1e4)) bad("test_minutes", "a test lasts more than 0 and at most 10^4 min");
     if (!(short_test_minutes > 0 && short_test_minutes <= 1e4))
         bad("short_test_minutes", "a test lasts more than 0 and at most 10^4 min");
-    for (const auto& [id, v] : effects)
-        if (!std::isfinite(v)) bad("--effect", "'" + id + "': the value is not a finite number");
+    for (size_t i = 0; i < effects.size(); ++i) {
+        const auto& [id, v] = effects[i];
+        if (!std::isfinite(v)) bad("--effect", "'" + io::excerpt(id) + "': the value is not a finite number");
+        if (id == "unstabilised_test" && !(v >= 0 && v <= 1e6 && v == std::floor(v)))
+            bad("--effect", "unstabilised_test: give a whole number of tests (0 to the number of points)");
+        for (size_t k = 0; k < i; ++k)
+            if (effects[k].first == id) bad("--effect", "'" + io::excerpt(id) + "' given twice");
+    }
 }
 
 std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& grid, const SynthOptions& opt) {

@@ -34,6 +34,12 @@ std::string point_report(const Case& c, const solver::PointResult& r) {
     const auto& L = m.layout;
     std::string s;
     s += fmt::format("{} — oil {}{}\n", m.name, m.oil.name, c.ratio.empty() ? "" : ", ratio " + c.ratio);
+    if (r.status == solver::PointStatus::out_of_range) {
+        // The inputs as given, however large (or not finite): short, never "inf" or 300 digits.
+        const auto value = [](double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : std::string("(not finite)"); };
+        s += fmt::format("input  {} rpm  {} N*m  {} W\n", value(r.speed_in * rpm), value(r.torque_in), value(r.power_in));
+        return s + status_line(m, r);
+    }
     s += fmt::format("input  {:10.2f} rpm  {:10.2f} N*m  {:10.1f} W\n", r.speed_in * rpm, r.torque_in, r.power_in);
     s += status_line(m, r);
     if (!solver::has_values(r.status)) return s;
