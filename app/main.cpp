@@ -97,8 +97,13 @@ double single_value(const std::string& text, const gearloss::units::Dimension& d
 // "0.4K", "0.4 degC": a temperature difference (the unit's offset removed).
 double temperature_difference(const std::string& text, const char* what) {
     size_t u = 0;
+    // The number ends where the unit starts ("1e2K": the exponent belongs to the number).
+    const auto exponent = [&](size_t i) {
+        return (text[i] == 'e' || text[i] == 'E') && i > 0 && i + 1 < text.size() &&
+               (std::isdigit(static_cast<unsigned char>(text[i + 1])) || text[i + 1] == '+' || text[i + 1] == '-');
+    };
     while (u < text.size() && (std::isdigit(static_cast<unsigned char>(text[u])) || text[u] == '.' || text[u] == ' ' ||
-                               text[u] == '+' || text[u] == '-'))
+                               text[u] == '+' || text[u] == '-' || exponent(u)))
         ++u;
     try {
         const auto f = gearloss::units::parse_unit(text.substr(u));

@@ -93,6 +93,12 @@ printf 'time_s,speed_kmh,gear\n0,0,0\n1,10,1\n2,20,7\n' > "$tmp/gear7.csv"
 expect "cycle with gear 7 on a six-speed" 2 "cycle: sample 3: gear 7 but the vehicle has gears 1..6" \
     "$bin" cycle "$src/configs/manual-6speed.yaml" --cycle "$tmp/gear7.csv" --start-temp 20degC
 
+printf 'time_s,speed_kmh,speed_kmh\n0,0,0\n1,10,10\n' > "$tmp/twocols.csv"
+expect "cycle file naming speed_kmh twice" 2 "twocols.csv:1:3: speed_kmh: column 'speed_kmh' given twice" \
+    "$bin" cycle "$src/configs/manual-6speed.yaml" --cycle "$tmp/twocols.csv" --start-temp 20degC
+expect "synth --noise-temp 1e-1K (an exponent, not a unit 'e')" 0 "" \
+    "$bin" synth "$spur" --noise-temp 1e-1K -o "$tmp/syn.csv"
+
 # 5. An output onto an input: the input stays.
 cp "$spur" "$tmp/keep.yaml"
 expect "map -o onto its own case" 2 "--output .* is the input config" \

@@ -35,9 +35,11 @@ DriveCycle load_cycle_csv(const std::string& file) {
         const auto cells = io::split_csv_line(line);
         if (it < 0) {
             for (size_t k = 0; k < cells.size(); ++k) {
-                if (cells[k] == "time_s") it = static_cast<int>(k);
-                else if (cells[k] == "speed_kmh") iv = static_cast<int>(k);
-                else if (cells[k] == "gear") ig = static_cast<int>(k);
+                int* slot = cells[k] == "time_s" ? &it : cells[k] == "speed_kmh" ? &iv : cells[k] == "gear" ? &ig : nullptr;
+                if (!slot) continue;
+                if (*slot >= 0)
+                    throw InputError(file, ln, static_cast<int>(k + 1), cells[k], "column '" + cells[k] + "' given twice");
+                *slot = static_cast<int>(k);
             }
             if (it < 0 || iv < 0) {
                 const std::string hint = cells.size() == 1 ? io::separator_hint(line) : std::string();
