@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/errors.hpp"
+#include "core/message_text.hpp"
 #include "io/interrupt.hpp"
 #include "solver/operating_point.hpp"
 #include "solver/validate.hpp"
@@ -85,10 +86,7 @@ constexpr double kMaxDuration = 1e6;             // s
 constexpr size_t kMaxSteps = 100000;             // per interval
 constexpr double kMaxVehicleSpeed = 500.0 / 3.6; // m/s
 
-std::string celsius(double T) {
-    if (!std::isfinite(T)) return "(not finite)";
-    return std::abs(T) < 1e6 ? fmt::format("{:.1f} degC", T - 273.15) : fmt::format("{:.4g} degC", T - 273.15);
-}
+std::string celsius(double T) { return std::isfinite(T) ? celsius_text(T) : "(not finite)"; }
 
 [[noreturn]] void fail(const std::string& key, const std::string& message) { throw InputError("", 0, 0, key, message); }
 
@@ -222,7 +220,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
             if (!load.point.fault.empty() || !std::isfinite(last_loss) || !std::isfinite(T_in)) {
                 std::string cause = load.point.fault;
                 if (cause.empty()) cause = solver::loss_fault(gm, load.point, x[kOil], ambient);
-                const auto value = [](double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : std::string("(not finite)"); };
+                const auto value = [](double v) { return finite_number_text(v, 4); };
                 fail("cycle", fmt::format("at t = {:g} s (gear {}, {} rpm, {} N m, oil {}): out_of_range: {}",
                                           cycle.time[i], gear, value(w_in * 30 / 3.14159265358979323846), value(T_in),
                                           celsius(x[kOil]), cause.empty() ? "gearbox loss not finite" : cause));

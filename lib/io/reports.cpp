@@ -6,6 +6,7 @@
 
 #include "bearings/skf_model.hpp"
 #include "core/errors.hpp"
+#include "core/message_text.hpp"
 #include "mesh/ehl_path.hpp"
 #include "io/json.hpp"
 
@@ -36,8 +37,8 @@ std::string point_report(const Case& c, const solver::PointResult& r) {
     s += fmt::format("{} — oil {}{}\n", m.name, m.oil.name, c.ratio.empty() ? "" : ", ratio " + c.ratio);
     if (r.status == solver::PointStatus::out_of_range) {
         // The inputs as given, however large (or not finite): short, never "inf" or 300 digits.
-        const auto value = [](double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : std::string("(not finite)"); };
-        s += fmt::format("input  {} rpm  {} N*m  {} W\n", value(r.speed_in * rpm), value(r.torque_in), value(r.power_in));
+        s += fmt::format("input  {} rpm  {} N*m  {} W\n", finite_number_text(r.speed_in * rpm),
+                         finite_number_text(r.torque_in), finite_number_text(r.power_in));
         return s + status_line(m, r);
     }
     s += fmt::format("input  {:10.2f} rpm  {:10.2f} N*m  {:10.1f} W\n", r.speed_in * rpm, r.torque_in, r.power_in);
@@ -177,23 +178,25 @@ std::string check_json(const Case& c) {
     j.key("valid").value(true);
     j.key("ratio_name").value(c.ratio);
     j.key("speed_ratio_out_in").value(L.ratio);
+    // A key with the values of the two gears of a mesh.
+    const auto both = [&j](const char* key, const auto& a, const auto& b) { j.key(key).begin_array().value(a).value(b).end_array(); };
     j.key("meshes").begin_array();
     for (size_t i = 0; i < gb.meshes.size(); ++i) {
         const auto& md = L.meshes[i];
         const auto& g = md.geom;
         j.begin_object();
         j.key("name").value(gb.meshes[i].name);
-        j.key("gears").begin_array().value(gb.gears[gb.meshes[i].gear[0]].spec.name).value(gb.gears[gb.meshes[i].gear[1]].spec.name).end_array();
+        both("gears", gb.gears[gb.meshes[i].gear[0]].spec.name, gb.gears[gb.meshes[i].gear[1]].spec.name);
         j.key("loaded").value(md.loaded);
         j.key("u").value(g.u);
         j.key("centre_distance_mm").value(g.a_w * 1e3);
         j.key("reference_centre_distance_mm").value(g.a * 1e3);
         j.key("working_pressure_angle_deg").value(g.alpha_wt * deg);
-        j.key("tip_diameters_mm").begin_array().value(g.da[0] * 1e3).value(g.da[1] * 1e3).end_array();
-        j.key("tip_sources").begin_array().value(geometry::to_string(g.tip_source[0])).value(geometry::to_string(g.tip_source[1])).end_array();
-        j.key("tip_alteration_factors").begin_array().value(g.k_applied[0]).value(g.k_applied[1]).end_array();
-        j.key("root_diameters_mm").begin_array().value(g.df[0] * 1e3).value(g.df[1] * 1e3).end_array();
-        j.key("working_pitch_diameters_mm").begin_array().value(g.dw[0] * 1e3).value(g.dw[1] * 1e3).end_array();
+        both("tip_diameters_mm", g.da[0] * 1e3, g.da[1] * 1e3);
+        both("tip_sources", geometry::to_string(g.tip_source[0]), geometry::to_string(g.tip_source[1]));
+        both("tip_alteration_factors", g.k_applied[0], g.k_applied[1]);
+        both("root_diameters_mm", g.df[0] * 1e3, g.df[1] * 1e3);
+        both("working_pitch_diameters_mm", g.dw[0] * 1e3, g.dw[1] * 1e3);
         j.key("eps_1").value(g.eps1);
         j.key("eps_2").value(g.eps2);
         j.key("eps_alpha").value(g.eps_alpha);

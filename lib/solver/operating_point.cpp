@@ -1,5 +1,7 @@
 #include "solver/operating_point.hpp"
 
+#include "core/message_text.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -67,11 +69,7 @@ std::string point_fault(const Model& m, const PointState& p) {
     return {};
 }
 
-std::string degC(double T) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, std::abs(T - 273.15) < 1e6 ? "%.1f degC" : "%.4g degC", T - 273.15);
-    return buf;
-}
+std::string degC(double T) { return celsius_text(T); }
 }  // namespace
 
 PointState prepare_point(const Model& m, double omega_in, double torque_in) {

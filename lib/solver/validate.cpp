@@ -1,5 +1,7 @@
 #include "solver/validate.hpp"
 
+#include "core/message_text.hpp"
+
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -14,14 +16,9 @@ constexpr double kDeg = 180.0 / std::numbers::pi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 bool finite(double v) { return std::isfinite(v); }
-// A value as written in a message (not-a-number and infinities spelt out).
-std::string show(double v) { return finite(v) ? fmt::format("{:g}", v) : std::isnan(v) ? "not a number" : v > 0 ? "+infinity" : "-infinity"; }
-// At most a dozen characters for any value (a typo of 1e300 degC is not spelt out in full).
-std::string degC(double T_K) {
-    const double c = T_K - 273.15;
-    if (!finite(c)) return show(c) + " degC";
-    return std::abs(c) < 1e6 ? fmt::format("{:.1f} degC", c) : fmt::format("{:.4g} degC", c);
-}
+// A value as written in a message (core/message_text.hpp).
+std::string show(double v) { return number_text(v); }
+std::string degC(double T_K) { return celsius_text(T_K); }
 
 // Collects issues of one section/item.
 struct Collector {
