@@ -67,6 +67,16 @@ def contour(ax, xs, ys, z, label, cmap="viridis"):
     ax.set_ylabel("input torque [N m]")
 
 
+def mechanism_columns(header, after, before):
+    """The loss mechanisms' columns (P_<name>_W) of a map or cycle CSV, in file order: the
+    columns the tool writes between `after` (or the first P_ column) and `before`, so a new
+    mechanism is drawn without an edit here."""
+    keys = list(header)
+    end = keys.index(before)
+    start = keys.index(after) + 1 if after else next(i for i, k in enumerate(keys) if k.startswith("P_"))
+    return [(k, k[2:-2].replace("_", " ")) for k in keys[start:end] if k.startswith("P_") and k.endswith("_W")]
+
+
 def plot_map(rows, ax, kind, title):
     if kind == "efficiency":
         xs, ys, z = grid(rows, "efficiency")
@@ -77,9 +87,8 @@ def plot_map(rows, ax, kind, title):
         contour(ax, xs, ys, z, "oil temperature [degC]", cmap="inferno")
         ax.set_title(title or "stabilised oil temperature")
     else:
-        parts = [("P_mesh_W", "mesh"), ("P_churn_W", "churning"), ("P_bearing_W", "bearings"), ("P_seal_W", "seals"),
-                 ("P_clutch_W", "clutch drag"), ("P_aux_W", "auxiliary")]
-        parts = [(k, n) for k, n in parts if k in rows[0] and any(r[k] not in ("", "0") for r in rows)]
+        parts = [(k, n) for k, n in mechanism_columns(rows[0], "oil_temp_C", "P_total_W")
+                 if any(r[k] not in ("", "0") for r in rows)]
         speeds = sorted({float(r["speed_in_rpm"]) for r in rows})
         torques = sorted({float(r["torque_in_Nm"]) for r in rows})
         width = 0.8 / max(1, len(torques))
@@ -126,9 +135,9 @@ def plot_cycle(rows, fig, title):
             ax[1].plot(t, col(rows, key), label=name)
     ax[1].set_ylabel("temperature [degC]")
     ax[1].legend()
-    parts = [("P_mesh_W", "mesh"), ("P_churn_W", "churning"), ("P_bearing_W", "bearings"), ("P_seal_W", "seals"),
-             ("P_clutch_W", "clutch drag"), ("P_converter_W", "converter")]
-    parts = [(k, n) for k, n in parts if k in rows[0]]
+    parts = mechanism_columns(rows[0], None, "P_gearbox_W")
+    if "P_converter_W" in rows[0]:
+        parts.append(("P_converter_W", "converter"))
     ax[2].stackplot(t, *[col(rows, k) for k, _ in parts], labels=[n for _, n in parts], linewidth=0)
     ax[2].set_ylabel("power loss [W]")
     ax[2].set_xlabel("time [s]")

@@ -17,6 +17,7 @@
 // form against the direct SKF moment for every bearing type, and the 3-pressure
 // symmetric Hertz quadrature of the EHL contact against the plain 5-node Gauss rule.
 #include <catch2/catch.hpp>
+#include "loss_parts.hpp"
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -174,7 +175,7 @@ TEST_CASE("contracts: mesh friction, every mean-friction model and the local EHL
         m.options.friction = f;
         return m;
     };
-    const auto mesh_loss = [](const solver::LossBreakdown& L) { return L.mesh; };
+    const auto mesh_loss = [](const solver::LossBreakdown& L) { return test::part(L, "mesh"); };
     // Schlenk and ISO/TS 6336-20: mu ~ eta^-0.05 rises as the oil thins; P = mu H_V T w with
     // mu ~ v^-0.2 rises with speed (~n^0.8) and with torque (~T^1.2).
     check_contract({"mesh, Schlenk", Trend::rises}, solver_part(with(mesh::FrictionModel::schlenk), mesh_loss), kBoxGrid);
@@ -198,22 +199,22 @@ TEST_CASE("contracts: churning, seals and the calibration terms through the solv
     // 6000 < Re_c < 9000, where the interpolation towards the (here larger) high-Re torque makes
     // churning RISE as the oil thins.
     check_contract({"churning (solver)", Trend::unchecked, Trend::rises, Trend::independent},
-                   solver_part(only(box, false, true, false, false), [](const auto& L) { return L.churning; }), kBoxGrid);
+                   solver_part(only(box, false, true, false, false), [](const solver::LossBreakdown& L) { return test::part(L, "churning"); }), kBoxGrid);
     // Seals: ISO/TR 14179-2 P = 7.69e-6 d^2 n, neither oil nor load.
     check_contract({"seals (solver)", Trend::independent, Trend::rises, Trend::independent},
-                   solver_part(only(box, false, false, false, true), [](const auto& L) { return L.seals; }), kBoxGrid);
+                   solver_part(only(box, false, false, false, true), [](const solver::LossBreakdown& L) { return test::part(L, "seals"); }), kBoxGrid);
     // Windage: P = C (n/1000 rpm)^2.9, no oil, no load.
     auto wind = only(box, false, false, false, false);
-    wind.calibration.windage_W_at_1000rpm = 25;
+    wind.mechanisms.at("churning").set_parameter("windage_W_at_1000rpm", 25);
     check_contract({"windage (calibration)", Trend::independent, Trend::rises, Trend::independent},
-                   solver_part(wind, [](const auto& L) { return L.windage; }), kBoxGrid);
+                   solver_part(wind, [](const solver::LossBreakdown& L) { return test::part(L, "churning"); }), kBoxGrid);
     // Palmgren no-load drag M0 = 1e-7 f0 (nu n)^(2/3) d_m^3: falls with T, rises with n, no load.
     auto drag = only(box, false, false, false, false);
     drag.options.bearings = true;
     auto no_drag = drag;
-    drag.calibration.bearing_drag_f0 = 2;
-    const Loss with_drag = solver_part(drag, [](const auto& L) { return L.bearings; });
-    const Loss without = solver_part(no_drag, [](const auto& L) { return L.bearings; });
+    drag.mechanisms.at("bearings").set_parameter("drag_f0", 2);
+    const Loss with_drag = solver_part(drag, [](const solver::LossBreakdown& L) { return test::part(L, "bearings"); });
+    const Loss without = solver_part(no_drag, [](const solver::LossBreakdown& L) { return test::part(L, "bearings"); });
     check_contract({"Palmgren bearing drag (calibration)", Trend::falls, Trend::rises, Trend::unchecked},
                    [&](double n, double T, double F) { return with_drag(n, T, F) - without(n, T, F); }, kBoxGrid);
     // (the difference of two load-dependent sums: independent of the load to rounding)
@@ -222,9 +223,9 @@ TEST_CASE("contracts: churning, seals and the calibration terms through the solv
               Approx(with_drag(1000, degC + 70, 150) - without(1000, degC + 70, 150)).epsilon(1e-9));
     // Auxiliary: a constant parasitic loss while the box turns.
     auto aux = only(box, false, false, false, false);
-    aux.calibration.auxiliary_W = 30;
+    aux.mechanisms.at("auxiliary").set_parameter("power", 30);
     check_contract({"auxiliary (calibration)", Trend::independent, Trend::independent, Trend::independent},
-                   solver_part(aux, [](const auto& L) { return L.auxiliary; }), kBoxGrid);
+                   solver_part(aux, [](const solver::LossBreakdown& L) { return test::part(L, "auxiliary"); }), kBoxGrid);
 }
 
 TEST_CASE("contracts: bearings through the solver", "[contracts]") {
@@ -232,7 +233,7 @@ TEST_CASE("contracts: bearings through the solver", "[contracts]") {
     // film, more boundary friction): the sign of dP/dT depends on load and speed (checked for
     // the viscous part of every bearing type in the component test below).
     check_contract({"bearings (solver)", Trend::unchecked, Trend::rises, Trend::rises},
-                   solver_part(only(transfer_box(), false, false, true, false), [](const auto& L) { return L.bearings; }),
+                   solver_part(only(transfer_box(), false, false, true, false), [](const solver::LossBreakdown& L) { return test::part(L, "bearings"); }),
                    kBoxGrid);
 }
 
@@ -356,7 +357,7 @@ TEST_CASE("fast path: the solver's per-temperature evaluation equals the compone
                                                   : mesh::mean_friction_iso_6336_20(w, v, md.geom.rho_redC * 1e3, s.eta * 1e3, Ra, m.oil.X_L);
                             ref = mu * md.loss_factor(m.options.loss_factor) * std::abs(torque * w_in) * md.rolling_per_W;
                         }
-                        CHECK(r.mesh_each[i] == Approx(ref).epsilon(1e-10));
+                        CHECK(test::each(r, "mesh", i) == Approx(ref).epsilon(1e-10));
                     }
                     for (size_t g = 0; g < gb.gears.size(); ++g) {
                         double ref = 0;
@@ -367,17 +368,17 @@ TEST_CASE("fast path: the solver's per-temperature evaluation equals the compone
                             const double wg = std::abs(L.body_speed_ratio[L.body_of_gear[g]] * w_in);
                             ref = churning::churning_torque(dg, wg, s.rho, s.nu, gb.oil_volume) * wg;
                         }
-                        CHECK(r.churn_each[g] == Approx(ref).epsilon(1e-10));
+                        CHECK(test::each(r, "churning", g) == Approx(ref).epsilon(1e-10));
                     }
                     for (size_t i = 0; i < gb.bearings.size(); ++i) {
                         const double wb = L.bearing_speed_ratio[i] * w_in;
                         const double M = bearings::skf_moment(gb.bearings[i].spec, torque * L.bearing_Fr_pos[i],
                                                               torque * L.bearing_Fa_pos[i], wb / rpm, s.nu_cSt)
                                              .total();
-                        CHECK(r.bearing_each[i] == Approx(M * 1e-3 * wb * gb.bearings[i].multiplicity).epsilon(1e-10));
+                        CHECK(test::each(r, "bearings", i) == Approx(M * 1e-3 * wb * gb.bearings[i].multiplicity).epsilon(1e-10));
                     }
                     for (size_t i = 0; i < gb.seals.size(); ++i)
-                        CHECK(r.seal_each[i] ==
+                        CHECK(test::each(r, "seals", i) ==
                               Approx(seals::radial_seal_power(gb.seals[i].diameter, L.seal_speed_ratio[i] * w_in)).epsilon(1e-12));
                 }
 }
@@ -392,11 +393,11 @@ TEST_CASE("fast path: the solver's local EHL mesh loss equals a cold-started dir
         const auto r = solver::evaluate_losses(m, p, m.oil_state(T_oil), true);
         for (size_t i = 0; i < m.gearbox.meshes.size(); ++i) {
             const auto& md = m.layout.meshes[i];
-            const auto& ms = p.meshes[i];
+            const auto& ms = mesh::mesh_friction_point(m, p).meshes[i];
             const double ref = ms.power == 0.0 ? 0.0
                                                : mesh::ehl_mesh_loss(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets,
                                                                      ms.contact.E_prime, ms.sigma, T_oil, m.oil, m.oil.traction);
-            CHECK(r.mesh_each[i] == Approx(ref).epsilon(2e-3));
+            CHECK(test::each(r, "mesh", i) == Approx(ref).epsilon(2e-3));
         }
     }
 }

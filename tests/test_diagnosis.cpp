@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include "loss_parts.hpp"
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -59,22 +60,22 @@ TEST_CASE("calibration terms act inside the loss model and the thermal solve", "
     const double w = 1200 * rpm, T = 250;
     const double base = solver::solve_point(m, w, T).losses.total();
     // Windage adds exactly C (n/1000 rpm)^2.9: 10 W * 1.2^2.9 = 16.975 W.
-    m.calibration.windage_W_at_1000rpm = 10;
+    m.mechanisms.at("churning").set_parameter("windage_W_at_1000rpm", 10);
     CHECK(solver::solve_point(m, w, T).losses.total() - base == Approx(10 * std::pow(1.2, 2.9)).epsilon(1e-9));
-    m.calibration = {};
-    m.calibration.auxiliary_W = 40;
+    m.mechanisms = {};
+    m.mechanisms.at("auxiliary").set_parameter("power", 40);
     CHECK(solver::solve_point(m, w, T).losses.total() - base == Approx(40).epsilon(1e-9));
-    m.calibration = {};
-    m.calibration.seal_factor = 3;
+    m.mechanisms = {};
+    m.mechanisms.at("seals").set_parameter("factor", 3);
     const auto r0 = solver::solve_point(c.model, w, T);
-    CHECK(r0.losses.seals == Approx(3 * (7.69e-6 * 45 * 45 * 1200 + 7.69e-6 * 40 * 40 * 1200 * (17.0 / 28 * 23.0 / 32))).epsilon(1e-9));
+    CHECK(test::part(r0.losses, "seals") == Approx(3 * (7.69e-6 * 45 * 45 * 1200 + 7.69e-6 * 40 * 40 * 1200 * (17.0 / 28 * 23.0 / 32))).epsilon(1e-9));
 
     // A real extra loss heats the oil: in stabilised mode the solution still
     // balances P = Q, now at a higher temperature.
-    m.calibration = {};
+    m.mechanisms = {};
     m.thermal.mode = solver::ThermalMode::stabilised;
     const auto cold = solver::solve_point(m, w, T);
-    m.calibration.auxiliary_W = 100;
+    m.mechanisms.at("auxiliary").set_parameter("power", 100);
     const auto hot = solver::solve_point(m, w, T);
     CHECK(hot.oil_temperature > cold.oil_temperature + 3);
     CHECK(std::abs(hot.losses.total() - m.heat_flow(hot.oil_temperature, m.thermal.ambient, w)) < 0.05);
@@ -82,7 +83,7 @@ TEST_CASE("calibration terms act inside the loss model and the thermal solve", "
     // (resistance model: Q = (T - Ta)/R).
     auto r = transfer();
     r.model.options.mesh = r.model.options.bearings = r.model.options.churning = r.model.options.seals = false;
-    r.model.calibration.auxiliary_W = 200;
+    r.model.mechanisms.at("auxiliary").set_parameter("power", 200);
     r.model.thermal.rejection.model = thermal::ThermalResistance{0.1, 0, 0};
     const double rise1 = solver::solve_point(r.model, w, T).oil_temperature - r.model.thermal.ambient;
     r.model.calibration.heat_rejection_factor = 0.5;
@@ -234,6 +235,6 @@ TEST_CASE("the calibrated config reproduces the recordings", "[diagnosis]") {
     diagnosis::write_calibrated_config(test_support::source_path("configs/transfer-box.yaml"), out, d);
     const auto c2 = io::load_case(out);
     std::filesystem::remove(out);
-    CHECK(c2.model.calibration.auxiliary_W == Approx(d.findings[0].parameter.value).epsilon(1e-5));
+    CHECK(c2.model.mechanisms.at("auxiliary").parameter("power") == Approx(d.findings[0].parameter.value).epsilon(1e-5));
     CHECK(diagnosis::diagnose(c2.model, rec).verdict == "no_significant_mismatch");
 }

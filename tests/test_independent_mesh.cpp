@@ -4,6 +4,7 @@
 // closed forms derived from heat conduction. Each test names the mutation of
 // scripts/mutation-check.sh it is there to kill.
 #include <catch2/catch.hpp>
+#include "loss_parts.hpp"
 #include <cmath>
 #include <numbers>
 
@@ -68,13 +69,13 @@ TEST_CASE("independent: FZG C worked example through the whole model (mean rough
 
     const auto r = solver::solve_point(m, 1500 * rpm, 302, true);
     REQUIRE(r.status == solver::PointStatus::ok);
-    CHECK(r.losses.mesh_mu[0] == Approx(0.0517).margin(1e-4));
-    CHECK(r.losses.mesh == Approx(478).margin(1.0));
+    CHECK(test::each(r.losses, "mesh", 0, mesh::kMeshMu) == Approx(0.0517).margin(1e-4));
+    CHECK(test::part(r.losses, "mesh") == Approx(478).margin(1.0));
 
     m.options.friction = mesh::FrictionModel::iso_6336_20;
     const auto iso = solver::solve_point(m, 1500 * rpm, 302, true);
-    CHECK(iso.losses.mesh_mu[0] == Approx(0.064605).margin(1e-4));
-    CHECK(iso.losses.mesh == Approx(597.6).margin(1.5));
+    CHECK(test::each(iso.losses, "mesh", 0, mesh::kMeshMu) == Approx(0.064605).margin(1e-4));
+    CHECK(test::part(iso.losses, "mesh") == Approx(597.6).margin(1.5));
 }
 
 TEST_CASE("independent: Dowson-Higginson minimum film and the thermal reductions, by hand", "[independent][mesh]") {

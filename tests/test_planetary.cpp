@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include "loss_parts.hpp"
 #include <cmath>
 #include <numbers>
 
@@ -80,8 +81,8 @@ TEST_CASE("planetary efficiency: the basic-efficiency formula against the full c
     for (double n : {500.0, 2000.0})
         for (double T : {50.0, 150.0}) {
             const auto r = solver::solve_point(m, n * rpm, T, true);
-            const double e_sp = 1 - r.losses.mesh_mu[0] * m.layout.meshes[0].H_V_ohlendorf;
-            const double e_rp = 1 - r.losses.mesh_mu[1] * m.layout.meshes[1].H_V_ohlendorf;
+            const double e_sp = 1 - test::each(r.losses, "mesh", 0, mesh::kMeshMu) * m.layout.meshes[0].H_V_ohlendorf;
+            const double e_rp = 1 - test::each(r.losses, "mesh", 1, mesh::kMeshMu) * m.layout.meshes[1].H_V_ohlendorf;
             const double eta = (1 - i0 * e_sp * e_rp) / (1 - i0);
             // Losses on the ideal rolling power: agreement to second order in mu H_V.
             CHECK(r.efficiency == Approx(eta).margin(2e-4));

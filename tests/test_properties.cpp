@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include "loss_parts.hpp"
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -60,13 +61,9 @@ TEST_CASE("property: no loss component is ever negative", "[properties]") {
                     const auto r = solver::solve_point(c.model, n * rpm, T, true);
                     const auto& L = r.losses;
                     INFO(f << " " << n << " rpm " << T << " N m " << T_oil << " K");
-                    CHECK(L.mesh >= 0);
-                    CHECK(L.churning >= 0);
-                    CHECK(L.bearings >= 0);
-                    CHECK(L.seals >= 0);
-                    for (double v : L.bearing_each) CHECK(v >= 0);
-                    for (double v : L.churn_each) CHECK(v >= 0);
-                    for (double v : L.mesh_each) CHECK(v >= 0);
+                    for (double v : L.power) CHECK(v >= 0);
+                    for (const auto& d : L.detail)
+                        for (size_t k = 0; k < d.values.size(); k += d.quantities) CHECK(d.values[k] >= 0);
                 }
     }
 }

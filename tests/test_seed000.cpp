@@ -5,6 +5,7 @@
 
 #include "io/config.hpp"
 #include "mesh/ehl_path.hpp"
+#include "mesh/mesh_friction_mechanism.hpp"
 #include "solver/operating_point.hpp"
 #include "test_support.hpp"
 
@@ -21,8 +22,9 @@ TEST_CASE("seed 000 trends along the path of contact and for the gearbox", "[ehl
     const double w = 1600 * std::numbers::pi / 30, T = 720, T70 = 273.15 + 70;
     const auto p = solver::prepare_point(m, w, T);
     const auto& md = m.layout.meshes[0];
-    const auto prof = mesh::ehl_path(md.geom, md.L_mean, p.meshes[0].omega_rel, p.meshes[0].F_bn, 1,
-                                     p.meshes[0].contact.E_prime, p.meshes[0].sigma, T70, m.oil, m.oil.traction, 41);
+    const auto& ms = mesh::mesh_friction_point(m, p).meshes[0];
+    const auto prof = mesh::ehl_path(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, 1,
+                                     ms.contact.E_prime, ms.sigma, T70, m.oil, m.oil.traction, 41);
     const auto& pts = prof.points;
     const auto pitch = std::min_element(pts.begin(), pts.end(), [](const auto& a, const auto& b) {
         return std::abs(a.from_pitch) < std::abs(b.from_pitch);

@@ -23,8 +23,10 @@ thermal::NodeTemperatures uniform(double T) { return {T, T, T}; }
 namespace {
 
 // Integrated state: node temperatures, then the energies of each heat flow [J].
-using State = std::array<double, 12>;
-enum : size_t { kOil, kHousing, kClutch, kMesh, kChurn, kBearing, kSeal, kClutchDrag, kAux, kTc, kAmbient, kHeater };
+// The mechanisms' energies take kMaxMechanisms slots (unused slots stay zero).
+constexpr size_t kMaxMechanisms = 12;
+using State = std::array<double, 3 + kMaxMechanisms + 3>;
+enum : size_t { kOil, kHousing, kClutch, kMech0, kTc = kMech0 + kMaxMechanisms, kAmbient, kHeater };
 
 State initial_state(const thermal::NodeTemperatures& start) {
     State x{};
@@ -71,10 +73,19 @@ struct Rates {
             P_tc = torque_converter::operate(*pt.torque_converter, load.turbine_speed, load.turbine_torque,
                                              pt.vehicle.engine.idle_speed, os.nu_cSt, load.lockup)
                        .loss;
-        const double P_oil = L.total() - L.clutches + P_tc + load.heater;
+        // Heat of the mechanisms that do not heat the oil goes to the clutch-pack node.
+        const double P_other = load.gearbox ? L.total() - L.into_oil(*load.gearbox) : 0.0;
+        const double P_oil = L.total() - P_other + P_tc + load.heater;
         const double Q = tm.surface_heat_flow(thermal::surface_temperature(net, T), ambient, load.omega_in, load.air_speed);
-        const auto d = thermal::node_rates(net, T, P_oil, L.clutches, Q);
-        dx = {d[0], d[1], d[2], L.mesh, L.churning, L.bearings, L.seals, L.clutches, L.auxiliary, P_tc, Q, load.heater};
+        const auto d = thermal::node_rates(net, T, P_oil, P_other, Q);
+        dx.fill(0.0);
+        dx[kOil] = d[0];
+        dx[kHousing] = d[1];
+        dx[kClutch] = d[2];
+        for (size_t i = 0; i < L.power.size(); ++i) dx[kMech0 + i] = L.power[i];
+        dx[kTc] = P_tc;
+        dx[kAmbient] = Q;
+        dx[kHeater] = load.heater;
     }
 };
 
@@ -139,6 +150,8 @@ void check_run(const Powertrain& pt, const DriveCycle& cycle, const thermal::Nod
     }
     if (auto f = solver::oil_temperature_fault(tm.oil, ambient)) fail("ambient", "ambient " + *f);
     const auto& t = cycle.time;
+    if (tm.mechanisms.size() > kMaxMechanisms)
+        fail("mechanisms", fmt::format("{} loss mechanisms; a cycle integrates at most {}", tm.mechanisms.size(), kMaxMechanisms));
     if (t.size() != cycle.speed.size() || (!cycle.gear.empty() && cycle.gear.size() != t.size()))
         fail("cycle", "the cycle's columns differ in length");
     for (size_t i = 0; i < t.size(); ++i) {
@@ -165,6 +178,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
     auto& tot = res.totals;
     const auto& veh = pt.vehicle;
     const auto& net = pt.thermal_model().thermal.network;
+    const size_t n_mech = pt.thermal_model().mechanisms.size();
     tot.duration = cycle.duration();
     tot.distance = cycle.distance();
     tot.start = start;
@@ -261,13 +275,9 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
             // Loss rates at the start of the step for the trace.
             State d{};
             Rates{pt, load, ambient}(x, d, 0.0);
-            row.P_mesh = d[kMesh];
-            row.P_churn = d[kChurn];
-            row.P_bearing = d[kBearing];
-            row.P_seal = d[kSeal];
-            row.P_clutch = d[kClutchDrag];
-            row.P_aux = d[kAux];
-            row.P_gearbox = d[kMesh] + d[kChurn] + d[kBearing] + d[kSeal] + d[kClutchDrag] + d[kAux];
+            row.P_mech.assign(d.begin() + kMech0, d.begin() + kMech0 + n_mech);
+            row.P_gearbox = 0.0;
+            for (double P : row.P_mech) row.P_gearbox += P;
             row.P_tc = d[kTc];
             res.trace.push_back(row);
         }
@@ -281,12 +291,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         last.engine_speed = veh.engine.idle_speed;
         res.trace.push_back(last);
     }
-    tot.E_mesh = x[kMesh];
-    tot.E_churn = x[kChurn];
-    tot.E_bearing = x[kBearing];
-    tot.E_seal = x[kSeal];
-    tot.E_clutch = x[kClutchDrag];
-    tot.E_aux = x[kAux];
+    tot.E_mech.assign(x.begin() + kMech0, x.begin() + kMech0 + n_mech);
     tot.E_tc = x[kTc];
     tot.E_ambient = x[kAmbient];
     tot.E_heater = x[kHeater];

@@ -30,7 +30,7 @@ struct TraceRow {
     double input_speed = 0, input_torque = 0;  // gearbox input (turbine) [rad/s, N m]
     double engine_speed = 0, engine_torque = 0;
     double T_oil = 0, T_housing = 0, T_clutch = 0;  // K, at the start of the step
-    double P_mesh = 0, P_churn = 0, P_bearing = 0, P_seal = 0, P_clutch = 0, P_aux = 0;  // W, at T_oil
+    std::vector<double> P_mech;                // W per loss mechanism (the models' order), at T_oil
     double P_gearbox = 0, P_tc = 0;            // W
     double tc_speed_ratio = 1;
     bool lockup = false;
@@ -41,13 +41,18 @@ struct CycleTotals {
     double duration = 0, distance = 0;         // s, m
     double E_wheel = 0;                        // J, positive tractive energy at the wheels
     double E_gearbox_in = 0, E_gearbox_out = 0;  // J, in drive (positive input power)
-    double E_mesh = 0, E_churn = 0, E_bearing = 0, E_seal = 0, E_clutch = 0, E_aux = 0, E_tc = 0;  // J
+    std::vector<double> E_mech;                // J per loss mechanism (the models' order)
+    double E_tc = 0;                           // J, torque converter
     double E_ambient = 0, E_heater = 0;        // J, heat to the ambient, heater energy
     double stored_start = 0, stored_end = 0;   // J, network heat content relative to ambient
     double fuel = 0;                           // kg
     bool has_fuel = false;
     thermal::NodeTemperatures start{}, end{};
-    double gearbox_loss() const { return E_mesh + E_churn + E_bearing + E_seal + E_clutch + E_aux; }
+    double gearbox_loss() const {
+        double e = 0.0;
+        for (double x : E_mech) e += x;
+        return e;
+    }
     double mean_efficiency() const { return E_gearbox_in > 0 ? E_gearbox_out / E_gearbox_in : 0.0; }
 };
 

@@ -143,7 +143,7 @@ public:
         out.temp.resize(obs_.size());
         out.failure.clear();
         solver::Model& m = work_[static_cast<size_t>(tid)];
-        m.calibration = h.cal;
+        h.apply_to(m);
         solver::PointState& p = states_[static_cast<size_t>(tid)];
         std::vector<char> done(obs_.size(), 0);
         for (int i : idx) {
@@ -678,8 +678,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     Diagnosis d;
     d.warnings = rec.warnings;
     // The case as described (with any calibration it carries): the baseline hypothesis.
-    Hypothesis neutral;
-    neutral.cal = model.calibration;
+    Hypothesis neutral = Hypothesis::of(model);
     std::vector<Obs> obs;
     std::vector<Outlier> unused;  // rows the model cannot be compared with: listed, not used
     {

@@ -1,4 +1,5 @@
 #include "diagnosis/diagnose.hpp"
+#include "io/mechanism_config.hpp"
 
 // The diagnosis as text, JSON and a residuals table, and the calibrated case file.
 #include <filesystem>
@@ -150,17 +151,19 @@ void write_calibrated_config(const std::string& config_in, const std::string& co
         const fs::path rel = fs::relative(oil, out_dir, ec);
         root["oil"] = (ec || rel.empty() ? oil : rel).string();
     }
-    const auto& c = d.calibrated.cal;
     YAML::Node cal = root["calibration"] ? root["calibration"] : YAML::Node(YAML::NodeType::Map);
-    if (c.windage_W_at_1000rpm != 0) cal["windage"] = fmt::format("{:.6g} W", c.windage_W_at_1000rpm);
-    if (c.churning_factor != 1) cal["churning_factor"] = fmt::format("{:.6g}", c.churning_factor);
-    if (c.bearing_drag_f0 != 0) cal["bearing_drag_f0"] = fmt::format("{:.6g}", c.bearing_drag_f0);
-    if (c.seal_factor != 1) cal["seal_factor"] = fmt::format("{:.6g}", c.seal_factor);
-    if (c.mesh_friction_factor != 1) cal["mesh_friction_factor"] = fmt::format("{:.6g}", c.mesh_friction_factor);
-    if (c.viscosity_factor != 1) cal["viscosity_factor"] = fmt::format("{:.6g}", c.viscosity_factor);
-    if (c.heat_rejection_factor != 1) cal["heat_rejection_factor"] = fmt::format("{:.6g}", c.heat_rejection_factor);
-    if (c.cooling_per_1000rpm != 0) cal["cooling_per_1000rpm"] = fmt::format("{:.6g}", c.cooling_per_1000rpm);
-    if (c.auxiliary_W != 0) cal["auxiliary"] = fmt::format("{:.6g} W", c.auxiliary_W);
+    // Every calibration term is written afresh: the hypothesis started from the case's own
+    // calibration, so it holds the terms read from this block (in either spelling).
+    for (const char* k : {"windage", "churning_factor", "bearing_drag_f0", "seal_factor", "mesh_friction_factor",
+                          "auxiliary", "viscosity_factor", "heat_rejection_factor", "cooling_per_1000rpm"})
+        cal.remove(k);
+    const auto& mechs = d.calibrated.mechanisms;
+    for (size_t i = 0; i < mechs.size(); ++i) cal.remove(std::string(mechs[i].name()));
+    for (const auto& e : io::calibration_entries(mechs, d.calibrated.cal)) {
+        const std::string v = fmt::format("{:.6g}", e.value) + (e.unit.empty() ? "" : " " + e.unit);
+        if (e.mechanism.empty()) cal[e.key] = v;
+        else cal[e.mechanism][e.key] = v;
+    }
     std::string note = "calibrated by gearloss diagnose (" + d.verdict + ")";
     for (const auto& f : d.findings)
         if (!f.effect.empty()) note += "; " + f.effect;

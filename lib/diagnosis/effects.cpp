@@ -5,22 +5,38 @@
 
 namespace gearloss::diagnosis {
 
+Hypothesis Hypothesis::of(const solver::Model& m) {
+    Hypothesis h;
+    h.cal = m.calibration;
+    h.mechanisms = m.mechanisms;
+    return h;
+}
+
+void Hypothesis::set(std::string_view mechanism, std::string_view parameter, double value) {
+    mechanisms.at(mechanism).set_parameter(parameter, value);
+}
+
+void Hypothesis::apply_to(solver::Model& m) const {
+    m.calibration = cal;
+    m.mechanisms = mechanisms;
+}
+
 const std::vector<Effect>& effect_library() {
     static const std::vector<Effect> lib = {
         {"windage", "air/oil-mist drag of the rotating gears, P = C (n/1000 rpm)^2.9, independent of oil viscosity and load",
          "C (loss at 1000 rpm)", "W", 0, 20000, 0, {true, false, false, false, 2.9, false},
-         [](Hypothesis& h, double v) { h.cal.windage_W_at_1000rpm = v; }},
+         [](Hypothesis& h, double v) { h.set("churning", "windage_W_at_1000rpm", v); }},
         {"churning", "churning level of the dipping gears (immersion or oil level) differs from the description",
          "churning factor", "", 0, 60, 1, {true, false, false, true, 1.6, false},
-         [](Hypothesis& h, double v) { h.cal.churning_factor = v; }},
+         [](Hypothesis& h, double v) { h.set("churning", "factor", v); }},
         {"bearing_drag", "load-independent viscous drag in the bearings (oil bath), Palmgren M0 = 1e-7 f0 (nu n)^(2/3) d_m^3",
          "f0", "", 0, 60, 0, {true, false, false, true, 1.67, false},
-         [](Hypothesis& h, double v) { h.cal.bearing_drag_f0 = v; }},
+         [](Hypothesis& h, double v) { h.set("bearings", "drag_f0", v); }},
         {"seal_friction", "radial lip seal friction differs from the standard estimate (P ~ d^2 n)", "seal factor", "", 0,
-         60, 1, {true, false, false, false, 1.0, false}, [](Hypothesis& h, double v) { h.cal.seal_factor = v; }},
+         60, 1, {true, false, false, false, 1.0, false}, [](Hypothesis& h, double v) { h.set("seals", "factor", v); }},
         {"mesh_friction", "load-dependent mesh friction level differs (lubricant factor X_L, surface finish)",
          "mesh friction factor", "", 0.2, 5, 1, {true, false, true, false, 0.8, false},
-         [](Hypothesis& h, double v) { h.cal.mesh_friction_factor = v; }},
+         [](Hypothesis& h, double v) { h.set("mesh", "friction_factor", v); }},
         {"oil_viscosity", "the oil's viscosity-temperature data are off (other oil, aged or diluted oil)",
          "viscosity factor", "", 0.2, 5, 1, {true, false, false, true, 1.0, false},
          [](Hypothesis& h, double v) { h.cal.viscosity_factor = v; }},
@@ -40,7 +56,7 @@ const std::vector<Effect>& effect_library() {
          "points still warming", "", 0, 0, 0, {false, false, false, false, 0.0, true}, nullptr},
         {"constant_parasitic", "a constant parasitic loss (oil pump, drag of an auxiliary part), heating the oil",
          "P_aux", "W", 0, 20000, 0, {true, false, false, false, 0.0, false},
-         [](Hypothesis& h, double v) { h.cal.auxiliary_W = v; }},
+         [](Hypothesis& h, double v) { h.set("auxiliary", "power", v); }},
     };
     return lib;
 }

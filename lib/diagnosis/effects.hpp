@@ -3,9 +3,11 @@
 // a one-line physical description, one physically bounded parameter and a
 // signature (how it shows in the data) used to suggest a separating measurement.
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
+#include "losses/loss_mechanism.hpp"
 #include "solver/model.hpp"
 
 namespace gearloss::diagnosis {
@@ -18,9 +20,15 @@ struct Artefacts {
 
 // What a hypothesis sets: physics (inside the coupled solve) and artefacts.
 struct Hypothesis {
-    solver::Calibration cal;
+    solver::Calibration cal;          // oil and heat-path terms
+    losses::MechanismSet mechanisms;  // the loss mechanisms with their calibration parameters
     Artefacts art;
     std::vector<char> unstabilised;  // per point: its temperature is not an equilibrium value
+    // The physics of `m` (its calibration and mechanisms) as described, as the starting point.
+    static Hypothesis of(const solver::Model& m);
+    void set(std::string_view mechanism, std::string_view parameter, double value);
+    // Writes the physics of the hypothesis into a model.
+    void apply_to(solver::Model& m) const;
 };
 
 struct Signature {

@@ -70,8 +70,7 @@ void SynthOptions::validate() const {
 std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& grid, const SynthOptions& opt) {
     opt.validate();
     solver::Model m = model_in;
-    Hypothesis h;
-    h.cal = model_in.calibration;  // concealed effects come on top of the case as described
+    Hypothesis h = Hypothesis::of(model_in);  // concealed effects come on top of the case as described
     int unstabilised = 0;
     for (const auto& [id, v] : opt.effects) {
         const Effect* e = find_effect(id);
@@ -79,7 +78,7 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
         if (id == "unstabilised_test") unstabilised = static_cast<int>(v);
         else e->apply(h, v);
     }
-    m.calibration = h.cal;
+    h.apply_to(m);
     if (m.thermal.mode != solver::ThermalMode::stabilised)
         throw InputError("", 0, 0, "thermal.mode", "synthetic recordings need a stabilised thermal model");
     if (opt.raw_log && !(m.thermal.heat_capacity > 0))

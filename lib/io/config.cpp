@@ -14,6 +14,7 @@
 #include "bearings/skf_constants.hpp"
 #include "io/case_plausibility.hpp"
 #include "io/issue_location.hpp"
+#include "io/mechanism_config.hpp"
 #include "io/sweep.hpp"
 #include "solver/validate.hpp"
 
@@ -708,32 +709,6 @@ void load_thermal(const YamlNode& n, solver::ThermalSettings& t) {
     }
 }
 
-void load_calibration(const YamlNode& n, solver::Calibration& c) {
-    n.allow_keys({"windage", "churning_factor", "bearing_drag_f0", "seal_factor", "mesh_friction_factor",
-                  "viscosity_factor", "heat_rejection_factor", "cooling_per_1000rpm", "auxiliary", "note"});
-    auto factor = [&](const char* key, double& v, double lo, double hi) {
-        if (auto x = n.get(key)) {
-            v = x->as_number();
-            if (!(v >= lo && v <= hi)) x->fail(fmt::format("must be in [{}, {}]", lo, hi));
-        }
-    };
-    if (auto x = n.get("windage")) {
-        c.windage_W_at_1000rpm = x->as_quantity(units::dim::power, "12 W");
-        if (c.windage_W_at_1000rpm < 0) x->fail("windage loss at 1000 rpm cannot be negative");
-    }
-    if (auto x = n.get("auxiliary")) {
-        c.auxiliary_W = x->as_quantity(units::dim::power, "20 W");
-        if (c.auxiliary_W < 0) x->fail("auxiliary loss cannot be negative");
-    }
-    factor("churning_factor", c.churning_factor, 0, 100);
-    factor("bearing_drag_f0", c.bearing_drag_f0, 0, 100);
-    factor("seal_factor", c.seal_factor, 0, 100);
-    factor("mesh_friction_factor", c.mesh_friction_factor, 0.05, 20);
-    factor("viscosity_factor", c.viscosity_factor, 0.05, 20);
-    factor("heat_rejection_factor", c.heat_rejection_factor, 0.05, 20);
-    factor("cooling_per_1000rpm", c.cooling_per_1000rpm, -0.95, 50);
-}
-
 std::vector<double> load_axis(const YamlNode& n, const units::Dimension& d, const char* example) {
     std::vector<double> v;
     if (n.is_sequence()) {
@@ -786,7 +761,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     c.file = file;
     const YamlNode root = YamlNode::load_text(text, file);
     root.allow_keys({"name", "description", "oil", "materials", "shafts", "gears", "meshes", "bearings", "seals",
-                     "clutches", "housing", "thermal", "gearbox", "operating", "options", "calibration", "vehicle",
+                     "clutches", "housing", "thermal", "gearbox", "operating", "options", "mechanisms", "calibration", "vehicle",
                      "sweep"});
     c.sweep = read_sweep(root);
     auto& m = c.model;
@@ -855,7 +830,8 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
 
     load_thermal(root.at("thermal"), m.thermal);
     if (auto o = root.get("options")) load_options(*o, m.options);
-    if (auto cal = root.get("calibration")) load_calibration(*cal, m.calibration);
+    if (auto mech = root.get("mechanisms")) load_mechanism_settings(*mech, m);
+    if (auto cal = root.get("calibration")) load_calibration(*cal, m);
 
     const YamlNode op = root.at("operating");
     op.allow_keys({"speeds", "torques", "points"});

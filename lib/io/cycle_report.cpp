@@ -1,5 +1,7 @@
 #include "io/cycle_report.hpp"
 
+#include "losses/loss_mechanism.hpp"
+
 #include <chrono>
 #include <fmt/format.h>
 #include <numbers>
@@ -73,7 +75,9 @@ std::string cycle_trace_csv(const cycle::Powertrain& pt, const cycle::CycleResul
         "time_s,speed_kmh,accel_m_s2,gear,input_speed_rpm,input_torque_Nm,engine_speed_rpm,engine_torque_Nm,oil_temp_C";
     if (net.has_housing()) s += ",housing_temp_C";
     if (net.has_clutch()) s += ",clutch_temp_C";
-    s += ",P_mesh_W,P_churn_W,P_bearing_W,P_seal_W,P_clutch_W,P_aux_W,P_gearbox_W";
+    const auto& mechs = pt.thermal_model().mechanisms;
+    for (size_t k = 0; k < mechs.size(); ++k) s += fmt::format(",{}", mechs[k].column());
+    s += ",P_gearbox_W";
     if (tc) s += ",P_converter_W,converter_speed_ratio,lockup";
     if (fuel) s += ",fuel_g_s";
     s += "\n";
@@ -83,8 +87,8 @@ std::string cycle_trace_csv(const cycle::Powertrain& pt, const cycle::CycleResul
                          csv_number(t.engine_speed * kRpm), csv_number(t.engine_torque), csv_fixed(celsius(t.T_oil), 3));
         if (net.has_housing()) s += "," + csv_fixed(celsius(t.T_housing), 3);
         if (net.has_clutch()) s += "," + csv_fixed(celsius(t.T_clutch), 3);
-        s += fmt::format(",{},{},{},{},{},{},{}", csv_number(t.P_mesh), csv_number(t.P_churn), csv_number(t.P_bearing),
-                         csv_number(t.P_seal), csv_number(t.P_clutch), csv_number(t.P_aux), csv_number(t.P_gearbox));
+        for (size_t k = 0; k < mechs.size(); ++k) s += "," + csv_number(k < t.P_mech.size() ? t.P_mech[k] : 0.0);
+        s += "," + csv_number(t.P_gearbox);
         if (tc) s += fmt::format(",{},{},{}", csv_number(t.P_tc), csv_number(t.tc_speed_ratio), t.lockup ? 1 : 0);
         if (fuel) s += "," + csv_number(t.fuel_rate * 1e3);
         s += "\n";
@@ -100,11 +104,9 @@ void totals_json(Json& j, const cycle::Powertrain& pt, const cycle::CycleTotals&
     j.key("oil_temp_start_C").value(celsius(t.start[0]));
     j.key("oil_temp_end_C").value(celsius(t.end[0]));
     j.key("gearbox_loss_kJ").value(t.gearbox_loss() / 1e3);
-    j.key("mesh_kJ").value(t.E_mesh / 1e3);
-    j.key("churning_kJ").value(t.E_churn / 1e3);
-    j.key("bearings_kJ").value(t.E_bearing / 1e3);
-    j.key("seals_kJ").value(t.E_seal / 1e3);
-    j.key("clutch_drag_kJ").value(t.E_clutch / 1e3);
+    const auto& mechs = pt.thermal_model().mechanisms;
+    for (size_t k = 0; k < mechs.size(); ++k)
+        j.key(std::string(mechs[k].name()) + "_kJ").value(k < t.E_mech.size() ? t.E_mech[k] / 1e3 : 0.0);
     j.key("converter_kJ").value(t.E_tc / 1e3);
     j.key("heat_to_ambient_kJ").value(t.E_ambient / 1e3);
     j.key("gearbox_mean_efficiency").value(t.mean_efficiency());
@@ -116,10 +118,12 @@ void totals_json(Json& j, const cycle::Powertrain& pt, const cycle::CycleTotals&
 }
 
 std::string totals_text(const cycle::Powertrain& pt, const cycle::CycleTotals& t, const char* label) {
-    std::string s = fmt::format("{}: oil {:.1f} -> {:.1f} degC; gearbox loss {:.1f} kJ (mesh {:.1f}, churning {:.1f}, "
-                                "bearings {:.1f}, seals {:.1f}, clutch drag {:.1f})",
-                                label, celsius(t.start[0]), celsius(t.end[0]), t.gearbox_loss() / 1e3, t.E_mesh / 1e3,
-                                t.E_churn / 1e3, t.E_bearing / 1e3, t.E_seal / 1e3, t.E_clutch / 1e3);
+    const auto& mechs = pt.thermal_model().mechanisms;
+    std::string parts;
+    for (size_t k = 0; k < mechs.size(); ++k)
+        parts += fmt::format("{}{} {:.1f}", k ? ", " : "", mechs[k].label(), k < t.E_mech.size() ? t.E_mech[k] / 1e3 : 0.0);
+    std::string s = fmt::format("{}: oil {:.1f} -> {:.1f} degC; gearbox loss {:.1f} kJ ({})", label, celsius(t.start[0]),
+                                celsius(t.end[0]), t.gearbox_loss() / 1e3, parts);
     if (pt.torque_converter) s += fmt::format(", converter {:.1f} kJ", t.E_tc / 1e3);
     s += fmt::format("; mean gearbox efficiency {:.2f} %", 100 * t.mean_efficiency());
     if (t.has_fuel)

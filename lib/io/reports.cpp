@@ -8,6 +8,7 @@
 #include "core/errors.hpp"
 #include "core/message_text.hpp"
 #include "mesh/ehl_path.hpp"
+#include "mesh/mesh_friction_mechanism.hpp"
 #include "io/json.hpp"
 
 namespace gearloss::io {
@@ -31,8 +32,6 @@ std::string status_line(const solver::Model& m, const solver::PointResult& r) {
 
 std::string point_report(const Case& c, const solver::PointResult& r) {
     const auto& m = c.model;
-    const auto& gb = m.gearbox;
-    const auto& L = m.layout;
     std::string s;
     s += fmt::format("{} — oil {}{}\n", m.name, m.oil.name, c.ratio.empty() ? "" : ", ratio " + c.ratio);
     if (r.status == solver::PointStatus::out_of_range) {
@@ -51,44 +50,15 @@ std::string point_report(const Case& c, const solver::PointResult& r) {
     s += fmt::format("oil at that temperature: nu {:.3f} cSt, rho {:.1f} kg/m^3, eta {:.3f} mPa*s, alpha {:.3f} 1/GPa\n\n",
                      os.nu_cSt, os.rho, os.eta * 1e3, os.alpha_p * 1e9);
     const auto& Lo = r.losses;
-    s += "meshes                 H_V     mu_mZ   P [W]     Lambda   h_c [um]  h_min [um]\n";
-    for (size_t i = 0; i < gb.meshes.size(); ++i) {
-        const auto& md = L.meshes[i];
-        const double H = md.loss_factor(m.options.loss_factor);
-        if (Lo.mesh_each[i] > 0)
-            s += fmt::format("  {:<18} {:7.4f} {:7.4f} {:9.2f} {:8.3f} {:9.3f} {:11.3f}\n", gb.meshes[i].name, H,
-                             Lo.mesh_mu[i], Lo.mesh_each[i], Lo.mesh_lambda[i], Lo.mesh_hc[i] * 1e6, Lo.mesh_hmin[i] * 1e6);
-        else
-            s += fmt::format("  {:<18} {:7.4f}  {}\n", gb.meshes[i].name, H, md.loaded ? "(no power)" : "idle (no load)");
+    // One section per loss mechanism, from the mechanism (its oil-independent terms at this point).
+    const solver::PointState p = solver::prepare_point(m, r.speed_in, r.torque_in);
+    std::string totals;
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+        const auto& mech = m.mechanisms[i];
+        if (i < Lo.detail.size()) s += mech.report(m, p.input(), *p.data[i], Lo.detail[i]);
+        totals += fmt::format("{} {:.2f}, ", mech.label(), Lo.power[i]);
     }
-    s += "churning              immersion [mm]  speed [rpm]  P [W]     regime\n";
-    for (size_t g = 0; g < gb.gears.size(); ++g)
-        s += fmt::format("  {:<18} {:14.2f} {:12.1f} {:9.2f}  {}\n", gb.gears[g].spec.name, L.gear_immersion[g] * 1e3,
-                         std::abs(L.body_speed_ratio[L.body_of_gear[g]] * r.speed_in) * rpm, Lo.churn_each[g],
-                         churning::to_string(Lo.churn_regime[g]));
-    s += "bearings              type                       n [rpm]   Fr [N]    Fa [N]    P [W]\n";
-    const bool neg = r.torque_in < 0;
-    for (size_t i = 0; i < gb.bearings.size(); ++i) {
-        const double T = std::abs(r.torque_in);
-        s += fmt::format("  {:<18} {:<26} {:8.1f} {:9.1f} {:9.1f} {:8.2f}\n", gb.bearings[i].name,
-                         bearings::to_string(gb.bearings[i].spec.type), L.bearing_speed_ratio[i] * std::abs(r.speed_in) * rpm,
-                         T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]),
-                         T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]), Lo.bearing_each[i]);
-    }
-    if (!gb.seals.empty()) {
-        s += "seals                 d [mm]   P [W]\n";
-        for (size_t i = 0; i < gb.seals.size(); ++i)
-            s += fmt::format("  {:<18} {:7.1f} {:8.2f}\n", gb.seals[i].name, gb.seals[i].diameter * 1e3, Lo.seal_each[i]);
-    }
-    if (!gb.clutches.empty()) {
-        s += "clutch packs          slip [rpm]   P [W]\n";
-        for (size_t i = 0; i < gb.clutches.size(); ++i)
-            s += fmt::format("  {:<18} {:10.1f} {:8.2f}{}\n", gb.clutches[i].pack.name,
-                             L.clutch_slip_ratio[i] * std::abs(r.speed_in) * rpm, Lo.clutch_each[i],
-                             L.clutch_slip_ratio[i] == 0.0 ? "  (engaged)" : "");
-    }
-    s += fmt::format("\ntotals [W]: mesh {:.2f}, churning {:.2f}, bearings {:.2f}, seals {:.2f}, clutches {:.2f}, total {:.2f}\n",
-                     Lo.mesh, Lo.churning, Lo.bearings, Lo.seals, Lo.clutches, Lo.total());
+    s += fmt::format("\ntotals [W]: {}total {:.2f}\n", totals, Lo.total());
     if (r.has_efficiency) s += fmt::format("efficiency {:.4f} %\n", 100.0 * r.efficiency);
     if (Lo.has_lambda) s += fmt::format("minimum specific film thickness Lambda {:.3f}\n", Lo.lambda_min);
     return s;
@@ -270,7 +240,7 @@ std::string mesh_profile_csv(const Case& c, const std::string& mesh_name, double
     }
     if (k < 0) throw InputError("", 0, 0, "--mesh", "unknown mesh '" + excerpt(mesh_name) + "'; meshes: " + names);
     const solver::PointState p = solver::prepare_point(m, omega_in, torque_in);
-    const auto& ms = p.meshes[static_cast<size_t>(k)];
+    const auto& ms = mesh::mesh_friction_point(m, p).meshes[static_cast<size_t>(k)];
     const auto& md = m.layout.meshes[static_cast<size_t>(k)];
     if (ms.F_bn <= 0.0 || ms.omega_rel == 0.0)
         throw InputError("", 0, 0, "--mesh", "mesh '" + excerpt(mesh_name) + "' carries no load or does not turn at this point");

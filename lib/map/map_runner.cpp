@@ -142,18 +142,26 @@ std::vector<solver::PointResult> run_map(const solver::Model& m, const io::Opera
     return out;
 }
 
+namespace {
+// "P_churn_{}_W" with the component's name.
+std::string component_column(const std::string& pattern, const std::string& name) {
+    const size_t at = pattern.find("{}");
+    return at == std::string::npos ? pattern : pattern.substr(0, at) + name + pattern.substr(at + 2);
+}
+}  // namespace
+
 std::string csv_header(const solver::Model& m, bool detail) {
-    std::string h =
-        "speed_in_rpm,torque_in_Nm,power_in_W,ambient_temp_C,oil_temp_C,P_mesh_W,P_churn_W,P_bearing_W,P_seal_W,"
-        "P_clutch_W,P_aux_W,P_total_W,power_out_W,torque_out_Nm,efficiency,lambda_min,status";
+    std::string h = "speed_in_rpm,torque_in_Nm,power_in_W,ambient_temp_C,oil_temp_C";
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) h += fmt::format(",{}", m.mechanisms[i].column());
+    h += ",P_total_W,power_out_W,torque_out_Nm,efficiency,lambda_min,status";
     if (detail) {
-        const auto& gb = m.gearbox;
-        for (const auto& me : gb.meshes)
-            h += fmt::format(",P_mesh_{0}_W,mu_{0},lambda_{0},h_min_{0}_um", me.name);
-        for (const auto& g : gb.gears) h += fmt::format(",P_churn_{}_W", g.spec.name);
-        for (const auto& b : gb.bearings) h += fmt::format(",P_bearing_{}_W", b.name);
-        for (const auto& s : gb.seals) h += fmt::format(",P_seal_{}_W", s.name);
-        for (const auto& c : gb.clutches) h += fmt::format(",P_clutch_{}_W", c.pack.name);
+        for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+            const auto& mech = m.mechanisms[i];
+            const auto quantities = mech.quantities();
+            for (const auto& c : mech.components(m))
+                for (const auto& q : quantities)
+                    if (!q.column.empty()) h += "," + component_column(q.column, c);
+        }
         // A name can make a column of another (mesh "min": lambda_min): every column once.
         std::set<std::string_view> seen;
         for (size_t a = 0; a <= h.size();) {
@@ -170,36 +178,32 @@ std::string csv_header(const solver::Model& m, bool detail) {
 
 std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail) {
     const bool ok = solver::has_values(r.status);
+    const auto& L = r.losses;
     std::string s = fmt::format("{},{},{},{},", num(r.speed_in * rpm), num(r.torque_in), num(r.power_in),
                                 fixed(r.ambient - 273.15, 2));
     if (ok) {
-        const auto& L = r.losses;
-        s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},", fixed(r.oil_temperature - 273.15, 3), num(L.mesh),
-                         num(L.churning), num(L.bearings), num(L.seals), num(L.clutches), num(L.auxiliary), num(L.total()), num(r.power_out),
-                         num(r.torque_out), r.has_efficiency ? fmt::format("{:.6f}", r.efficiency) : std::string(),
+        s += fixed(r.oil_temperature - 273.15, 3);
+        for (double P : L.power) s += "," + num(P);
+        s += fmt::format(",{},{},{},{},{},", num(L.total()), num(r.power_out), num(r.torque_out),
+                         r.has_efficiency ? fmt::format("{:.6f}", r.efficiency) : std::string(),
                          L.has_lambda ? num(L.lambda_min) : std::string());
     } else {
-        s += ",,,,,,,,,,,,";
+        s += std::string(m.mechanisms.size() + 6, ',');
     }
     s += solver::status_text(r);
     if (detail) {
-        const auto& gb = m.gearbox;
-        const auto& L = r.losses;
-        for (size_t i = 0; i < gb.meshes.size(); ++i) {
-            if (ok && !L.mesh_each.empty())
-                s += fmt::format(",{},{},{},{}", num(L.mesh_each[i]), num(L.mesh_mu[i]),
-                                 L.mesh_each[i] > 0 ? num(L.mesh_lambda[i]) : std::string(),
-                                 L.mesh_each[i] > 0 ? num(L.mesh_hmin[i] * 1e6) : std::string());
-            else
-                s += ",,,,";
+        const bool have = ok && L.detail.size() == m.mechanisms.size();
+        for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+            const auto& mech = m.mechanisms[i];
+            const auto quantities = mech.quantities();
+            const size_t nc = mech.components(m).size();
+            for (size_t c = 0; c < nc; ++c)
+                for (size_t q = 0; q < quantities.size(); ++q) {
+                    if (quantities[q].column.empty()) continue;
+                    const double v = have ? L.detail[i].at(c, q) : std::nan("");
+                    s += "," + (std::isfinite(v) ? num(v * quantities[q].csv_scale) : std::string());
+                }
         }
-        auto list = [&](const std::vector<double>& v, size_t n) {
-            for (size_t i = 0; i < n; ++i) s += "," + (ok && i < v.size() ? num(v[i]) : std::string());
-        };
-        list(L.churn_each, gb.gears.size());
-        list(L.bearing_each, gb.bearings.size());
-        list(L.seal_each, gb.seals.size());
-        list(L.clutch_each, gb.clutches.size());
     }
     return s + "\n";
 }

@@ -1,5 +1,6 @@
 #include "solver/model.hpp"
 
+#include "losses/loss_mechanism.hpp"
 #include "solver/validate.hpp"
 
 #include <algorithm>
@@ -9,9 +10,14 @@
 namespace gearloss::solver {
 
 bool Calibration::neutral() const {
-    return windage_W_at_1000rpm == 0 && churning_factor == 1 && bearing_drag_f0 == 0 && seal_factor == 1 &&
-           mesh_friction_factor == 1 && viscosity_factor == 1 && heat_rejection_factor == 1 &&
-           cooling_per_1000rpm == 0 && auxiliary_W == 0;
+    return viscosity_factor == 1 && heat_rejection_factor == 1 && cooling_per_1000rpm == 0;
+}
+
+bool Model::calibration_neutral() const {
+    if (!calibration.neutral()) return false;
+    for (size_t i = 0; i < mechanisms.size(); ++i)
+        if (!mechanisms[i].parameters_nominal()) return false;
+    return true;
 }
 
 lubricant::OilState Model::oil_state(double T) const {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "gearbox/gearbox.hpp"
+#include "losses/mechanism_set.hpp"
 #include "lubricant/oil.hpp"
 #include "mesh/friction.hpp"
 #include "mesh/loss_factor.hpp"
@@ -28,19 +29,13 @@ struct LossOptions {
     double gear_mu_bl = 0.10, gear_mu_ehl = 0.02;  // boundary / full-film pair of the mixed model
 };
 
-// Terms a calibration (`gearloss diagnose`) adds to the nominal physics; the
-// neutral values leave the model unchanged. Each is evaluated inside every loss
-// evaluation and every thermal solve, so an added loss also heats the oil.
+// Terms of a calibration (`gearloss diagnose`) outside the loss mechanisms: the oil and
+// the heat path. (A mechanism's own calibration terms are its parameters:
+// `calibration: {churning: {factor: 1.3}}`.) The neutral values leave the model unchanged.
 struct Calibration {
-    double windage_W_at_1000rpm = 0;  // air/oil-mist drag P = C (n_in/1000 rpm)^2.9
-    double churning_factor = 1;       // scales every churning loss
-    double bearing_drag_f0 = 0;       // Palmgren no-load moment M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm] per bearing
-    double seal_factor = 1;           // scales every seal loss
-    double mesh_friction_factor = 1;  // scales mu_mZ (an X_L error)
     double viscosity_factor = 1;      // scales the kinematic viscosity at every temperature
     double heat_rejection_factor = 1; // scales the heat flow to ambient
     double cooling_per_1000rpm = 0;   // heat flow x (1 + a n_in/1000 rpm): forced convection from rotation
-    double auxiliary_W = 0;           // constant parasitic loss (pump, ...)
     bool neutral() const;
 };
 
@@ -65,6 +60,10 @@ struct Model {
     LossOptions options;
     ThermalSettings thermal;
     Calibration calibration;
+    // The loss mechanisms (registry order), with their parameters and forms.
+    losses::MechanismSet mechanisms;
+    // Whether the calibration and every mechanism's calibration parameters are neutral.
+    bool calibration_neutral() const;
     // Mean entrainment-independent data of each mesh computed once.
     std::vector<double> mesh_E_prime;  // Pa
     void finalise();  // derive layout and per-mesh constants; throws on bad topology

@@ -3,59 +3,56 @@
 #include <string>
 #include <vector>
 
-#include "bearings/skf_model.hpp"
-#include "churning/changenet_velex.hpp"
+#include <boost/container/small_vector.hpp>
+#include <memory>
+#include <string_view>
+
+#include "losses/loss_mechanism.hpp"
+#include "losses/mechanism_set.hpp"
 #include "solver/model.hpp"
 
 namespace gearloss::solver {
 
-// Everything about a point that does not depend on the oil temperature:
-// kinematics, mesh loads, bearing load terms (computed once per point).
+// Everything about a point that does not depend on the oil temperature: the input and
+// each loss mechanism's own terms (kinematics, mesh loads, bearing loads), computed once
+// per point. Copies are deep.
 struct PointState {
     double omega_in = 0, torque_in = 0, power_in = 0;
-    struct MeshState {
-        double power = 0;         // transmitted power magnitude [W]
-        double mu_prefactor = 0;  // mu = mu_prefactor * eta_mPas^-0.05 (Schlenk / ISO forms)
-        double H_V = 0;
-        mesh::LineContact contact;
-        double sigma = 0;         // roughness for Lambda [m]
-        double F_bn = 0;          // normal force of one mesh [N] (local EHL model)
-        double omega_rel = 0;     // speed of gear 0 relative to the carrier [rad/s]
-        // Film temperature rises of the local EHL nodes at the last oil temperature tried:
-        // the warm start of the next evaluation of this point's thermal solve.
-        mutable std::vector<double> ehl_film_rise;
-    };
-    std::vector<MeshState> meshes;
-    std::vector<churning::ChurningAtSpeed> churn;      // per gear
-    std::vector<bearings::SkfAtPoint> bearings;        // per bearing
-    std::vector<double> bearing_omega;
-    std::vector<double> seal_power;                     // per seal, oil independent
-    std::vector<double> clutch_slip;                    // per clutch pack [rad/s] (0 when engaged)
-    double seal_total = 0;
-    bool any_drag = false;
-    // Calibration terms fixed by the point.
-    double windage = 0;                       // W
-    std::vector<double> bearing_drag_coef;    // W per (nu_cSt)^(2/3), per bearing
+    std::vector<std::unique_ptr<losses::MechanismPoint>> data;  // per mechanism of the model
+    unsigned long long mechanisms_id = 0;                        // the MechanismSet that made `data`
     // First component whose oil-independent terms are out of the model's range at this point
     // ("bearing B1_RMS11 contact angle", "churning gear w5", ...); empty when all are valid.
     std::string fault;
+
+    PointState() = default;
+    PointState(const PointState& o);
+    PointState& operator=(const PointState& o);
+    PointState(PointState&&) noexcept = default;
+    PointState& operator=(PointState&&) noexcept = default;
+    losses::PointInput input() const { return {omega_in, torque_in, power_in}; }
 };
 
 PointState prepare_point(const Model& m, double omega_in, double torque_in);
 // Same, reusing the storage of `p` (no allocation once warm).
 void prepare_point(const Model& m, double omega_in, double torque_in, PointState& p);
 
+// The loss of every mechanism of the model, in the order of m.mechanisms.
 struct LossBreakdown {
-    double mesh = 0, churning = 0, bearings = 0, seals = 0, auxiliary = 0;  // churning includes windage
-    double clutches = 0;  // drag of open wet clutch packs
-    double windage = 0;   // part of `churning` from the calibration's windage term
-    double total() const { return mesh + churning + bearings + seals + clutches + auxiliary; }
-    // Per component (filled only when detail is requested).
-    std::vector<double> mesh_each, mesh_mu, mesh_lambda, mesh_hmin, mesh_hc;
-    std::vector<double> churn_each, bearing_each, seal_each, clutch_each;
-    std::vector<churning::Regime> churn_regime;
+    boost::container::small_vector<double, 8> power;  // W, per mechanism
+    std::vector<losses::MechanismDetail> detail;      // per mechanism (only when detail is requested)
     double lambda_min = 0;   // over loaded meshes; NaN-free: 0 when no loaded mesh
     bool has_lambda = false;
+    double total() const {
+        double t = 0.0;
+        for (double P : power) t += P;
+        return t;
+    }
+    // The loss of the mechanism `name` (0 when the model has none of that name).
+    double of(const Model& m, std::string_view name) const;
+    // The per-component detail of mechanism `name` (detail evaluations only).
+    const losses::MechanismDetail& detail_of(const Model& m, std::string_view name) const;
+    // The part of the loss whose heat goes straight into the oil (LossMechanism::heats_oil).
+    double into_oil(const Model& m) const;
 };
 
 // Losses at oil state s. `film` computes the pitch-point films and lambda_min;

@@ -1,5 +1,7 @@
 #include "solver/validate.hpp"
 
+#include "losses/loss_mechanism.hpp"
+
 #include "core/message_text.hpp"
 
 #include <cmath>
@@ -148,12 +150,6 @@ void validate_thermal(const Model& m, std::vector<Issue>& out) {
 
 void validate_calibration(const Calibration& k, std::vector<Issue>& out) {
     Collector c{out, "calibration", ""};
-    c.range("windage", k.windage_W_at_1000rpm, 0.0, 1e9, "windage loss at 1000 rpm [W]");
-    c.range("auxiliary", k.auxiliary_W, 0.0, 1e9, "auxiliary loss [W]");
-    c.range("churning_factor", k.churning_factor, 0.0, 100.0, "churning factor");
-    c.range("bearing_drag_f0", k.bearing_drag_f0, 0.0, 100.0, "bearing drag f0");
-    c.range("seal_factor", k.seal_factor, 0.0, 100.0, "seal factor");
-    c.range("mesh_friction_factor", k.mesh_friction_factor, 0.05, 20.0, "mesh friction factor");
     c.range("viscosity_factor", k.viscosity_factor, 0.05, 20.0, "viscosity factor");
     c.range("heat_rejection_factor", k.heat_rejection_factor, 0.05, 20.0, "heat rejection factor");
     c.range("cooling_per_1000rpm", k.cooling_per_1000rpm, -0.95, 50.0, "cooling per 1000 rpm");
@@ -370,6 +366,7 @@ std::vector<Issue> validate(const Model& m) {
     validate_oil(m.oil, out);
     validate_thermal(m, out);
     validate_calibration(m.calibration, out);
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) m.mechanisms[i].validate(m, out);
     {
         Collector c{out, "options", ""};
         if (!(m.options.gear_mu_bl > 0 && m.options.gear_mu_bl < 1 && m.options.gear_mu_ehl >= 0 &&

@@ -65,9 +65,12 @@ inline void check_result(const gearloss::io::Case& c, const gearloss::solver::Po
     check_text("point report", gearloss::io::point_report(c, r));
     if (!gearloss::solver::has_values(r.status)) return;
     const auto& L = r.losses;
-    for (double v : {L.mesh, L.churning, L.bearings, L.seals, L.auxiliary, r.oil_temperature, r.power_out, r.torque_out})
+    if (L.power.size() != c.model.mechanisms.size()) finding("a loss per mechanism missing: " + row);
+    for (double v : L.power)  // every mechanism's loss
         if (!std::isfinite(v)) finding("non-finite result: " + row);
-    for (double v : {L.mesh, L.churning, L.bearings, L.seals, L.clutches, L.auxiliary})
+    for (double v : {r.oil_temperature, r.power_out, r.torque_out})
+        if (!std::isfinite(v)) finding("non-finite result: " + row);
+    for (double v : L.power)
         if (v < 0) finding("negative loss: " + row);
     if (std::abs(r.power_out - (r.power_in - L.total())) > 1e-9 * std::max(1.0, std::abs(r.power_in)))
         finding("energy balance broken: " + row);
@@ -90,12 +93,16 @@ inline void check_cycle(const std::string& text, const gearloss::io::Case& c) {
     }
     const double T0 = 263.15;
     const auto r = gearloss::cycle::simulate_cycle(pt, dc, gearloss::cycle::uniform(T0), T0, true);
-    for (const auto& t : r.trace)
+    for (const auto& t : r.trace) {
         for (double x : {t.T_oil, t.T_housing, t.T_clutch, t.P_gearbox, t.P_tc, t.input_torque, t.engine_torque, t.fuel_rate})
             if (!std::isfinite(x)) finding(fmt::format("non-finite cycle trace value at t = {}", t.time));
+        for (double x : t.P_mech)
+            if (!(x >= 0)) finding(fmt::format("negative or non-finite mechanism loss at t = {}", t.time));
+    }
     const auto& k = r.totals;
-    for (double x : {k.E_mesh, k.E_churn, k.E_bearing, k.E_seal, k.E_clutch, k.E_tc})
+    for (double x : k.E_mech)
         if (!(x >= 0)) finding("negative or non-finite cycle loss energy");
+    if (!(k.E_tc >= 0)) finding("negative or non-finite converter loss energy");
     const double in = k.gearbox_loss() + k.E_tc + k.E_heater, out = k.E_ambient + k.stored_end - k.stored_start;
     if (std::abs(in - out) > 1e-6 * std::max(1.0, std::abs(in) + std::abs(k.E_ambient)))
         finding(fmt::format("cycle energy balance broken: {} vs {}", in, out));

@@ -1,0 +1,257 @@
+#include "mesh/mesh_friction_mechanism.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <stdexcept>
+
+#include "losses/registry.hpp"
+#include "mesh/ehl_path.hpp"
+#include "solver/model.hpp"
+#include "solver/operating_point.hpp"
+
+namespace gearloss::mesh {
+namespace {
+
+constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
+
+struct NamedForm {
+    const char* name;
+    int value;
+};
+constexpr NamedForm kFriction[] = {{"schlenk", int(FrictionModel::schlenk)},
+                                   {"iso_6336_20", int(FrictionModel::iso_6336_20)},
+                                   {"fernandes_mixed", int(FrictionModel::fernandes_mixed)},
+                                   {"ehl_local", int(FrictionModel::ehl_local)}};
+constexpr NamedForm kLossFactor[] = {{"wimmer", int(LossFactorModel::wimmer)},
+                                     {"ohlendorf", int(LossFactorModel::ohlendorf)},
+                                     {"buckingham", int(LossFactorModel::buckingham)}};
+constexpr NamedForm kFilm[] = {{"gupta", int(ThermalFilmCorrection::gupta)},
+                               {"simplified", int(ThermalFilmCorrection::simplified)},
+                               {"none", int(ThermalFilmCorrection::none)}};
+
+template <size_t N>
+std::vector<std::string> names(const NamedForm (&t)[N]) {
+    std::vector<std::string> v;
+    for (const auto& f : t) v.emplace_back(f.name);
+    return v;
+}
+template <size_t N>
+std::string name_of(const NamedForm (&t)[N], int value) {
+    for (const auto& f : t)
+        if (f.value == value) return f.name;
+    return "?";
+}
+template <size_t N>
+int value_of(const NamedForm (&t)[N], std::string_view axis, std::string_view name) {
+    for (const auto& f : t)
+        if (name == f.name) return f.value;
+    throw std::invalid_argument(fmt::format("mesh friction has no {} form '{}'", axis, name));
+}
+
+class MeshFriction final : public losses::LossMechanism {
+public:
+    enum : size_t { kFrictionFactor };
+    std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<MeshFriction>(*this); }
+    std::string_view name() const override { return "mesh"; }
+    std::string_view label() const override { return "mesh"; }
+    std::string_view column() const override { return "P_mesh_W"; }
+
+    std::vector<std::string> components(const solver::Model& m) const override {
+        std::vector<std::string> v;
+        for (const auto& me : m.gearbox.meshes) v.push_back(me.name);
+        return v;
+    }
+    std::vector<losses::DetailQuantity> quantities() const override {
+        return {{"P_mesh_{}_W", 1.0}, {"mu_{}", 1.0}, {"lambda_{}", 1.0}, {"h_min_{}_um", 1e6}, {"", 1e6}};
+    }
+    std::vector<losses::Parameter> parameters() const override {
+        return {{"friction_factor", "scales mu_mZ (an error of X_L)", nullptr, "1.1", 1.0, 0.05, 20.0, true}};
+    }
+    std::vector<losses::FormAxis> forms(const solver::Model&) const override {
+        return {{"friction", names(kFriction)}, {"loss_factor", names(kLossFactor)}, {"film_correction", names(kFilm)}};
+    }
+    std::string form(const solver::Model& m, std::string_view axis) const override {
+        if (axis == "friction") return name_of(kFriction, int(m.options.friction));
+        if (axis == "loss_factor") return name_of(kLossFactor, int(m.options.loss_factor));
+        if (axis == "film_correction") return name_of(kFilm, int(m.options.film_correction));
+        return LossMechanism::form(m, axis);
+    }
+    void set_form(solver::Model& m, std::string_view axis, std::string_view f) override {
+        if (axis == "friction") m.options.friction = FrictionModel(value_of(kFriction, axis, f));
+        else if (axis == "loss_factor") m.options.loss_factor = LossFactorModel(value_of(kLossFactor, axis, f));
+        else if (axis == "film_correction") m.options.film_correction = ThermalFilmCorrection(value_of(kFilm, axis, f));
+        else LossMechanism::set_form(m, axis, f);
+    }
+
+    std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<MeshFrictionPoint>(); }
+    void prepare(const solver::Model& m, const losses::PointInput& in, losses::MechanismPoint& out) const override;
+    std::string point_fault(const solver::Model& m, const losses::MechanismPoint& pt) const override;
+    double power(const solver::Model& m, const losses::MechanismPoint& pt, losses::Evaluation& e,
+                 losses::MechanismDetail* d) const override;
+    std::string loss_fault(const solver::Model& m, const losses::MechanismPoint& pt,
+                           const losses::MechanismDetail& d) const override;
+    std::string report(const solver::Model& m, const losses::PointInput& in, const losses::MechanismPoint& pt,
+                       const losses::MechanismDetail& d) const override;
+};
+
+void MeshFriction::prepare(const solver::Model& m, const losses::PointInput& in, losses::MechanismPoint& out) const {
+    const auto& gb = m.gearbox;
+    const auto& L = m.layout;
+    const auto& opt = m.options;
+    auto& meshes = static_cast<MeshFrictionPoint&>(out).meshes;
+    meshes.resize(gb.meshes.size());
+    for (size_t i = 0; i < gb.meshes.size(); ++i) {
+        const auto& md = L.meshes[i];
+        auto& ms = meshes[i];
+        ms.ehl_film_rise.clear();  // no warm start carried over from another point
+        ms.power = ms.mu_prefactor = ms.F_bn = ms.omega_rel = 0.0;
+        ms.contact = LineContact{};
+        const auto& g0 = gb.gears[gb.meshes[i].gear[0]].spec;
+        const auto& g1 = gb.gears[gb.meshes[i].gear[1]].spec;
+        ms.H_V = md.loss_factor(opt.loss_factor);
+        if (opt.lambda_roughness == solver::LambdaRoughness::average_Ra) {
+            ms.sigma = 0.5 * (g0.Ra + g1.Ra);
+        } else {
+            const double q0 = g0.Rq ? *g0.Rq : 1.25 * g0.Ra, q1 = g1.Rq ? *g1.Rq : 1.25 * g1.Ra;
+            ms.sigma = std::sqrt(q0 * q0 + q1 * q1);
+        }
+        // Speeds relative to the carrier (the housing for an ordinary mesh).
+        const double w0 = md.relative_speed * in.omega_in;
+        const double vt = std::abs(w0) * 0.5 * md.geom.dw[0];
+        const double v_sum = 2.0 * vt * std::sin(md.geom.alpha_wt);
+        ms.contact.u_e = 0.5 * v_sum;
+        ms.contact.R = md.geom.rho_redC;
+        ms.contact.E_prime = m.mesh_E_prime[i];
+        ms.contact.SRR = 0.0;  // pitch point
+        if (!md.loaded || !opt.mesh || in.torque_in == 0.0 || w0 == 0.0) continue;
+        // Mesh loss on the rolling power (relative to the carrier): P_VZP = mu H_V |P_roll|.
+        ms.power = std::abs(in.power_in) * md.rolling_per_W;
+        // Line load of one mesh (load shared by the planets of a set).
+        const double F_wt = std::abs(md.force_per_Nm * in.torque_in) / md.planets;
+        const double F_bt = F_wt / std::cos(md.geom.alpha_wt);
+        const double w_Nmm = F_bt / (md.geom.b_eff * 1e3);
+        const double rho_mm = md.geom.rho_redC * 1e3;
+        const double Ra_um = 0.5 * (g0.Ra + g1.Ra) * 1e6;
+        ms.contact.w_line = F_bt / std::cos(md.geom.beta_b) / md.L_min;
+        ms.F_bn = F_bt / std::cos(md.geom.beta_b);
+        ms.omega_rel = w0;
+        switch (opt.friction) {
+            case FrictionModel::ehl_local:
+            case FrictionModel::schlenk:
+            case FrictionModel::fernandes_mixed:
+                ms.mu_prefactor = mean_friction_schlenk(w_Nmm, v_sum, rho_mm, 1.0, Ra_um, m.oil.X_L);
+                break;
+            case FrictionModel::iso_6336_20: {
+                // ISO/TS 6336-20 caps the pitch-line speed at 50 m/s in v_sum.
+                const double v_sum_c = 2.0 * std::min(vt, 50.0) * std::sin(md.geom.alpha_wt);
+                ms.mu_prefactor = mean_friction_iso_6336_20(w_Nmm, v_sum_c, rho_mm, 1.0, Ra_um, m.oil.X_L);
+                break;
+            }
+        }
+    }
+}
+
+std::string MeshFriction::point_fault(const solver::Model& m, const losses::MechanismPoint& pt) const {
+    const auto& meshes = static_cast<const MeshFrictionPoint&>(pt).meshes;
+    auto finite = [](double v) { return std::isfinite(v); };
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        const auto& ms = meshes[i];
+        const std::string name = "mesh " + m.gearbox.meshes[i].name;
+        if (!finite(ms.power) || !finite(ms.F_bn) || !finite(ms.contact.w_line)) return name + " load";
+        if (!finite(ms.contact.u_e) || !finite(ms.omega_rel)) return name + " speed";
+        if (!finite(ms.mu_prefactor)) return name + " friction coefficient";
+        if (!finite(ms.H_V) || !finite(ms.sigma)) return name + " loss factor";
+    }
+    return {};
+}
+
+double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint& pt, losses::Evaluation& e,
+                           losses::MechanismDetail* d) const {
+    const auto& opt = m.options;
+    const auto& s = e.oil;
+    const auto& meshes = static_cast<const MeshFrictionPoint&>(pt).meshes;
+    const double factor = param(kFrictionFactor);
+    const double eta_factor = std::exp(-0.05 * std::log(s.eta * 1e3));  // eta [mPa s]^-0.05
+    const bool need_film = d || e.want_film || opt.friction == FrictionModel::fernandes_mixed;
+    if (d) d->reset(meshes.size(), kMeshQuantities);
+    double total = 0.0;
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        const auto& ms = meshes[i];
+        if (ms.power == 0.0) continue;
+        double mu = ms.mu_prefactor * eta_factor * factor;
+        if (need_film) {
+            const Film f = line_contact_film(ms.contact, s.eta, s.alpha_p, s.beta_T, s.k, opt.film_correction);
+            const double lambda = f.h_c / ms.sigma;
+            if (opt.friction == FrictionModel::fernandes_mixed) {
+                const double xi = boundary_share_doleschel(lambda);
+                mu = (xi * opt.gear_mu_bl + (1.0 - xi) * opt.gear_mu_ehl) * factor;
+            }
+            e.add_lambda(lambda);
+            if (d) {
+                d->at(i, kMeshLambda) = lambda;
+                d->at(i, kMeshHmin) = f.h_min;
+                d->at(i, kMeshHc) = f.h_c;
+            }
+        }
+        double loss = ms.power * mu * ms.H_V;
+        if (opt.friction == FrictionModel::ehl_local) {
+            // Local thermal EHL along the path of contact at the oil temperature.
+            const auto& md = m.layout.meshes[i];
+            loss = ehl_mesh_loss(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime, ms.sigma,
+                                 s.T, m.oil, m.oil.traction, &ms.ehl_film_rise) *
+                   factor;
+            mu = ms.power * ms.H_V > 0 ? loss / (ms.power * ms.H_V) : 0.0;  // equivalent mean friction
+        }
+        total += loss;
+        if (d) {
+            d->at(i, kMeshPower) = loss;
+            d->at(i, kMeshMu) = mu;
+        }
+    }
+    if (d)  // films of meshes without power have no value
+        for (size_t i = 0; i < meshes.size(); ++i)
+            if (!(d->at(i, kMeshPower) > 0)) d->at(i, kMeshLambda) = d->at(i, kMeshHmin) = kNoValue;
+    return total;
+}
+
+std::string MeshFriction::loss_fault(const solver::Model& m, const losses::MechanismPoint& pt,
+                                     const losses::MechanismDetail& d) const {
+    const auto& meshes = static_cast<const MeshFrictionPoint&>(pt).meshes;
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        const double P = d.at(i, kMeshPower);
+        if (!(std::isfinite(P) && P >= 0)) return "mesh " + m.gearbox.meshes[i].name + " friction loss";
+        if (meshes[i].power > 0 && !std::isfinite(d.at(i, kMeshLambda)) && P > 0)
+            return "mesh " + m.gearbox.meshes[i].name + " film thickness";
+    }
+    return {};
+}
+
+std::string MeshFriction::report(const solver::Model& m, const losses::PointInput&, const losses::MechanismPoint&,
+                                 const losses::MechanismDetail& d) const {
+    const auto& gb = m.gearbox;
+    std::string s = "meshes                 H_V     mu_mZ   P [W]     Lambda   h_c [um]  h_min [um]\n";
+    for (size_t i = 0; i < gb.meshes.size(); ++i) {
+        const auto& md = m.layout.meshes[i];
+        const double H = md.loss_factor(m.options.loss_factor);
+        if (d.at(i, kMeshPower) > 0)
+            s += fmt::format("  {:<18} {:7.4f} {:7.4f} {:9.2f} {:8.3f} {:9.3f} {:11.3f}\n", gb.meshes[i].name, H,
+                             d.at(i, kMeshMu), d.at(i, kMeshPower), d.at(i, kMeshLambda), d.at(i, kMeshHc) * 1e6,
+                             d.at(i, kMeshHmin) * 1e6);
+        else
+            s += fmt::format("  {:<18} {:7.4f}  {}\n", gb.meshes[i].name, H, md.loaded ? "(no power)" : "idle (no load)");
+    }
+    return s;
+}
+
+}  // namespace
+
+const MeshFrictionPoint& mesh_friction_point(const solver::Model& m, const solver::PointState& p) {
+    return static_cast<const MeshFrictionPoint&>(*p.data.at(m.mechanisms.index("mesh")));
+}
+
+}  // namespace gearloss::mesh
+
+namespace gearloss::losses {
+std::unique_ptr<LossMechanism> create_mesh_friction() { return make_mechanism<mesh::MeshFriction>(); }
+}  // namespace gearloss::losses

@@ -1,0 +1,215 @@
+// Contract tests applied to every registered loss mechanism (Ceres-style: one interface,
+// every implementation held to it), and the YAML blocks that set their parameters and forms.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+#include <set>
+
+#include "core/errors.hpp"
+#include "io/config.hpp"
+#include "losses/loss_mechanism.hpp"
+#include "losses/registry.hpp"
+#include "map/map_runner.hpp"
+#include "solver/operating_point.hpp"
+#include "solver/validate.hpp"
+#include "test_support.hpp"
+
+using namespace gearloss;
+
+
+namespace {
+constexpr double kRpm = std::numbers::pi / 30;
+const char* kCases[] = {"transfer-box.yaml",   "fzg-c40-paor.yaml",    "spur-seed000.yaml",
+                        "manual-6speed.yaml",  "automatic-6speed.yaml", "planetary-test.yaml",
+                        "wind-turbine-2.5MW.yaml"};
+io::Case load(const char* f) { return io::load_case(test_support::source_path(std::string("configs/") + f)); }
+}  // namespace
+
+TEST_CASE("mechanisms: the registry creates each mechanism by its name, once", "[mechanisms]") {
+    std::set<std::string> names;
+    for (const auto& r : losses::registry()) {
+        CHECK(names.insert(r.name).second);
+        const auto m = losses::create(r.name);
+        CHECK(m->name() == r.name);
+        CHECK(m->column().starts_with("P_"));
+        CHECK(m->column().ends_with("_W"));
+    }
+    CHECK(names.count("mesh") == 1);
+    CHECK(names.count("churning") == 1);
+    CHECK(names.count("bearings") == 1);
+    CHECK_THROWS_WITH(losses::create("no_such"), Catch::Contains("registered: mesh, churning"));
+    // The default set of a model is the registry, in its order (the order of the CSV columns).
+    const losses::MechanismSet set;
+    REQUIRE(set.size() == losses::registry().size());
+    for (size_t i = 0; i < set.size(); ++i) CHECK(set[i].name() == losses::registry()[i].name);
+}
+
+TEST_CASE("mechanisms: every mechanism keeps its contract on every shipped case", "[mechanisms]") {
+    for (const char* f : kCases) {
+        const io::Case c = load(f);
+        const auto& m = c.model;
+        for (double n : {0.0, 300.0, 1500.0})
+            for (double T : {-120.0, 0.0, 80.0}) {
+                const auto p = solver::prepare_point(m, n * kRpm, T);
+                REQUIRE(p.fault.empty());
+                for (double T_oil : {313.15, 353.15, 383.15}) {
+                    const auto s = m.oil_state(T_oil);
+                    const auto full = solver::evaluate_losses(m, p, s, true, true);
+                    const auto hot = solver::evaluate_losses(m, p, s, false, false);
+                    // The hot path and the detailed evaluation agree exactly; so does total_loss.
+                    // (The local EHL model warm-starts its film temperatures from the previous
+                    // evaluation of the point: equal within its iteration tolerance.)
+                    const double tol = m.options.friction == mesh::FrictionModel::ehl_local ? 1e-3 : 0.0;
+                    CHECK(solver::total_loss(m, p, T_oil) == Approx(full.total()).epsilon(tol));
+                    for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+                        const auto& mech = m.mechanisms[i];
+                        INFO(f << " " << mech.name() << " n " << n << " T " << T << " T_oil " << T_oil);
+                        CHECK(hot.power[i] == Approx(full.power[i]).epsilon(tol));
+                        CHECK(std::isfinite(full.power[i]));
+                        CHECK(full.power[i] >= 0);
+                        // Detail: a value per component and quantity, the losses summing to the total.
+                        const auto names = mech.components(m);
+                        const auto& d = full.detail[i];
+                        CHECK(d.values.size() == names.size() * mech.quantities().size());
+                        if (!names.empty()) {
+                            double sum = 0;
+                            for (size_t k = 0; k < names.size(); ++k) sum += d.at(k, 0);
+                            CHECK(sum == Approx(full.power[i]).epsilon(1e-12).margin(1e-12));
+                        }
+                        // At rest nothing turns: no mechanism loses power.
+                        if (n == 0) CHECK(full.power[i] == 0);
+                        CHECK(mech.loss_fault(m, *p.data[i], d).empty());
+                        CHECK(mech.point_fault(m, *p.data[i]).empty());
+                    }
+                }
+                // A copy of the point state evaluates the same (deep copy of each mechanism's terms).
+                const solver::PointState q = p;
+                CHECK(solver::total_loss(m, q, 353.15) == solver::total_loss(m, p, 353.15));
+            }
+    }
+}
+
+TEST_CASE("mechanisms: parameters have bounds that hold their nominal value and are validated", "[mechanisms]") {
+    const io::Case c = load("transfer-box.yaml");
+    for (const auto& r : losses::registry()) {
+        auto mech = losses::create(r.name);
+        INFO(r.name);
+        CHECK(mech->parameters_nominal());
+        for (const auto& p : mech->parameters()) {
+            INFO(p.name);
+            CHECK(p.lower <= p.nominal);
+            CHECK(p.nominal <= p.upper);
+            CHECK(mech->parameter(p.name) == p.nominal);
+            mech->set_parameter(p.name, p.upper * 2 + 1);
+            std::vector<solver::Issue> issues;
+            mech->validate(c.model, issues);
+            REQUIRE(issues.size() == 1);
+            CHECK(issues[0].key == r.name + "." + p.name);
+            mech->set_parameter(p.name, p.nominal);
+            CHECK(mech->parameters_nominal());
+        }
+        CHECK_THROWS_AS(mech->set_parameter("no_such", 1), std::invalid_argument);
+        // A clone carries the parameter values.
+        const auto ps = mech->parameters();
+        if (!ps.empty()) {
+            mech->set_parameter(ps[0].name, ps[0].upper);
+            CHECK(mech->clone()->parameter(ps[0].name) == ps[0].upper);
+        }
+    }
+}
+
+TEST_CASE("mechanisms: every alternative form is selectable by name and changes nothing else", "[mechanisms]") {
+    io::Case c = load("transfer-box.yaml");
+    for (size_t i = 0; i < c.model.mechanisms.size(); ++i) {
+        auto& mech = c.model.mechanisms[i];
+        for (const auto& axis : mech.forms(c.model)) {
+            INFO(mech.name() << " " << axis.axis);
+            REQUIRE(!axis.forms.empty());
+            const std::string before = mech.form(c.model, axis.axis);
+            for (const auto& f : axis.forms) {
+                mech.set_form(c.model, axis.axis, f);
+                CHECK(mech.form(c.model, axis.axis) == f);
+                const auto r = solver::solve_point(c.model, 1500 * kRpm, 200);
+                CHECK(solver::has_values(r.status));
+            }
+            mech.set_form(c.model, axis.axis, before);
+            CHECK_THROWS_AS(mech.set_form(c.model, axis.axis, "no_such_form"), std::invalid_argument);
+        }
+    }
+}
+
+TEST_CASE("mechanisms: calibration per mechanism, the earlier flat keys and the mechanisms block", "[mechanisms]") {
+    const std::string base = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
+    auto solve = [](const std::string& text) {
+        test_support::TempConfig cfg(text);
+        const auto c = io::load_case(cfg.path);
+        return solver::solve_point(c.model, 1500 * kRpm, 200, true);
+    };
+    const auto nominal = solve(base);
+    const auto nested = solve(base + "calibration:\n  churning: {factor: 1.5}\n  seals: {factor: 2}\n"
+                                     "  auxiliary: {power: 20 W}\n  mesh: {friction_factor: 1.1}\n");
+    const auto flat = solve(base + "calibration:\n  churning_factor: 1.5\n  seal_factor: 2\n  auxiliary: 20 W\n"
+                                   "  mesh_friction_factor: 1.1\n");
+    CHECK(nested.losses.total() == flat.losses.total());
+    CHECK(nested.oil_temperature == flat.oil_temperature);
+    // The calibration heats the oil: hotter than the nominal case, and 20 W of auxiliary loss in it.
+    CHECK(nested.oil_temperature > nominal.oil_temperature);
+    const size_t aux = losses::MechanismSet{}.index("auxiliary");
+    CHECK(nested.losses.power[aux] == 20.0);
+    // Seals do not depend on the oil: exactly twice the nominal.
+    const size_t seals = losses::MechanismSet{}.index("seals");
+    CHECK(nested.losses.power[seals] == Approx(2 * nominal.losses.power[seals]).epsilon(1e-14));
+
+    // A mechanism's form chosen in the mechanisms block equals the options key.
+    const auto by_block = solve(base + "mechanisms:\n  mesh: {friction: iso_6336_20}\n");
+    const auto by_option = solve(test_support::replace_once(base, "mesh_friction: schlenk", "mesh_friction: iso_6336_20"));
+    CHECK(by_block.losses.total() == by_option.losses.total());
+    CHECK(by_block.losses.total() != nominal.losses.total());
+
+    // Errors name the file, line and key.
+    auto error = [&](const std::string& text) -> InputError {
+        test_support::TempConfig cfg(text);
+        try {
+            (void)io::load_case(cfg.path);
+        } catch (const InputError& e) {
+            return e;
+        }
+        FAIL("no error");
+        return InputError("", 0, 0, "", "");
+    };
+    const std::string bad1 = base + "calibration:\n  churning: {factor: 500}\n";
+    auto e = error(bad1);
+    CHECK(e.line == test_support::line_of(bad1, "  churning: {factor: 500}"));
+    CHECK_THAT(e.message, Catch::Contains("must be in [0, 100]"));
+    e = error(base + "calibration:\n  gearing: {factor: 2}\n");
+    CHECK_THAT(e.message, Catch::Contains("unknown calibration key 'gearing'"));
+    e = error(base + "mechanisms:\n  mesh: {friction: coulomb}\n");
+    CHECK_THAT(e.message, Catch::Contains("'coulomb' is not one of: schlenk, iso_6336_20, fernandes_mixed, ehl_local"));
+    e = error(base + "mechanisms:\n  mesh: {friction_factor: 1.2}\n");
+    CHECK_THAT(e.message, Catch::Contains("belongs under 'calibration:'"));
+    e = error(base + "mechanisms:\n  tyres: {form: x}\n");
+    CHECK_THAT(e.message, Catch::Contains("no loss mechanism 'tyres'"));
+}
+
+TEST_CASE("mechanisms: the CSV takes its columns from the mechanisms", "[mechanisms]") {
+    const io::Case c = load("automatic-6speed.yaml");
+    const std::string h = map::csv_header(c.model, true);
+    // One total column per mechanism, in registry order, before P_total_W.
+    size_t at = h.find("oil_temp_C,");
+    for (const auto& r : losses::registry()) {
+        const auto col = std::string(losses::create(r.name)->column());
+        const size_t next = h.find("," + col + ",", at);
+        INFO(col);
+        REQUIRE(next != std::string::npos);
+        at = next;
+    }
+    CHECK(h.find(",P_total_W,", at) != std::string::npos);
+    // A row has as many cells as the header, whether the point has values or not.
+    auto cells = [](const std::string& s) { return std::count(s.begin(), s.end(), ','); };
+    const auto ok = solver::solve_point(c.model, 1500 * kRpm, 100, true);
+    solver::PointResult bad = ok;
+    bad.status = solver::PointStatus::no_equilibrium;
+    CHECK(cells(map::csv_row(c.model, ok, true)) == cells(h));
+    CHECK(cells(map::csv_row(c.model, bad, true)) == cells(h));
+    CHECK(cells(map::csv_row(c.model, bad, false)) == cells(map::csv_header(c.model, false)));
+}
