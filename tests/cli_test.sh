@@ -226,5 +226,71 @@ check "plot diagnose" test -s "$tmp/diag.png"
 plot cycle "$tmp/pm.csv" "$tmp/wrong.png"
 check "plot wrong file kind fails" test $? -ne 0
 
+# Grid overrides (--speed/--torque), one helper for map, compare and synth. A case whose
+# operating block is a point list becomes the grid of its points' speeds x torques with the
+# given axis replaced, as map has always done: compare and synth apply it the same way (compare
+# ignored it and synth refused it). The case and its oil are copied into the temporary directory.
+mkdir -p "$tmp/pl/oils"
+cp "$src/configs/oils/75W90-A.yaml" "$tmp/pl/oils/75W90-A.yaml"
+awk '/^operating:/ { print "operating:"; print "  points: [[600 rpm, 150 N*m], [800 rpm, 250 N*m]]"; skip = 1; next }
+     skip && /^  / { next } { skip = 0; print }' "$src/configs/transfer-box.yaml" > "$tmp/pl/case.yaml"
+check "point-list case written" grep -q '^  points: \[\[600 rpm' "$tmp/pl/case.yaml"
+pl_oils=(--oil "$tmp/pl/oils/75W90-A.yaml" --oil "$src/configs/oils/75W140-A.yaml")
+"$bin" map "$tmp/pl/case.yaml" --speed 600,700rpm --oil-temp 70degC -o "$tmp/pl/map.csv"
+check "map --speed on a point list: exit 0" test $? -eq 0
+check "map --speed on a point list: 2 speeds x 2 torques" test "$(wc -l < "$tmp/pl/map.csv")" -eq 5
+"$bin" compare "$tmp/pl/case.yaml" "${pl_oils[@]}" --speed 600,700rpm --oil-temp 70degC -o "$tmp/pl/cmp.csv"
+check "compare --speed on a point list: exit 0" test $? -eq 0
+check "compare --speed on a point list: the points of map" \
+    cmp -s <(cut -d, -f1,2 "$tmp/pl/map.csv") <(cut -d, -f1,2 "$tmp/pl/cmp.csv")
+check "compare --speed on a point list: 700 rpm applied" grep -q '^700,' "$tmp/pl/cmp.csv"
+"$bin" compare "$tmp/pl/case.yaml" "${pl_oils[@]}" --torque 200Nm --oil-temp 70degC -o "$tmp/pl/cmp-t.csv"
+check "compare --torque on a point list: 2 speeds x 200 N*m" \
+    test "$(cut -d, -f1,2 "$tmp/pl/cmp-t.csv" | tail -n +2 | tr '\n' ' ')" = "600,200 800,200 "
+"$bin" synth "$tmp/pl/case.yaml" --speed 600,700rpm --seed 2 -o "$tmp/pl/rec.csv"
+check "synth --speed on a point list: exit 0" test $? -eq 0
+check "synth --speed on a point list: the points of map" \
+    cmp -s <(cut -d, -f1,2 "$tmp/pl/map.csv" | tail -n +2) <(cut -d, -f1,2 "$tmp/pl/rec.csv" | tail -n +2 | sed 's/\.0*,/,/; s/\.0*$//')
+# An override value that cannot apply is an error naming the option (exit 2, no file), never
+# ignored: out of range on a point list (compare used to run the case's points), or empty.
+cannot_apply() {  # cannot_apply NAME OPTION COMMAND...: exit 2, "OPTION:" on stderr, no output file
+    local name=$1 option=$2
+    shift 2
+    "$@" -o "$tmp/pl/none.csv" > /dev/null 2> "$tmp/pl/err.txt"
+    check "$name: exit 2" test $? -eq 2
+    check "$name: names $option" grep -q -- "$option: " "$tmp/pl/err.txt"
+    check "$name: no output file" test ! -e "$tmp/pl/none.csv"
+}
+cannot_apply "compare --speed 1e9rpm on a point list" --speed "$bin" compare "$tmp/pl/case.yaml" "${pl_oils[@]}" --speed 1e9rpm
+cannot_apply "synth --torque 1e9Nm on a point list" --torque "$bin" synth "$tmp/pl/case.yaml" --torque 1e9Nm
+cannot_apply "map --speed ''" --speed "$bin" map "$src/configs/transfer-box.yaml" --speed ''
+cannot_apply "compare --torque ''" --torque "$bin" compare "$src/configs/transfer-box.yaml" "${pl_oils[@]}" --torque ''
+cannot_apply "synth --speed ''" --speed "$bin" synth "$src/configs/transfer-box.yaml" --speed ''
+cannot_apply "map --format vecto --torque ''" --torque "$bin" map "$src/configs/manual-6speed.yaml" --format vecto --oil-temp 70degC --torque ''
+
+# check --oil-temp reports the oil at that temperature (text and JSON); without it, nothing more.
+"$bin" check "$src/configs/transfer-box.yaml" --oil-temp 70degC > "$tmp/check70.txt"
+check "check --oil-temp: exit 0" test $? -eq 0
+check "check --oil-temp: oil line" grep -qE '^    at 70\.0 degC \(--oil-temp\): nu = [0-9.]+ cSt, rho = [0-9.]+ kg/m\^3, eta = [0-9.]+ mPa\*s' "$tmp/check70.txt"
+check "check --oil-temp: line after the oil block" \
+    bash -c "grep -A1 'permissible oil temperature' '$tmp/check70.txt' | grep -q 'at 70.0 degC (--oil-temp)'"
+"$bin" check "$src/configs/transfer-box.yaml" > "$tmp/check.txt"
+check "check --oil-temp: otherwise the same report" cmp -s "$tmp/check.txt" <(grep -v -- '(--oil-temp)' "$tmp/check70.txt")
+"$bin" check "$src/configs/transfer-box.yaml" --oil-temp 70degC --json > "$tmp/check70.json"
+check "check --oil-temp --json" python3 -c "
+import json
+d = json.load(open('$tmp/check70.json'))
+o, s = d['oil'], d['oil_at_oil_temp']
+assert abs(s['temperature_C'] - 70) < 1e-9, s
+assert o['nu100_cSt'] < s['nu_cSt'] < o['nu40_cSt'], (o, s)  # between its 40 and 100 degC values
+assert abs(s['eta_mPa_s'] - s['nu_cSt'] * s['rho_kg_m3'] * 1e-3) < 1e-6 * s['eta_mPa_s'], s
+for k in ('alpha_p_1_Pa', 'beta_T_1_K'): assert s[k] > 0, k"
+"$bin" check "$src/configs/transfer-box.yaml" --json > "$tmp/check.json"
+check "check --json without --oil-temp: no oil_at_oil_temp" python3 -c "
+import json; assert 'oil_at_oil_temp' not in json.load(open('$tmp/check.json'))"
+"$bin" check "$src/configs/transfer-box.yaml" --oil-temp 150degC > "$tmp/check150.txt"
+check "check --oil-temp above the oil's limit: line and warning" \
+    bash -c "grep -q 'at 150.0 degC (--oil-temp)' '$tmp/check150.txt' && grep -q -- '--oil-temp: warning: fixed oil temperature 150.0 degC' '$tmp/check150.txt'"
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0

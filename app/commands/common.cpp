@@ -1,0 +1,146 @@
+#include "commands/common.hpp"
+
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <unistd.h>
+
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/case_plausibility.hpp"
+#include "io/csv_read.hpp"
+#include "io/interrupt.hpp"
+#include "map/map_runner.hpp"
+
+namespace gearloss::app {
+
+void add_common_options(CLI::App& sub, CommonOptions& c) {
+    sub.add_option("config", c.config, "gearbox case (YAML)")->required();
+    sub.add_option("--ratio", c.ratio, "select a ratio defined under gearbox.ratios");
+    sub.add_option("--oil-temp", c.oil_temp, "fixed oil temperature (e.g. 70degC): no thermal solve");
+    sub.add_option("--oil", c.oil, "replace the case's oil by this oil file (YAML)");
+}
+
+void apply_case_options(io::Case& k, const CommonOptions& c) {
+    if (!c.oil.empty()) io::replace_oil(k, io::load_oil_file(c.oil));
+    if (!c.oil_temp.empty()) {
+        units::Quantity q;
+        try {
+            q = units::parse_quantity(c.oil_temp);
+        } catch (const units::UnitError& e) {
+            throw InputError("", 0, 0, "--oil-temp", e.msg + " (expected e.g. '70degC')");
+        }
+        if (!q.absolute_temperature || q.value <= 0)
+            throw InputError("", 0, 0, "--oil-temp", "'" + io::excerpt(c.oil_temp) + "' is not a temperature (e.g. '70degC')");
+        k.model.thermal.mode = solver::ThermalMode::fixed;
+        k.model.thermal.oil_temperature = q.value;
+    }
+    map::validate_case(k, {.oil_temp = c.oil_temp, .oil = c.oil, .grid = false});  // solver/validate.hpp
+}
+
+io::Case load_with_options(const CommonOptions& c, bool warn_on_stderr) {
+    std::optional<std::string> ratio;
+    if (!c.ratio.empty()) ratio = c.ratio;
+    io::Case k = io::load_case(c.config, ratio);
+    apply_case_options(k, c);
+    io::check_oil_temperature(k, c.oil_temp.empty() ? "" : "--oil-temp");
+    if (warn_on_stderr) io::print_warnings(k);
+    return k;
+}
+
+double absolute_temperature(const std::string& text, const char* what) {
+    units::Quantity q;
+    try {
+        q = units::parse_quantity(text);
+    } catch (const units::UnitError& e) {
+        throw InputError("", 0, 0, what, e.msg + " (expected e.g. '-10degC')");
+    }
+    if (!q.absolute_temperature || !(q.value > 0))
+        throw InputError("", 0, 0, what, "'" + io::excerpt(text) + "' is not a temperature (e.g. '-10degC')");
+    return q.value;
+}
+
+double single_value(const std::string& text, const units::Dimension& d, const char* what, const char* example) {
+    const auto v = io::parse_value_list(text, d, what, example);
+    if (v.size() != 1) throw InputError("", 0, 0, what, "expected one value");
+    return v[0];
+}
+
+double temperature_difference(const std::string& text, const char* what) {
+    size_t u = 0;
+    // The number ends where the unit starts ("1e2K": the exponent belongs to the number).
+    const auto exponent = [&](size_t i) {
+        return (text[i] == 'e' || text[i] == 'E') && i > 0 && i + 1 < text.size() &&
+               (std::isdigit(static_cast<unsigned char>(text[i + 1])) || text[i + 1] == '+' || text[i + 1] == '-');
+    };
+    while (u < text.size() && (std::isdigit(static_cast<unsigned char>(text[u])) || text[u] == '.' || text[u] == ' ' ||
+                               text[u] == '+' || text[u] == '-' || exponent(u)))
+        ++u;
+    try {
+        const auto f = units::parse_unit(text.substr(u));
+        const auto q = units::parse_quantity(text);
+        if (f.dim != units::dim::temperature) throw units::UnitError("not a temperature difference");
+        return q.value - f.offset;
+    } catch (const units::UnitError& e) {
+        throw InputError("", 0, 0, what, "'" + io::excerpt(text) + "': " + e.msg + " (expected e.g. '0.4K')");
+    }
+}
+
+void write_file(const std::string& file, const std::string& text) {
+    io::AtomicFile f(file);
+    f.write(text);
+    f.commit();
+}
+
+void write_optional_file(const std::string& file, const std::string& text) {
+    if (!file.empty()) write_file(file, text);
+}
+
+ProgressMeter::ProgressMeter() : enabled_(::isatty(STDERR_FILENO) != 0), t0_(std::chrono::steady_clock::now()) {
+    if (const char* e = std::getenv("GEARLOSS_PROGRESS_AFTER")) after_ = std::atof(e);
+}
+
+ProgressMeter::~ProgressMeter() {
+    if (shown_) std::fputc('\n', stderr);
+}
+
+std::function<void(size_t, size_t)> ProgressMeter::callback() {
+    if (!enabled_) return {};
+    return [this](size_t done, size_t total) { update(done, total); };
+}
+
+void ProgressMeter::update(size_t done, size_t total) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    if (s < after_ || (s - last_ < 0.2 && done < total)) return;
+    last_ = s;
+    shown_ = true;
+    const double rate = s > 0 ? done / s : 0;
+    const double eta = rate > 0 ? (total - done) / rate : 0;
+    std::fprintf(stderr, "\r%zu/%zu points (%.0f %%), %.0f points/s, ETA %.1f s   ", done, total,
+                 total ? 100.0 * done / total : 100.0, rate, eta);
+}
+
+int run_command(const std::function<int()>& body) {
+    try {
+        io::OutputTransaction outputs;  // files renamed together by publish(), discarded on error or signal
+        const int rc = body();
+        if (io::interrupted()) return io::report_interrupt();
+        outputs.publish();
+        return rc;
+    } catch (const InputError& e) {
+        if (io::interrupted()) return io::report_interrupt();  // an error the interrupt caused
+        std::fprintf(stderr, "gearloss: error: %s\n", e.what());
+        return kInput;
+    } catch (const io::IoError& e) {
+        if (io::interrupted()) return io::report_interrupt();  // io::Interrupted, or a write the signal stopped
+        std::fprintf(stderr, "gearloss: error: %s\n", e.what());
+        return kOutput;
+    } catch (const std::exception& e) {
+        if (io::interrupted()) return io::report_interrupt();
+        std::fprintf(stderr, "gearloss: internal error: %s\n", e.what());
+        return kInternal;
+    }
+}
+
+}  // namespace gearloss::app

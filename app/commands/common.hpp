@@ -1,0 +1,79 @@
+#pragma once
+// Pieces shared by the subcommands: exit codes, the common case options (config, --ratio,
+// --oil-temp, --oil), value parsing for single options, output helpers, the progress meter
+// and the translation of errors into exit codes.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/config.hpp"
+#include "units/units.hpp"
+
+namespace gearloss::app {
+
+// Exit codes (README "Exit codes").
+enum Exit : int {
+    kOk = 0,
+    kUsage = 1,
+    kInput = 2,
+    kOutput = 3,
+    kInternal = 4,  // 130 / 143 on SIGINT / SIGTERM: io::interrupt_exit_code() (io/interrupt.hpp)
+};
+
+// The case and the options every case command takes (add_common_options): config, --ratio,
+// --oil-temp, --oil.
+struct CommonOptions {
+    std::string config;
+    std::string ratio;
+    std::string oil_temp;
+    std::string oil;
+};
+
+// config, --ratio, --oil-temp and --oil with their help texts.
+void add_common_options(CLI::App& sub, CommonOptions& c);
+
+// --oil and --oil-temp applied to a loaded case (then map::validate_case without the grid).
+void apply_case_options(io::Case& k, const CommonOptions& c);
+
+// The case with --ratio, --oil and --oil-temp applied. `check` lists the plausibility warnings
+// in its report (warn_on_stderr = false); every other command prints them on stderr.
+io::Case load_with_options(const CommonOptions& c, bool warn_on_stderr = true);
+
+// "-10degC", "263.15 K": an absolute temperature [K]; InputError naming `what` otherwise.
+double absolute_temperature(const std::string& text, const char* what);
+// One value of dimension `d` ("800rpm"); InputError naming `what` otherwise.
+double single_value(const std::string& text, const units::Dimension& d, const char* what, const char* example);
+// "0.4K", "0.4 degC": a temperature difference (the unit's offset removed).
+double temperature_difference(const std::string& text, const char* what);
+
+// `text` into `file` (atomically; "-" = stdout).
+void write_file(const std::string& file, const std::string& text);
+// The same when a file was named (an optional --json FILE).
+void write_optional_file(const std::string& file, const std::string& text);
+
+// Progress on stderr for long runs: only on a terminal, only once a run has lasted
+// GEARLOSS_PROGRESS_AFTER seconds (default 1), at most 5 updates a second.
+class ProgressMeter {
+public:
+    ProgressMeter();
+    ~ProgressMeter();
+    ProgressMeter(const ProgressMeter&) = delete;
+    ProgressMeter& operator=(const ProgressMeter&) = delete;
+    std::function<void(size_t, size_t)> callback();
+
+private:
+    void update(size_t done, size_t total);
+    bool enabled_, shown_ = false;
+    std::chrono::steady_clock::time_point t0_;
+    double after_ = 1.0, last_ = -1.0;
+};
+
+// Runs a parsed command inside an output transaction (its files appear together, or none)
+// and translates what it throws into the exit code and the message on stderr:
+// InputError -> 2, io::IoError -> 3, any other exception -> 4, an interrupt -> 130 / 143.
+int run_command(const std::function<int()>& body);
+
+}  // namespace gearloss::app

@@ -1,0 +1,79 @@
+// gearloss cycle: transient warm-up over a drive cycle from a cold start, against a warm start
+// and (optionally) after pre-warming.
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "commands/command.hpp"
+#include "commands/common.hpp"
+#include "io/atomic_file.hpp"
+#include "io/cycle_report.hpp"
+#include "io/interrupt.hpp"
+#include "io/output_paths.hpp"
+#include "map/map_runner.hpp"
+
+namespace gearloss::app {
+namespace {
+
+class CycleCommand final : public Command {
+public:
+    CLI::App* add_to(CLI::App& app) override {
+        auto* s = app.add_subcommand("cycle", "transient warm-up over a drive cycle from a cold start, against a warm start "
+                                              "and (optionally) after pre-warming");
+        s->add_option("config", config_, "gearbox case with a 'vehicle' block (YAML)")->required();
+        s->add_option("--oil", oil_, "replace the case's oil by this oil file (YAML)");
+        s->add_option("--cycle", cycle_, "nedc, wltc, artemis, artemis-urban, artemis-rural, artemis-motorway-130, "
+                                         "artemis-motorway-150, or a CSV file (time_s,speed_kmh[,gear])")->required();
+        s->add_option("--start-temp", start_temp_, "temperature of the whole transmission at the start (e.g. -10degC)")->required();
+        s->add_option("--ambient", ambient_, "ambient temperature (default: the start temperature, a cold soak)");
+        s->add_option("--prewarm", prewarm_, "pre-warm the oil to this temperature before the cycle (e.g. 90degC)");
+        s->add_option("--heater", heater_, "pre-warming heater power (default 100W)");
+        s->add_option("--warm-temp", warm_temp_, "temperature of the warm-start reference run (default 90degC)");
+        s->add_option("-o,--output", out_, "time series CSV of the run from the start temperature ('-' = stdout, "
+                                           "after the summary)");
+        s->add_option("--json", json_, "write the summary as JSON to this file");
+        s->add_flag("--stats", stats_, "print the simulation time of one cycle run to stderr");
+        s->footer("Example: gearloss cycle configs/automatic-6speed.yaml --cycle nedc --start-temp -10degC --prewarm 90degC "
+                  "--heater 1kW -o trace.csv");
+        return s;
+    }
+
+    int run() override {
+        io::require_distinct_outputs({{"--output", out_}, {"--json", json_}});
+        io::require_outputs_not_inputs({{"--output", out_}, {"--json", json_}},
+                                       {{"config", config_}, {"--oil", oil_}, {"--cycle", cycle_}});
+        io::Case k = io::load_case(config_);
+        map::CaseOverrides no_grid;  // a cycle has no operating grid
+        no_grid.grid = false;
+        map::validate_case(k, no_grid);
+        const auto pt = io::load_powertrain(k, oil_.empty() ? std::nullopt : std::optional<std::string>(oil_));
+        const std::vector<std::string> dirs = {(std::filesystem::path(config_).parent_path() / "cycles").string(),
+                                               GEARLOSS_CYCLES_DIR};
+        const auto dc = cycle::resolve_cycle(cycle_, dirs);
+        io::CycleStudyOptions so;
+        so.start_temperature = absolute_temperature(start_temp_, "--start-temp");
+        so.ambient = ambient_.empty() ? so.start_temperature : absolute_temperature(ambient_, "--ambient");
+        so.warm_temperature = absolute_temperature(warm_temp_, "--warm-temp");
+        if (!prewarm_.empty()) so.prewarm_target = absolute_temperature(prewarm_, "--prewarm");
+        so.heater_power = single_value(heater_, units::dim::power, "--heater", "100W");
+        const auto study = io::run_cycle_study(pt, dc, so);
+        io::throw_if_interrupted();
+        io::write_stdout(io::cycle_summary_text(pt, study, so));
+        if (stats_)
+            std::fprintf(stderr, "cycle %s: %zu steps simulated in %.2f ms\n", dc.name.c_str(), dc.time.size() - 1,
+                         1e3 * study.seconds_per_run);
+        write_optional_file(json_, io::cycle_summary_json(pt, study, so));
+        write_optional_file(out_, io::cycle_trace_csv(pt, study.cold));
+        return kOk;
+    }
+
+private:
+    std::string config_, oil_, cycle_, start_temp_, ambient_, prewarm_, heater_ = "100W", warm_temp_ = "90degC", out_, json_;
+    bool stats_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_cycle_command() { return std::make_unique<CycleCommand>(); }
+
+}  // namespace gearloss::app

@@ -1,0 +1,64 @@
+// gearloss diagnose: recordings against the model, the mismatch located and the missing
+// physics named.
+#include <stdexcept>
+
+#include "commands/command.hpp"
+#include "commands/common.hpp"
+#include "core/errors.hpp"
+#include "diagnosis/diagnose.hpp"
+#include "io/atomic_file.hpp"
+#include "io/output_paths.hpp"
+
+namespace gearloss::app {
+namespace {
+
+class DiagnoseCommand final : public Command {
+public:
+    CLI::App* add_to(CLI::App& app) override {
+        auto* s = app.add_subcommand("diagnose", "compare recordings with the model, locate the mismatch, name the missing physics");
+        add_common_options(*s, common_);
+        s->add_option("recordings", recordings_, "recordings CSV: steady points or a raw rig log (time_s column)")->required();
+        s->add_option("--json", json_, "write the diagnosis as JSON to this file");
+        s->add_option("--write-config", write_config_, "write the calibrated case file");
+        s->add_option("--residuals", residuals_, "write per-point residuals before/after (CSV, for scripts/plot-residuals.py)");
+        s->add_option("--bootstrap", bootstrap_, "bootstrap resamples for the stability check")->check(CLI::Range(4, 1000));
+        s->add_option("--threads", threads_, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+        s->footer("Example: gearloss diagnose configs/transfer-box.yaml recordings.csv --json diag.json --write-config calibrated.yaml");
+        return s;
+    }
+
+    int run() override {
+        const std::vector<std::pair<std::string, std::string>> outputs = {
+            {"--json", json_}, {"--residuals", residuals_}, {"--write-config", write_config_}};
+        io::require_distinct_outputs(outputs);
+        io::require_outputs_not_inputs(outputs,
+                                       {{"config", common_.config}, {"--oil", common_.oil}, {"recordings", recordings_}});
+        io::Case k = load_with_options(common_);
+        const auto rec = diagnosis::read_recordings(recordings_);
+        diagnosis::DiagnoseOptions opt;
+        opt.bootstrap = bootstrap_;
+        opt.threads = threads_;
+        diagnosis::Diagnosis d;
+        try {
+            d = diagnosis::diagnose(k.model, rec, opt);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(recordings_, 0, 0, "", e.what());
+        }
+        io::write_stdout(diagnosis::diagnosis_text(d));
+        write_optional_file(json_, diagnosis::diagnosis_json(d));
+        write_optional_file(residuals_, diagnosis::residuals_csv(d));
+        if (!write_config_.empty()) diagnosis::write_calibrated_config(common_.config, write_config_, d);
+        return kOk;
+    }
+
+private:
+    CommonOptions common_;
+    std::string recordings_, json_, write_config_, residuals_;
+    int bootstrap_ = 24, threads_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_diagnose_command() { return std::make_unique<DiagnoseCommand>(); }
+
+}  // namespace gearloss::app

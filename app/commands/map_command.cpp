@@ -1,0 +1,171 @@
+// gearloss map: every operating point of the grid to CSV (sweeps, shards), or VECTO
+// torque-loss tables per gear (--format vecto).
+#include <chrono>
+#include <cstdio>
+#include <optional>
+
+#include "commands/command.hpp"
+#include "commands/common.hpp"
+#include "commands/grid_overrides.hpp"
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/interrupt.hpp"
+#include "io/output_paths.hpp"
+#include "io/sweep.hpp"
+#include "map/job.hpp"
+#include "map/map_runner.hpp"
+#include "map/vecto.hpp"
+
+namespace gearloss::app {
+namespace {
+
+constexpr GridOverrides::Examples kMapExamples{"600,700,800rpm", "150,200,250Nm"};
+constexpr GridOverrides::Examples kVectoExamples{"0,1000,2000rpm", "100,200,400Nm"};
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+class MapCommand final : public Command {
+public:
+    CLI::App* add_to(CLI::App& app) override {
+        auto* s = app.add_subcommand("map", "all operating points of the grid to CSV (parallel, written atomically)");
+        add_common_options(*s, common_);
+        s->add_option("-o,--output", out_, "output CSV file ('-' = stdout)");
+        s->add_option("--threads", threads_, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+        s->add_flag("--detail", detail_, "add a column per mesh, gear, bearing and seal");
+        s->add_flag("--stats", stats_, "print solve time, points per second and loss evaluations per point to stderr");
+        grid_.add_to(*s, "override the input speeds, e.g. 600,700,800rpm", "override the input torques, e.g. 150,200,250Nm");
+        s->add_option("--json", json_, "also write a JSON summary (counts, efficiency, loss and temperature ranges, time)");
+        s->add_option("--shard", shard_, "compute only shard K of N of the points (K/N, e.g. 3/16); join with `gearloss merge`");
+        s->add_option("--format", format_, "csv (loss breakdown) or vecto (torque-loss table per gear, negative "
+                                           "torques included)")->check(CLI::IsMember({"csv", "vecto"}));
+        s->footer("Examples:\n  gearloss map configs/transfer-box.yaml --speed 600,700,800rpm --torque 150,200,250Nm -o out.csv\n"
+                  "  gearloss map configs/manual-6speed.yaml --format vecto --oil-temp 70degC -o manual.vtlm   "
+                  "(manual_g1.vtlm ... manual_g6.vtlm)");
+        return s;
+    }
+
+    int run() override {
+        io::require_distinct_outputs({{"--output", out_}, {"--json", json_}});
+        io::require_outputs_not_inputs({{"--output", out_}, {"--json", json_}},
+                                       {{"config", common_.config}, {"--oil", common_.oil}});
+        if (format_ == "vecto" && !shard_.empty())
+            throw InputError("", 0, 0, "--shard", "--format vecto writes whole tables per gear; it cannot be sharded");
+        return format_ == "vecto" ? run_vecto() : run_csv();
+    }
+
+private:
+    CommonOptions common_;
+    GridOverrides grid_;
+    std::string out_ = "-", json_, shard_, format_ = "csv";
+    int threads_ = 0;
+    bool detail_ = false, stats_ = false;
+
+    // One torque-loss table per gear (the selected ratio, or every ratio).
+    int run_vecto() {
+        const io::Case first = load_with_options(common_);
+        std::vector<std::string> ratios;
+        if (!common_.ratio.empty() || first.ratio_names.empty()) ratios.push_back(common_.ratio);
+        else ratios = first.ratio_names;
+        if (ratios.size() > 1 && out_ == "-")
+            throw InputError("", 0, 0, "--output", "several gears: give -o FILE (written as FILE_<ratio>.vtlm per gear)");
+        map::MapOptions opt;
+        opt.threads = threads_;
+        for (const auto& ratio : ratios) {
+            CommonOptions cr = common_;
+            cr.ratio = ratio;
+            io::Case k = load_with_options(cr);
+            grid_.apply(k, kVectoExamples);  // a point list with --speed/--torque becomes a grid, as for csv
+            if (!k.grid.is_grid) throw InputError(k.file, 0, 0, "operating", "--format vecto needs a speeds x torques grid");
+            const auto rows = map::vecto_loss_map(k.model, k.grid.speeds, k.grid.torques, opt);
+            io::throw_if_interrupted();
+            std::string file = out_;
+            if (ratios.size() > 1) {
+                const bool vtlm = out_.size() > 5 && out_.substr(out_.size() - 5) == ".vtlm";
+                const std::string stem = vtlm ? out_.substr(0, out_.size() - 5) : out_;
+                file = stem + "_" + ratio + ".vtlm";
+            }
+            write_file(file, map::vecto_csv(rows));
+        }
+        return kOk;
+    }
+
+    // Sweep variants and/or one shard of the job (gearloss merge joins the shards).
+    int run_job(io::Case k, const map::MapOptions& opt, std::optional<double> oil_temp) {
+        map::MapJob job;
+        if (k.sweep.empty()) {
+            job.variants.push_back({{}, std::move(k)});
+        } else {
+            for (const auto& a : k.sweep) job.sweep_labels.push_back(a.label);
+            const auto ratio = common_.ratio.empty() ? std::nullopt : std::optional<std::string>(common_.ratio);
+            for (auto& v : io::expand_sweep(common_.config, ratio)) {
+                apply_case_options(v.c, common_);
+                grid_.apply_checked(v.c, kMapExamples);
+                job.variants.push_back({v.values, std::move(v.c)});
+            }
+        }
+        std::optional<map::Shard> sh;
+        if (!shard_.empty()) {
+            sh = map::parse_shard(shard_);
+            job.inputs = map::input_fingerprint({.config = common_.config, .oil_file = common_.oil, .oil_temperature = oil_temp,
+                                                 .ratio = common_.ratio, .format = "csv", .detail = detail_});
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        const auto res = map::run_job(job, opt, sh);
+        io::throw_if_interrupted();
+        const double seconds = seconds_since(t0);
+        if (stats_) {
+            const size_t n = res.results.size();
+            std::fprintf(stderr, "points %zu of %zu (%zu sweep variants), %.4f s, %.0f points/s\n", n, job.total_points(),
+                         job.variants.size(), seconds, n / seconds);
+        }
+        write_file(out_, res.csv);
+        write_optional_file(json_, map::map_summary_json(res.results, seconds));
+        return kOk;
+    }
+
+    int run_csv() {
+        io::Case k = load_with_options(common_);
+        grid_.apply_checked(k, kMapExamples);
+        const auto oil_temp = common_.oil_temp.empty() ? std::nullopt : std::optional<double>(k.model.thermal.oil_temperature);
+        map::MapOptions opt;
+        opt.threads = threads_;
+        opt.detail = detail_;
+        ProgressMeter meter;
+        opt.progress = meter.callback();
+        if (!k.sweep.empty() || !shard_.empty()) return run_job(std::move(k), opt, oil_temp);
+        const auto t0 = std::chrono::steady_clock::now();
+        const auto results = map::run_map(k.model, k.grid, opt);
+        const double seconds = seconds_since(t0);
+        io::throw_if_interrupted();
+        if (stats_) {
+            size_t evals = 0, no_eq = 0;
+            for (const auto& r : results) {
+                evals += static_cast<size_t>(r.evaluations);
+                no_eq += !solver::has_values(r.status);
+            }
+            std::fprintf(stderr, "points %zu, solve %.4f s, %.0f points/s, %.2f loss evaluations/point, %zu without equilibrium\n",
+                         results.size(), seconds, results.size() / seconds, double(evals) / results.size(), no_eq);
+        }
+        io::AtomicFile f(out_);
+        std::string buf = map::csv_header(k.model, detail_);
+        for (const auto& r : results) {
+            buf += map::csv_row(k.model, r, detail_);
+            if (buf.size() > (1u << 20)) {
+                f.write(buf);
+                buf.clear();
+            }
+        }
+        f.write(buf);
+        f.commit();
+        write_optional_file(json_, map::map_summary_json(results, seconds));
+        return kOk;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_map_command() { return std::make_unique<MapCommand>(); }
+
+}  // namespace gearloss::app

@@ -1,0 +1,38 @@
+// gearloss merge: the shards of `map --shard K/N` joined into the file a single run writes.
+#include "commands/command.hpp"
+#include "commands/common.hpp"
+#include "io/output_paths.hpp"
+#include "map/job.hpp"
+
+namespace gearloss::app {
+namespace {
+
+class MergeCommand final : public Command {
+public:
+    CLI::App* add_to(CLI::App& app) override {
+        auto* s = app.add_subcommand("merge", "join the shards of `map --shard K/N` into the file a single run writes");
+        s->add_option("shards", shards_, "shard CSV files, any order")->required();
+        s->add_option("-o,--output", out_, "output CSV ('-' = stdout)");
+        s->footer("Example:\n  for k in 1 2 3 4; do gearloss map configs/transfer-box.yaml --shard $k/4 -o part$k.csv; done\n"
+                  "  gearloss merge part*.csv -o map.csv");
+        return s;
+    }
+
+    int run() override {
+        std::vector<std::pair<std::string, std::string>> inputs;
+        for (const auto& f : shards_) inputs.emplace_back("shards", f);
+        io::require_outputs_not_inputs({{"--output", out_}}, inputs);
+        write_file(out_, map::merge_shards(shards_));
+        return kOk;
+    }
+
+private:
+    std::vector<std::string> shards_;
+    std::string out_ = "-";
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_merge_command() { return std::make_unique<MergeCommand>(); }
+
+}  // namespace gearloss::app

@@ -1,0 +1,42 @@
+// gearloss point: one operating point, every component's loss, temperatures and films.
+#include "commands/command.hpp"
+#include "commands/common.hpp"
+#include "commands/grid_overrides.hpp"
+#include "io/atomic_file.hpp"
+#include "io/reports.hpp"
+#include "map/map_runner.hpp"
+
+namespace gearloss::app {
+namespace {
+
+class PointCommand final : public Command {
+public:
+    CLI::App* add_to(CLI::App& app) override {
+        auto* s = app.add_subcommand("point", "one operating point: every component's loss, temperatures and films");
+        add_common_options(*s, common_);
+        s->add_option("--speed", speed_, "input speed, e.g. 800rpm")->required();
+        s->add_option("--torque", torque_, "input torque, e.g. 250Nm")->required();
+        s->footer("Example: gearloss point configs/transfer-box.yaml --speed 800rpm --torque 250Nm");
+        return s;
+    }
+
+    int run() override {
+        io::Case k = load_with_options(common_);
+        const double w = point_speed(speed_, "800rpm");
+        const double T = point_torque(torque_, "250Nm");
+        map::validate_point(w, T);
+        const auto r = solver::solve_point(k.model, w, T, true);
+        io::write_stdout(io::point_report(k, r));
+        return kOk;
+    }
+
+private:
+    CommonOptions common_;
+    std::string speed_, torque_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_point_command() { return std::make_unique<PointCommand>(); }
+
+}  // namespace gearloss::app
