@@ -10,7 +10,7 @@ rc=$?
 check "map exit code 0" test $rc -eq 0
 check "map has 10 lines" test "$(wc -l < "$tmp/map.csv")" -eq 10
 check "map has no nan/inf" bash -c "! grep -qiE 'nan|inf' '$tmp/map.csv'"
-check "map header" grep -q '^speed_in_rpm,torque_in_Nm,power_in_W,ambient_temp_C,oil_temp_C,P_mesh_W,P_churn_W,P_bearing_W,P_seal_W,P_clutch_W,P_aux_W,P_total_W' "$tmp/map.csv"
+check "map header" grep -q '^speed_in_rpm,torque_in_Nm,power_in_W,ambient_temp_C,oil_temp_C,P_mesh_W,P_churn_W,P_bearing_W,P_seal_W,P_clutch_W,P_aux_W,P_windage_W,P_total_W' "$tmp/map.csv"
 
 # Command-line grid and fixed temperature override the config.
 "$bin" map "$src/configs/transfer-box.yaml" --speed 600,700rpm --torque 150,200,250Nm --oil-temp 70degC -o "$tmp/o.csv"

@@ -13,7 +13,8 @@ namespace gearloss::losses {
     X("bearings", create_bearings)               \
     X("seals", create_seals)                     \
     X("clutch_drag", create_clutch_drag)         \
-    X("auxiliary", create_auxiliary)
+    X("auxiliary", create_auxiliary)             \
+    X("windage", create_gear_windage)
 
 #define GEARLOSS_DECLARE(NAME, FACTORY) std::unique_ptr<LossMechanism> FACTORY();
 GEARLOSS_LOSS_MECHANISMS(GEARLOSS_DECLARE)
