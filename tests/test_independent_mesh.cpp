@@ -46,7 +46,7 @@ options:
 
 TEST_CASE("independent: FZG C worked example through the whole model (mean roughness, Schlenk, ISO/TS 6336-20)",
           "[independent][mesh]") {
-    // Published worked example (ISO/TR 14179-2 / Schlenk 1994 on FZG type C; gear-losses.md §2.2):
+    // Published worked example (ISO/TR 14179-2 / Schlenk 1994 on FZG type C):
     // T1 302 N m, n1 1500 rpm, eta 50 mPa s, Ra 0.3 um, X_L 1 -> w 637.7 N/mm, v_sumC 4.389 m/s,
     // mu_mZ 0.0517, P_VZP 478 W. The model is given the same oil state: its viscosity at the fixed
     // 80 degC is scaled (calibration.viscosity_factor) to exactly 50 mPa s and X_L is set to 1.
