@@ -213,3 +213,19 @@ TEST_CASE("mechanisms: the CSV takes its columns from the mechanisms", "[mechani
     CHECK(cells(map::csv_row(c.model, bad, true)) == cells(h));
     CHECK(cells(map::csv_row(c.model, bad, false)) == cells(map::csv_header(c.model, false)));
 }
+
+TEST_CASE("mechanisms: the drag of open clutch packs heats the clutch-pack node, the rest the oil", "[mechanisms]") {
+    // The six-speed automatic in gear 2: the packs that are not engaged slip and drag. Their
+    // heat enters the clutch-pack node of the thermal network (C_c dT_c/dt = P_clutch -
+    // G_co (T_c - T_oil)), not the oil: what goes straight into the oil is the total less it.
+    const io::Case c = io::load_case(test_support::source_path("configs/automatic-6speed.yaml"));
+    const auto& m = c.model;
+    const size_t k = m.mechanisms.index("clutch_drag");
+    const auto p = solver::prepare_point(m, 2000 * kRpm, 50);
+    const auto L = solver::evaluate_losses(m, p, m.oil_state(313.15), false);
+    REQUIRE(L.power[k] > 1.0);
+    CHECK_FALSE(m.mechanisms[k].heats_oil());
+    CHECK(L.into_oil(m) == Approx(L.total() - L.power[k]).epsilon(1e-12));
+    for (size_t i = 0; i < m.mechanisms.size(); ++i)
+        if (i != k) CHECK(m.mechanisms[i].heats_oil());
+}
