@@ -6,13 +6,12 @@
 #include "io/config.hpp"
 #include "map/map_runner.hpp"
 #include "solver/operating_point.hpp"
+#include "thermal/air.hpp"
 #include "test_support.hpp"
 
 namespace gearloss::windage {
 double anderson_loewenthal_power(double R, double b, double omega, double mu);
 double free_disk_power(double R, double omega, double rho, double nu);
-double air_density(double T, double p);
-double air_viscosity(double T);
 }  // namespace gearloss::windage
 
 using namespace gearloss;
@@ -46,8 +45,8 @@ TEST_CASE("windage: a free disk matches Cochran's laminar solution and the air d
     const double Pt = windage::free_disk_power(0.5, 1000.0, rho, nu);
     CHECK(Pt / windage::free_disk_power(0.5, 500.0, rho, nu) == Approx(std::pow(2.0, 2.8)).epsilon(1e-9));
     // Air at 20 degC and 1 atm: 1.204 kg/m^3, 18.13 uPa s (handbook values: 1.2041, 18.13e-6).
-    CHECK(windage::air_density(293.15, 101325) == Approx(1.2041).epsilon(1e-3));
-    CHECK(windage::air_viscosity(293.15) == Approx(18.13e-6).epsilon(3e-3));
+    CHECK(thermal::air_density(293.15, 101325) == Approx(1.2041).epsilon(1e-3));
+    CHECK(thermal::air_viscosity(293.15) == Approx(18.13e-6).epsilon(3e-3));
 }
 
 TEST_CASE("windage: a mechanism of its own, off unless a form is chosen", "[windage]") {

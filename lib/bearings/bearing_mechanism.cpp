@@ -29,9 +29,7 @@ public:
     std::string_view label() const override { return "bearings"; }
     std::string_view column() const override { return "P_bearing_W"; }
     std::vector<std::string> components(const solver::Model& m) const override {
-        std::vector<std::string> v;
-        for (const auto& b : m.gearbox.bearings) v.push_back(b.name);
-        return v;
+        return losses::names_of(m.gearbox.bearings, [](const auto& b) { return b.name; });
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_bearing_{}_W", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {

@@ -29,9 +29,7 @@ public:
     std::string_view label() const override { return "churning"; }
     std::string_view column() const override { return "P_churn_W"; }
     std::vector<std::string> components(const solver::Model& m) const override {
-        std::vector<std::string> v;
-        for (const auto& g : m.gearbox.gears) v.push_back(g.spec.name);
-        return v;
+        return losses::names_of(m.gearbox.gears, [](const auto& g) { return g.spec.name; });
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_churn_{}_W", 1.0}, {"", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {

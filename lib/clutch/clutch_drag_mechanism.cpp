@@ -25,9 +25,7 @@ public:
     std::string_view column() const override { return "P_clutch_W"; }
     bool heats_oil() const override { return false; }
     std::vector<std::string> components(const solver::Model& m) const override {
-        std::vector<std::string> v;
-        for (const auto& c : m.gearbox.clutches) v.push_back(c.pack.name);
-        return v;
+        return losses::names_of(m.gearbox.clutches, [](const auto& c) { return c.pack.name; });
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_clutch_{}_W", 1.0}}; }
     std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<ClutchPoint>(); }

@@ -98,6 +98,15 @@ struct FormAxis {
     std::vector<std::string> forms;   // the names, the default first
 };
 
+// The names of a mechanism's components (gears, bearings, ...), for components().
+template <class Items, class Name>
+std::vector<std::string> names_of(const Items& items, Name name) {
+    std::vector<std::string> v;
+    v.reserve(items.size());
+    for (const auto& x : items) v.push_back(name(x));
+    return v;
+}
+
 class LossMechanism {
 public:
     virtual ~LossMechanism() = default;

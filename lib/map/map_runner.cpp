@@ -18,6 +18,7 @@
 #include "io/json.hpp"
 #include "io/issue_location.hpp"
 #include "io/yaml_reader.hpp"
+#include "losses/loss_mechanism.hpp"
 #include "solver/validate.hpp"
 
 namespace gearloss::map {
@@ -146,7 +147,33 @@ namespace {
 // "P_churn_{}_W" with the component's name.
 std::string component_column(const std::string& pattern, const std::string& name) {
     const size_t at = pattern.find("{}");
-    return at == std::string::npos ? pattern : pattern.substr(0, at) + name + pattern.substr(at + 2);
+    if (at == std::string::npos) return pattern;
+    std::string s = pattern;
+    s.replace(at, 2, name);
+    return s;
+}
+// The --detail layout of a model's mechanisms (their quantities and component counts),
+// built once per model and thread rather than for every row.
+struct DetailLayout {
+    unsigned long long id = 0;
+    size_t sizes[5] = {};
+    std::vector<std::vector<losses::DetailQuantity>> quantities;  // per mechanism
+    std::vector<size_t> components;                               // per mechanism
+};
+const DetailLayout& detail_layout(const solver::Model& m) {
+    thread_local DetailLayout d;
+    const auto& gb = m.gearbox;
+    const size_t sizes[5] = {gb.gears.size(), gb.meshes.size(), gb.bearings.size(), gb.seals.size(), gb.clutches.size()};
+    if (d.id == m.mechanisms.id() && std::equal(sizes, sizes + 5, d.sizes)) return d;
+    d.id = m.mechanisms.id();
+    std::copy(sizes, sizes + 5, d.sizes);
+    d.quantities.clear();
+    d.components.clear();
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+        d.quantities.push_back(m.mechanisms[i].quantities());
+        d.components.push_back(m.mechanisms[i].components(m).size());
+    }
+    return d;
 }
 }  // namespace
 
@@ -193,10 +220,10 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
     s += solver::status_text(r);
     if (detail) {
         const bool have = ok && L.detail.size() == m.mechanisms.size();
+        const DetailLayout& layout = detail_layout(m);
         for (size_t i = 0; i < m.mechanisms.size(); ++i) {
-            const auto& mech = m.mechanisms[i];
-            const auto quantities = mech.quantities();
-            const size_t nc = mech.components(m).size();
+            const auto& quantities = layout.quantities[i];
+            const size_t nc = layout.components[i];
             for (size_t c = 0; c < nc; ++c)
                 for (size_t q = 0; q < quantities.size(); ++q) {
                     if (quantities[q].column.empty()) continue;

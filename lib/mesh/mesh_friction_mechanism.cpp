@@ -58,9 +58,7 @@ public:
     std::string_view column() const override { return "P_mesh_W"; }
 
     std::vector<std::string> components(const solver::Model& m) const override {
-        std::vector<std::string> v;
-        for (const auto& me : m.gearbox.meshes) v.push_back(me.name);
-        return v;
+        return losses::names_of(m.gearbox.meshes, [](const auto& me) { return me.name; });
     }
     std::vector<losses::DetailQuantity> quantities() const override {
         return {{"P_mesh_{}_W", 1.0}, {"mu_{}", 1.0}, {"lambda_{}", 1.0}, {"h_min_{}_um", 1e6}, {"", 1e6}};

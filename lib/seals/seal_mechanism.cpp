@@ -23,9 +23,7 @@ public:
     std::string_view label() const override { return "seals"; }
     std::string_view column() const override { return "P_seal_W"; }
     std::vector<std::string> components(const solver::Model& m) const override {
-        std::vector<std::string> v;
-        for (const auto& s : m.gearbox.seals) v.push_back(s.name);
-        return v;
+        return losses::names_of(m.gearbox.seals, [](const auto& s) { return s.name; });
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_seal_{}_W", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {

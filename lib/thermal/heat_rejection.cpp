@@ -1,5 +1,7 @@
 #include "thermal/heat_rejection.hpp"
 
+#include "thermal/air.hpp"
+
 #include <algorithm>
 
 #include <cmath>
@@ -9,14 +11,12 @@ namespace gearloss::thermal {
 namespace {
 constexpr double sigma_SB = 5.670374419e-8;
 
-// Dry air at atmospheric pressure: Sutherland viscosity, ideal-gas density,
-// conductivity ~T^0.81 (fits 250-400 K within 2 %), Pr = 0.71.
+// Dry air at atmospheric pressure (thermal/air.hpp), conductivity ~T^0.81 (fits 250-400 K
+// within 2 %), Pr = 0.71.
 struct Air {
     double nu, k, Pr = 0.71;
     explicit Air(double T) {
-        const double mu = 1.716e-5 * std::pow(T / 273.15, 1.5) * (273.15 + 110.4) / (T + 110.4);
-        const double rho = 101325.0 / (287.05 * T);
-        nu = mu / rho;
+        nu = air_viscosity(T) / air_density(T);
         k = 0.0241 * std::pow(T / 273.15, 0.81);
     }
 };

@@ -22,6 +22,7 @@
 
 #include "losses/registry.hpp"
 #include "solver/model.hpp"
+#include "thermal/air.hpp"
 #include "units/units.hpp"
 
 namespace gearloss::windage {
@@ -44,11 +45,6 @@ double free_disk_power(double R, double omega, double rho, double nu) {
     return C_M * 0.5 * rho * w * w * std::pow(R, 5) * w;
 }
 
-// Dry air at pressure p [Pa] and temperature T [K]: density (ideal gas, R = 287.05 J/(kg K))
-// and dynamic viscosity (Sutherland 1893: mu0 = 1.716e-5 Pa s at 273.15 K, S = 110.4 K).
-double air_density(double T, double p) { return p / (287.05 * T); }
-double air_viscosity(double T) { return 1.716e-5 * std::pow(T / 273.15, 1.5) * (273.15 + 110.4) / (T + 110.4); }
-
 namespace {
 
 enum class Form { none, anderson_loewenthal, free_disk };
@@ -66,9 +62,7 @@ public:
     std::string_view label() const override { return "windage"; }
     std::string_view column() const override { return "P_windage_W"; }
     std::vector<std::string> components(const solver::Model& m) const override {
-        std::vector<std::string> v;
-        for (const auto& g : m.gearbox.gears) v.push_back(g.spec.name);
-        return v;
+        return losses::names_of(m.gearbox.gears, [](const auto& g) { return g.spec.name; });
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_windage_{}_W", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {
@@ -114,7 +108,7 @@ public:
         if (d) d->reset(p.omega.size(), 1);
         if (form_ == Form::none) return 0.0;
         const double T = e.oil.T;
-        const double rho = air_density(T, param(kPressure)), nu = air_viscosity(T) / rho;
+        const double rho = thermal::air_density(T, param(kPressure)), nu = thermal::air_viscosity(T) / rho;
         double total = 0.0;
         for (size_t g = 0; g < p.omega.size(); ++g) {
             const auto& gear = m.gearbox.gears[g];
