@@ -292,5 +292,37 @@ import json; assert 'oil_at_oil_temp' not in json.load(open('$tmp/check.json'))"
 check "check --oil-temp above the oil's limit: line and warning" \
     bash -c "grep -q 'at 150.0 degC (--oil-temp)' '$tmp/check150.txt' && grep -q -- '--oil-temp: warning: fixed oil temperature 150.0 degC' '$tmp/check150.txt'"
 
+# map --spread: the nominal columns unchanged, five more; the extremes bracket the nominal
+# and name the forms; options that cannot combine with it are errors naming them.
+"$bin" map "$src/configs/transfer-box.yaml" --speed 800,2000rpm --torque 150Nm -o "$tmp/nominal.csv"
+"$bin" map "$src/configs/transfer-box.yaml" --speed 800,2000rpm --torque 150Nm --spread \
+    --spread-axes mesh.friction,windage.form -o "$tmp/spread.csv" --json "$tmp/spread.json"
+check "spread exit 0" test $? -eq 0
+check "spread: nominal columns as without it" cmp -s <(cut -d, -f1-18 "$tmp/spread.csv") "$tmp/nominal.csv"
+check "spread: columns and bracket" python3 -c "
+import csv, json
+rows = list(csv.DictReader(open('$tmp/spread.csv')))
+assert len(rows) == 2
+for r in rows:
+    lo, P, hi = float(r['P_total_min_W']), float(r['P_total_W']), float(r['P_total_max_W'])
+    assert lo <= P <= hi and lo < hi, r
+    for k in ('forms_at_min', 'forms_at_max'):
+        assert r[k] == 'nominal' or all(x.split('=')[0] in ('mesh.friction', 'windage.form') for x in r[k].split(';')), r[k]
+    assert r['combinations_unsolved'] == '0'
+s = json.load(open('$tmp/spread.json'))['spread']
+assert s['combinations'] == 12 and [a['axis'] for a in s['axes']] == ['mesh.friction', 'windage.form'], s
+assert s['widest_relative_spread'] > 0"
+"$bin" map "$src/configs/transfer-box.yaml" --spread-axes mesh.friction -o "$tmp/sx.csv" 2> "$tmp/err.txt"
+check "spread-axes without --spread: exit 2" bash -c "test $? -eq 2 && grep -q -- '--spread-axes' '$tmp/err.txt' && test ! -e '$tmp/sx.csv'"
+"$bin" map "$src/configs/transfer-box.yaml" --spread --spread-axes mesh.fricton -o "$tmp/sx.csv" 2> "$tmp/err.txt"
+check "spread: unknown axis named with the known ones" \
+    bash -c "test $? -eq 2 && grep -q 'mesh.fricton' '$tmp/err.txt' && grep -q 'windage.form' '$tmp/err.txt' && test ! -e '$tmp/sx.csv'"
+"$bin" map "$src/configs/transfer-box.yaml" --spread --shard 1/2 -o "$tmp/sx.csv" 2> "$tmp/err.txt"
+check "spread with --shard: exit 2" bash -c "test $? -eq 2 && grep -q -- '--spread' '$tmp/err.txt'"
+"$bin" map "$src/configs/transfer-box.yaml" --spread --format vecto -o "$tmp/sx.vtlm" 2> "$tmp/err.txt"
+check "spread with vecto: exit 2" bash -c "test $? -eq 2 && grep -q -- '--spread' '$tmp/err.txt'"
+"$bin" check "$src/configs/transfer-box.yaml" > "$tmp/check.txt"
+check "check lists the form axes" grep -q 'mesh.friction: \[schlenk\] iso_6336_20' "$tmp/check.txt"
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0

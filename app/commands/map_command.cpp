@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <optional>
+#include <fmt/format.h>
 
 #include "commands/command.hpp"
 #include "commands/common.hpp"
@@ -10,8 +11,10 @@
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
 #include "io/interrupt.hpp"
+#include "io/json.hpp"
 #include "io/output_paths.hpp"
 #include "io/sweep.hpp"
+#include "map/form_spread.hpp"
 #include "map/job.hpp"
 #include "map/map_runner.hpp"
 #include "map/vecto.hpp"
@@ -38,6 +41,12 @@ public:
         grid_.add_to(*s, "override the input speeds, e.g. 600,700,800rpm", "override the input torques, e.g. 150,200,250Nm");
         s->add_option("--json", json_, "also write a JSON summary (counts, efficiency, loss and temperature ranges, time)");
         s->add_option("--shard", shard_, "compute only shard K of N of the points (K/N, e.g. 3/16); join with `gearloss merge`");
+        s->add_flag("--spread", spread_,
+                    "also solve every combination of the mechanisms' alternative forms and add, per point, "
+                    "P_total_min_W, P_total_max_W and the forms giving each");
+        s->add_option("--spread-axes", spread_axes_, "restrict --spread to these form axes, e.g. "
+                                                     "mesh.friction,windage.form (see `gearloss check`)")
+            ->delimiter(',');
         s->add_option("--format", format_, "csv (loss breakdown) or vecto (torque-loss table per gear, negative "
                                            "torques included)")->check(CLI::IsMember({"csv", "vecto"}));
         s->footer("Examples:\n  gearloss map configs/transfer-box.yaml --speed 600,700,800rpm --torque 150,200,250Nm -o out.csv\n"
@@ -50,6 +59,12 @@ public:
         io::require_distinct_outputs({{"--output", out_}, {"--json", json_}});
         io::require_outputs_not_inputs({{"--output", out_}, {"--json", json_}},
                                        {{"config", common_.config}, {"--oil", common_.oil}});
+        if (!spread_axes_.empty() && !spread_)
+            throw InputError("", 0, 0, "--spread-axes", "give --spread as well");
+        if (spread_ && format_ == "vecto")
+            throw InputError("", 0, 0, "--spread", "--format vecto writes loss tables; the form spread is a csv column");
+        if (spread_ && !shard_.empty())
+            throw InputError("", 0, 0, "--spread", "a spread map cannot be sharded (every shard would solve every form)");
         if (format_ == "vecto" && !shard_.empty())
             throw InputError("", 0, 0, "--shard", "--format vecto writes whole tables per gear; it cannot be sharded");
         return format_ == "vecto" ? run_vecto() : run_csv();
@@ -60,7 +75,8 @@ private:
     GridOverrides grid_;
     std::string out_ = "-", json_, shard_, format_ = "csv";
     int threads_ = 0;
-    bool detail_ = false, stats_ = false;
+    bool detail_ = false, stats_ = false, spread_ = false;
+    std::vector<std::string> spread_axes_;
 
     // One torque-loss table per gear (the selected ratio, or every ratio).
     int run_vecto() {
@@ -134,7 +150,18 @@ private:
         opt.detail = detail_;
         ProgressMeter meter;
         opt.progress = meter.callback();
+        if (spread_ && !k.sweep.empty())
+            throw InputError(k.file, 0, 0, "--spread", "a spread map of a sweep is not supported: spread one variant");
         if (!k.sweep.empty() || !shard_.empty()) return run_job(std::move(k), opt, oil_temp);
+        std::vector<map::SpreadAxis> axes;
+        if (spread_) {
+            axes = map::spread_axes(k.model, spread_axes_);
+            if (axes.empty()) throw InputError(k.file, 0, 0, "--spread", "no mechanism of this case has alternative forms");
+            if (map::combination_count(axes) > map::kMaxSpreadCombinations)
+                throw InputError("", 0, 0, "--spread",
+                                 fmt::format("{} form axes give more than {} combinations; choose some with --spread-axes",
+                                             axes.size(), map::kMaxSpreadCombinations));
+        }
         const auto t0 = std::chrono::steady_clock::now();
         const auto results = map::run_map(k.model, k.grid, opt);
         const double seconds = seconds_since(t0);
@@ -148,10 +175,21 @@ private:
             std::fprintf(stderr, "points %zu, solve %.4f s, %.0f points/s, %.2f loss evaluations/point, %zu without equilibrium\n",
                          results.size(), seconds, results.size() / seconds, double(evals) / results.size(), no_eq);
         }
+        std::vector<map::PointSpread> spread;
+        if (spread_) {
+            spread = map::run_spread(k.model, k.grid, axes, opt);
+            io::throw_if_interrupted();
+        }
+        // The spread's cells go after the map's, before the row's end.
+        auto with_spread = [&](std::string line, size_t i) {
+            if (!spread_) return line;
+            line.pop_back();
+            return line + "," + (i == size_t(-1) ? map::spread_csv_header() : map::spread_csv_cells(axes, spread[i])) + "\n";
+        };
         io::AtomicFile f(out_);
-        std::string buf = map::csv_header(k.model, detail_);
-        for (const auto& r : results) {
-            buf += map::csv_row(k.model, r, detail_);
+        std::string buf = with_spread(map::csv_header(k.model, detail_), size_t(-1));
+        for (size_t i = 0; i < results.size(); ++i) {
+            buf += with_spread(map::csv_row(k.model, results[i], detail_), i);
             if (buf.size() > (1u << 20)) {
                 f.write(buf);
                 buf.clear();
@@ -159,7 +197,9 @@ private:
         }
         f.write(buf);
         f.commit();
-        write_optional_file(json_, map::map_summary_json(results, seconds));
+        std::function<void(io::Json&)> more;
+        if (spread_) more = [&](io::Json& j) { map::spread_summary_json(j, axes, spread, results); };
+        write_optional_file(json_, map::map_summary_json(results, seconds, more));
         return kOk;
     }
 };

@@ -122,6 +122,21 @@ std::string check_report(const Case& c) {
                          100 * L.bearing_Fr_neg[i], 100 * L.bearing_Fa_pos[i], 100 * L.bearing_Fa_neg[i],
                          b.spec.type == bearings::BearingType::needle_roller ? "  (SKF constants: caged CRB proxy)" : "");
     }
+    s += "\nloss mechanisms: alternative forms (selected in [ ]; the axes of map --spread) and parameters (SI)\n";
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+        const auto& mech = m.mechanisms[i];
+        s += fmt::format("  {:<12} {}\n", mech.name(), mech.column());
+        for (const auto& a : mech.forms(m)) {
+            const std::string chosen = mech.form(m, a.axis);
+            std::string list;
+            for (const auto& f : a.forms) list += fmt::format(" {}", f == chosen ? "[" + f + "]" : f);
+            s += fmt::format("    {}.{}:{}\n", mech.name(), a.axis, list);
+        }
+        const auto params = mech.parameters();
+        for (size_t k = 0; k < params.size(); ++k)
+            s += fmt::format("    {} = {:.6g}{} ({})\n", params[k].name, mech.parameter(params[k].name),
+                             params[k].calibration ? " [calibration]" : "", params[k].description);
+    }
     const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
     s += fmt::format("\noil {} ({}): nu40 = {:.3f} cSt, nu100 = {:.3f} cSt, rho15 = {:.1f} kg/m^3, X_L = {:.3f}\n", m.oil.name,
                      lubricant::to_string(m.oil.base), s40.nu_cSt, s100.nu_cSt, m.oil.rho15, m.oil.X_L);
@@ -221,6 +236,22 @@ std::string check_json(const Case& c) {
     j.key("X_L").value(m.oil.X_L);
     j.key("max_temperature_C").value(m.oil.max_temperature - 273.15);
     j.end_object();
+    j.key("mechanisms").begin_array();
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+        const auto& mech = m.mechanisms[i];
+        j.begin_object().key("name").value(std::string(mech.name())).key("column").value(std::string(mech.column()));
+        j.key("forms").begin_array();
+        for (const auto& a : mech.forms(m)) {
+            j.begin_object().key("axis").value(a.axis).key("selected").value(mech.form(m, a.axis)).key("forms").begin_array();
+            for (const auto& f : a.forms) j.value(f);
+            j.end_array().end_object();
+        }
+        j.end_array().key("parameters").begin_object();
+        const auto params = mech.parameters();
+        for (size_t k = 0; k < params.size(); ++k) j.key(params[k].name).value(mech.parameter(params[k].name));
+        j.end_object().end_object();
+    }
+    j.end_array();
     j.key("operating_points").value(c.grid.size());
     j.key("warnings").begin_array();
     for (const auto& w : c.warnings) j.value(w);

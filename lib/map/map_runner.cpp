@@ -235,7 +235,8 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
     return s + "\n";
 }
 
-std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds) {
+std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds,
+                             const std::function<void(io::Json&)>& more) {
     size_t ok = 0, above_limit = 0, no_equilibrium = 0, out_of_range = 0;
     double eff_min = 1, eff_max = 0, eff_sum = 0, P_min = 1e300, P_max = 0, T_min = 1e300, T_max = -1e300;
     size_t n_eff = 0;
@@ -275,6 +276,7 @@ std::string map_summary_json(const std::vector<solver::PointResult>& results, do
     if (n_eff > 0)
         j.key("efficiency").begin_object().key("min").value(eff_min).key("max").value(eff_max).key("mean")
             .value(eff_sum / n_eff).end_object();
+    if (more) more(j);
     j.end_object();
     return j.str() + "\n";
 }

@@ -7,6 +7,10 @@
 #include "io/config.hpp"
 #include "solver/operating_point.hpp"
 
+namespace gearloss::io {
+class Json;
+}
+
 namespace gearloss::map {
 
 struct MapOptions {
@@ -47,6 +51,8 @@ std::string csv_header(const solver::Model& m, bool detail);
 std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail);
 
 // Summary for scripts: point counts, efficiency, loss and oil-temperature ranges, solve time.
-std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds);
+// `more` adds members to the object (e.g. the form spread).
+std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds,
+                             const std::function<void(io::Json&)>& more = {});
 
 }  // namespace gearloss::map

@@ -1,0 +1,140 @@
+// Model-form spread (map --spread): the extremes it reports are reproduced by loading the
+// case with those forms written into its YAML (the loader's route, not the spread's), the
+// nominal lies between them, and the combinations are the full cartesian product.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+#include <map>
+#include <set>
+
+#include "core/errors.hpp"
+#include "io/config.hpp"
+#include "map/form_spread.hpp"
+#include "solver/operating_point.hpp"
+#include "test_support.hpp"
+
+using namespace gearloss;
+namespace {
+constexpr double kRpm = std::numbers::pi / 30;
+
+io::Case load_text(const std::string& text) {
+    test_support::TempConfig cfg(text);
+    return io::load_case(cfg.path);
+}
+
+// The case's text with the forms of a combination label ("mesh.friction=iso_6336_20;
+// windage.form=free_disk") written as YAML, as a user would.
+std::string with_forms(const std::string& base, const std::string& label) {
+    if (label == "nominal") return base;
+    std::map<std::string, std::vector<std::string>> by_mechanism;
+    size_t a = 0;
+    while (a < label.size()) {
+        const size_t e = std::min(label.find(';', a), label.size());
+        const std::string item = label.substr(a, e - a);
+        const size_t dot = item.find('.'), eq = item.find('=');
+        by_mechanism[item.substr(0, dot)].push_back(item.substr(dot + 1, eq - dot - 1) + ": " + item.substr(eq + 1));
+        a = e + 1;
+    }
+    std::string yaml = "\nmechanisms:\n";
+    for (const auto& [mech, settings] : by_mechanism) {
+        yaml += "  " + mech + ": {";
+        for (size_t i = 0; i < settings.size(); ++i) yaml += (i ? ", " : "") + settings[i];
+        yaml += "}\n";
+    }
+    return base + yaml;
+}
+}  // namespace
+
+TEST_CASE("form spread: the extremes are the losses of the cases written with those forms", "[spread]") {
+    const std::string base = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
+    const auto c = load_text(base);
+    const auto axes = map::spread_axes(c.model, {});
+    // Every axis of every mechanism with alternatives: mesh friction (4), H_V (3), film (3), windage (3).
+    std::set<std::string> labels;
+    for (const auto& a : axes) labels.insert(a.label());
+    CHECK(labels == std::set<std::string>{"mesh.friction", "mesh.loss_factor", "mesh.film_correction", "windage.form"});
+    CHECK(map::combination_count(axes) == 4 * 3 * 3 * 3);
+    // Every combination is a distinct choice of forms.
+    std::set<std::string> seen;
+    for (size_t i = 0; i < map::combination_count(axes); ++i) seen.insert(map::combination_label(axes, i));
+    CHECK(seen.size() == 108);
+    CHECK(seen.count("nominal") == 1);
+
+    io::OperatingGrid grid;
+    grid.is_grid = true;
+    grid.speeds = {800 * kRpm, 2500 * kRpm};
+    grid.torques = {120, 280};
+    map::MapOptions opt;
+    opt.threads = 1;
+    const auto nominal = map::run_map(c.model, grid, opt);
+    const auto spread = map::run_spread(c.model, grid, axes, opt);
+    REQUIRE(spread.size() == grid.size());
+    for (size_t p = 0; p < grid.size(); ++p) {
+        const auto [w, T] = grid.at(p);
+        INFO("point " << p);
+        const auto& s = spread[p];
+        CHECK(s.solved + s.unsolved == 108);
+        REQUIRE(s.solved > 0);
+        CHECK(s.P_min <= s.P_max);
+        if (solver::has_values(nominal[p].status)) {
+            CHECK(s.P_min <= nominal[p].losses.total());
+            CHECK(nominal[p].losses.total() <= s.P_max);
+        }
+        // Re-solve the two extremes from YAML: the same total to the last bit.
+        for (auto [at, P] : {std::pair{s.at_min, s.P_min}, std::pair{s.at_max, s.P_max}}) {
+            const std::string label = map::combination_label(axes, at);
+            INFO(label);
+            const auto k = load_text(with_forms(base, label));
+            const auto r = solver::solve_point(k.model, w, T, false);
+            REQUIRE(solver::has_values(r.status));
+            CHECK(r.losses.total() == P);
+        }
+    }
+}
+
+TEST_CASE("form spread: windage forms alone, at a fixed oil temperature, add exactly the windage", "[spread]") {
+    // With the oil temperature fixed no other loss depends on the windage form, so the spread
+    // is [nominal (form none), nominal + the largest windage of the other forms].
+    const std::string text = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
+    const auto c0 = load_text(text);
+    auto fixed = c0.model;
+    fixed.thermal.mode = solver::ThermalMode::fixed;
+    fixed.thermal.oil_temperature = 273.15 + 70;
+    const auto axes = map::spread_axes(fixed, {"windage.form"});
+    REQUIRE(axes.size() == 1);
+    CHECK(map::combination_count(axes) == 3);
+    io::OperatingGrid grid;
+    grid.is_grid = true;
+    grid.speeds = {3000 * kRpm};
+    grid.torques = {150};
+    map::MapOptions opt;
+    opt.threads = 1;
+    const auto s = map::run_spread(fixed, grid, axes, opt)[0];
+    const auto nominal = solver::solve_point(fixed, grid.speeds[0], 150, false);
+    REQUIRE(solver::has_values(nominal.status));
+    CHECK(s.P_min == nominal.losses.total());
+    CHECK(map::combination_label(axes, s.at_min) == "nominal");
+    const size_t k = fixed.mechanisms.index("windage");
+    double largest = 0;
+    for (const char* form : {"anderson_loewenthal", "free_disk"}) {
+        auto m = fixed;
+        m.mechanisms[k].set_form(m, "form", form);
+        largest = std::max(largest, solver::solve_point(m, grid.speeds[0], 150, false).losses.power[k]);
+    }
+    REQUIRE(largest > 0);
+    CHECK(s.P_max == Approx(nominal.losses.total() + largest).epsilon(1e-12));
+}
+
+TEST_CASE("form spread: unknown axes are errors naming the option and the known axes", "[spread]") {
+    const auto c = load_text(test_support::read_file(test_support::source_path("configs/transfer-box.yaml")));
+    try {
+        map::spread_axes(c.model, {"mesh.frictoin"});
+        FAIL("no error");
+    } catch (const InputError& e) {
+        CHECK(e.key == "--spread-axes");
+        CHECK(e.message.find("mesh.frictoin") != std::string::npos);
+        CHECK(e.message.find("mesh.friction") != std::string::npos);
+    }
+    // A repeated axis counts once.
+    CHECK(map::spread_axes(c.model, {"windage.form", "windage.form"}).size() == 1);
+}
