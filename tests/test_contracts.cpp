@@ -205,9 +205,9 @@ TEST_CASE("contracts: churning, seals and the calibration terms through the solv
                    solver_part(only(box, false, false, false, true), [](const solver::LossBreakdown& L) { return test::part(L, "seals"); }), kBoxGrid);
     // Windage: P = C (n/1000 rpm)^2.9, no oil, no load.
     auto wind = only(box, false, false, false, false);
-    wind.mechanisms.at("churning").set_parameter("windage_W_at_1000rpm", 25);
+    wind.mechanisms.at("windage").set_parameter("empirical_W_at_1000rpm", 25);
     check_contract({"windage (calibration)", Trend::independent, Trend::rises, Trend::independent},
-                   solver_part(wind, [](const solver::LossBreakdown& L) { return test::part(L, "churning"); }), kBoxGrid);
+                   solver_part(wind, [](const solver::LossBreakdown& L) { return test::part(L, "windage"); }), kBoxGrid);
     // Palmgren no-load drag M0 = 1e-7 f0 (nu n)^(2/3) d_m^3: falls with T, rises with n, no load.
     auto drag = only(box, false, false, false, false);
     drag.options.bearings = true;

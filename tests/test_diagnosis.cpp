@@ -60,8 +60,11 @@ TEST_CASE("calibration terms act inside the loss model and the thermal solve", "
     const double w = 1200 * rpm, T = 250;
     const double base = solver::solve_point(m, w, T).losses.total();
     // Windage adds exactly C (n/1000 rpm)^2.9: 10 W * 1.2^2.9 = 16.975 W.
-    m.mechanisms.at("churning").set_parameter("windage_W_at_1000rpm", 10);
-    CHECK(solver::solve_point(m, w, T).losses.total() - base == Approx(10 * std::pow(1.2, 2.9)).epsilon(1e-9));
+    m.mechanisms.at("windage").set_parameter("empirical_W_at_1000rpm", 10);
+    const auto rw = solver::solve_point(m, w, T);
+    CHECK(rw.losses.total() - base == Approx(10 * std::pow(1.2, 2.9)).epsilon(1e-9));
+    // In the windage column, not churning's.
+    CHECK(test::part(rw.losses, "windage") == Approx(10 * std::pow(1.2, 2.9)).epsilon(1e-9));
     m.mechanisms = {};
     m.mechanisms.at("auxiliary").set_parameter("power", 40);
     CHECK(solver::solve_point(m, w, T).losses.total() - base == Approx(40).epsilon(1e-9));

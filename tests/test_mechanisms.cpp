@@ -160,6 +160,18 @@ TEST_CASE("mechanisms: calibration per mechanism, the earlier flat keys and the 
     const size_t seals = losses::MechanismSet{}.index("seals");
     CHECK(nested.losses.power[seals] == Approx(2 * nominal.losses.power[seals]).epsilon(1e-14));
 
+    // The empirical windage, in its three spellings (the flat key, churning's block before
+    // windage was a mechanism, the windage block): one result, in the windage column;
+    // 12 W (1500/1000)^2.9 = 38.71 W at this speed.
+    const size_t wind = losses::MechanismSet{}.index("windage");
+    const auto w_flat = solve(base + "calibration:\n  windage: 12 W\n");
+    const auto w_old = solve(base + "calibration:\n  churning: {windage_W_at_1000rpm: 12 W}\n");
+    const auto w_new = solve(base + "calibration:\n  windage: {empirical_W_at_1000rpm: 12 W}\n");
+    CHECK(w_flat.losses.power[wind] == Approx(12 * std::pow(1.5, 2.9)).epsilon(1e-12));
+    CHECK(w_old.losses.total() == w_flat.losses.total());
+    CHECK(w_new.losses.total() == w_flat.losses.total());
+    CHECK(w_new.losses.power[wind] == w_flat.losses.power[wind]);
+
     // A mechanism's form chosen in the mechanisms block equals the options key.
     const auto by_block = solve(base + "mechanisms:\n  mesh: {friction: iso_6336_20}\n");
     const auto by_option = solve(test_support::replace_once(base, "mesh_friction: schlenk", "mesh_friction: iso_6336_20"));

@@ -403,14 +403,14 @@ TEST_CASE("robustness: validate accepts the shipped cases and locates issues of 
     }
     io::Case k = transfer_box();
     k.model.gearbox.bearings[1].spec.C0 = kNaN;
-    k.model.mechanisms.at("churning").set_parameter("windage_W_at_1000rpm", kInf);
+    k.model.mechanisms.at("windage").set_parameter("empirical_W_at_1000rpm", kInf);
     k.model.thermal.rejection.model = thermal::HousingSurface{.area = -1};
     const auto issues = solver::validate(k.model);
     std::string all;
     for (const auto& i : issues) all += i.text() + "\n";
     INFO(all);
     CHECK_THAT(all, Catch::Contains("bearings.B1_RMS11.C0: static load rating C0 [N] is not a number"));
-    CHECK_THAT(all, Catch::Contains("calibration.churning.windage_W_at_1000rpm"));
+    CHECK_THAT(all, Catch::Contains("calibration.windage.empirical_W_at_1000rpm"));
     CHECK_THAT(all, Catch::Contains("thermal.heat_rejection.housing.area"));
     // The first issue points at the line of the bearing's C0 in the case file.
     io::Case c0 = transfer_box();
@@ -420,10 +420,10 @@ TEST_CASE("robustness: validate accepts the shipped cases and locates issues of 
     CHECK(e.line == test_support::line_of(base(), "{name: B1_RMS11"));
     CHECK_THAT(e.message, Catch::Contains("more:"));
     // solve_point on the unvalidated model: a located cause, never `ok` (the first mechanism
-    // in registry order with a fault: churning's windage term, then the bearing).
-    require_out_of_range(solve(k.model, 800, 200), "windage");
-    k.model.mechanisms.at("churning").set_parameter("windage_W_at_1000rpm", 0);
+    // in registry order with a fault: the bearing, then the windage's empirical term).
     require_out_of_range(solve(k.model, 800, 200), "bearing B1_RMS11");
+    k.model.gearbox.bearings[1].spec.C0 = transfer_box().model.gearbox.bearings[1].spec.C0;
+    require_out_of_range(solve(k.model, 800, 200), "windage");
     // Out-of-range indices are topology errors at finalise(), not a crash.
     io::Case bad = transfer_box();
     bad.model.gearbox.bearings[0].shaft = 17;

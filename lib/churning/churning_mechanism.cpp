@@ -1,6 +1,6 @@
 // Churning of dip-lubricated gears as a loss mechanism: Changenet & Velex (2007, 2008)
-// per immersed gear (churning/changenet_velex.hpp), with a calibration factor and the
-// calibration's empirical air/oil-mist drag term of the whole box.
+// per immersed gear (churning/changenet_velex.hpp), with a calibration factor. (The drag of
+// the air/oil mist is the windage mechanism's, windage/gear_windage.cpp.)
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -8,7 +8,6 @@
 #include "churning/changenet_velex.hpp"
 #include "losses/registry.hpp"
 #include "solver/model.hpp"
-#include "units/units.hpp"
 
 namespace gearloss::churning {
 namespace {
@@ -17,12 +16,11 @@ constexpr double rad_s_to_rpm = 30.0 / std::numbers::pi;
 
 struct ChurningPoint : losses::MechanismPointOf<ChurningPoint> {
     std::vector<ChurningAtSpeed> gears;  // per gear (zero coefficients: not immersed)
-    double air_drag = 0;                 // W, the calibration's empirical drag term
 };
 
 class Churning final : public losses::LossMechanism {
 public:
-    enum : size_t { kFactor, kAirDrag };
+    enum : size_t { kFactor };
     enum : size_t { kPower, kRegime, kQuantities };
     std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<Churning>(*this); }
     std::string_view name() const override { return "churning"; }
@@ -33,11 +31,7 @@ public:
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_churn_{}_W", 1.0}, {"", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {
-        return {{"factor", "scales every churning loss", nullptr, "1.3", 1.0, 0.0, 100.0, true},
-                // Air/oil-mist drag of the whole box P = C (n_in / 1000 rpm)^2.9, the exponent of
-                // Dawson (1984); counted with churning.
-                {"windage_W_at_1000rpm", "empirical windage loss at 1000 rpm input speed", &units::dim::power,
-                 "12 W", 0.0, 0.0, 1e9, true}};
+        return {{"factor", "scales every churning loss", nullptr, "1.3", 1.0, 0.0, 100.0, true}};
     }
     std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<ChurningPoint>(); }
 
@@ -46,7 +40,6 @@ public:
         const auto& L = m.layout;
         auto& p = static_cast<ChurningPoint&>(out);
         p.gears.assign(gb.gears.size(), ChurningAtSpeed{});
-        p.air_drag = param(kAirDrag) * std::pow(std::abs(in.omega_in) * rad_s_to_rpm / 1000.0, 2.9);
         if (!m.options.churning) return;
         for (size_t g = 0; g < gb.gears.size(); ++g) {
             const double h = L.gear_immersion[g];
@@ -72,7 +65,6 @@ public:
                 !std::isfinite(c.ReC_times_nu))
                 return "churning gear " + m.gearbox.gears[g].spec.name;
         }
-        if (!(std::isfinite(p.air_drag) && p.air_drag >= 0.0)) return "windage";
         return {};
     }
 
@@ -99,15 +91,13 @@ public:
                 }
             }
         }
-        return total + p.air_drag;
+        return total;
     }
 
-    std::string loss_fault(const solver::Model& m, const losses::MechanismPoint& pt,
+    std::string loss_fault(const solver::Model& m, const losses::MechanismPoint&,
                            const losses::MechanismDetail& d) const override {
         for (size_t g = 0; g < m.gearbox.gears.size(); ++g)
             if (!(std::isfinite(d.at(g, kPower)) && d.at(g, kPower) >= 0)) return "churning gear " + m.gearbox.gears[g].spec.name;
-        const auto& p = static_cast<const ChurningPoint&>(pt);
-        if (!(std::isfinite(p.air_drag) && p.air_drag >= 0)) return "windage";
         return {};
     }
 

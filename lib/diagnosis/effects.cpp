@@ -25,7 +25,7 @@ const std::vector<Effect>& effect_library() {
     static const std::vector<Effect> lib = {
         {"windage", "air/oil-mist drag of the rotating gears, P = C (n/1000 rpm)^2.9, independent of oil viscosity and load",
          "C (loss at 1000 rpm)", "W", 0, 20000, 0, {true, false, false, false, 2.9, false},
-         [](Hypothesis& h, double v) { h.set("churning", "windage_W_at_1000rpm", v); }},
+         [](Hypothesis& h, double v) { h.set("windage", "empirical_W_at_1000rpm", v); }},
         {"churning", "churning level of the dipping gears (immersion or oil level) differs from the description",
          "churning factor", "", 0, 60, 1, {true, false, false, true, 1.6, false},
          [](Hypothesis& h, double v) { h.set("churning", "factor", v); }},

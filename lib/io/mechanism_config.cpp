@@ -18,7 +18,7 @@ struct LegacyKey {
     const char* mechanism;
     const char* parameter;
 };
-constexpr LegacyKey kLegacy[] = {{"windage", "churning", "windage_W_at_1000rpm"},
+constexpr LegacyKey kLegacy[] = {{"windage", "windage", "empirical_W_at_1000rpm"},
                                  {"churning_factor", "churning", "factor"},
                                  {"bearing_drag_f0", "bearings", "drag_f0"},
                                  {"seal_factor", "seals", "factor"},
@@ -69,6 +69,11 @@ void load_calibration(const YamlNode& n, solver::Model& m) {
         if (auto* mech = m.mechanisms.find(key); mech && x.is_map()) {
             for (const auto& [pk, px] : x.entries()) {
                 if (pk == "note") continue;
+                // The empirical drag was churning's before windage became a mechanism.
+                if (key == "churning" && pk == "windage_W_at_1000rpm") {
+                    set_parameter(px, m.mechanisms.at("windage"), "empirical_W_at_1000rpm", true);
+                    continue;
+                }
                 set_parameter(px, *mech, pk, true);
             }
             continue;

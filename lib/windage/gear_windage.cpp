@@ -15,6 +15,11 @@
 //                        air at the oil temperature (ideal gas, Sutherland 1893 viscosity). No
 //                        tooth pumping and no periphery: a lower bound for a toothed gear.
 // Planet gears count once per planet, at their speed relative to the housing.
+//
+// Whatever the form, the calibration may add an empirical drag of the whole box (component
+// "box"): P = C (n_in / 1000 rpm)^2.9, the speed exponent of Dawson (1984), C fitted to
+// measurements (calibration: {windage: {empirical_W_at_1000rpm: 12 W}}; the diagnosis's
+// windage effect).
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -52,17 +57,20 @@ constexpr const char* kFormNames[] = {"none", "anderson_loewenthal", "free_disk"
 
 struct WindagePoint : losses::MechanismPointOf<WindagePoint> {
     std::vector<double> omega;  // per gear, relative to the housing [rad/s]
+    double box = 0;             // W, the calibration's empirical drag of the whole box
 };
 
 class GearWindage final : public losses::LossMechanism {
 public:
-    enum : size_t { kFactor, kMistViscosity, kPressure };
+    enum : size_t { kFactor, kMistViscosity, kPressure, kEmpirical };
     std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<GearWindage>(*this); }
     std::string_view name() const override { return "windage"; }
     std::string_view label() const override { return "windage"; }
     std::string_view column() const override { return "P_windage_W"; }
     std::vector<std::string> components(const solver::Model& m) const override {
-        return losses::names_of(m.gearbox.gears, [](const auto& g) { return g.spec.name; });
+        auto names = losses::names_of(m.gearbox.gears, [](const auto& g) { return g.spec.name; });
+        names.push_back("box");  // the empirical term, last
+        return names;
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_windage_{}_W", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {
@@ -70,7 +78,9 @@ public:
                 {"mist_viscosity", "viscosity of the air/oil mist (anderson_loewenthal)", &units::dim::dynamic_viscosity,
                  "1.8e-5 Pa*s", 1.8e-5, 0.0, 1.0, false},
                 {"pressure", "gas pressure in the housing (free_disk)", &units::dim::pressure, "101325 Pa", 101325.0, 1e3,
-                 1e7, false}};
+                 1e7, false},
+                {"empirical_W_at_1000rpm", "empirical drag of the whole box at 1000 rpm input speed (n^2.9)",
+                 &units::dim::power, "12 W", 0.0, 0.0, 1e9, true}};
     }
     std::vector<losses::FormAxis> forms(const solver::Model&) const override {
         return {{"form", {kFormNames[0], kFormNames[1], kFormNames[2]}}};
@@ -95,18 +105,23 @@ public:
         auto& p = static_cast<WindagePoint&>(out);
         p.omega.assign(m.gearbox.gears.size(), 0.0);
         for (size_t g = 0; g < p.omega.size(); ++g) p.omega[g] = L.body_speed_ratio[L.body_of_gear[g]] * in.omega_in;
+        p.box = param(kEmpirical) * std::pow(std::abs(in.omega_in) * 30.0 / std::numbers::pi / 1000.0, 2.9);
     }
     std::string point_fault(const solver::Model& m, const losses::MechanismPoint& pt) const override {
         const auto& p = static_cast<const WindagePoint&>(pt);
         for (size_t g = 0; g < p.omega.size(); ++g)
             if (!std::isfinite(p.omega[g])) return "windage gear " + m.gearbox.gears[g].spec.name;
+        if (!(std::isfinite(p.box) && p.box >= 0.0)) return "windage";
         return {};
     }
     double power(const solver::Model& m, const losses::MechanismPoint& pt, losses::Evaluation& e,
                  losses::MechanismDetail* d) const override {
         const auto& p = static_cast<const WindagePoint&>(pt);
-        if (d) d->reset(p.omega.size(), 1);
-        if (form_ == Form::none) return 0.0;
+        if (d) {
+            d->reset(p.omega.size() + 1, 1);
+            d->at(p.omega.size()) = p.box;
+        }
+        if (form_ == Form::none) return p.box;
         const double T = e.oil.T;
         const double rho = thermal::air_density(T, param(kPressure)), nu = thermal::air_viscosity(T) / rho;
         double total = 0.0;
@@ -120,7 +135,7 @@ public:
             total += P;
             if (d) d->at(g) = P;
         }
-        return total;
+        return total + p.box;
     }
 
 private:
