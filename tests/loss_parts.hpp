@@ -17,7 +17,7 @@ inline size_t mech(std::string_view name) {
     const auto& r = losses::registry();
     for (size_t i = 0; i < r.size(); ++i)
         if (r[i].name == name) return i;
-    throw std::invalid_argument("no mechanism " + std::string(name));
+    throw std::logic_error("no mechanism " + std::string(name));
 }
 inline double part(const solver::LossBreakdown& L, std::string_view name) { return L.power.at(mech(name)); }
 // Per-component value (detail evaluations): quantity 0 is the component's loss [W].

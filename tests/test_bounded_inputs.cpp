@@ -77,7 +77,7 @@ std::string units_error(const std::function<void()>& f) {
     try {
         f();
     } catch (const units::UnitError& e) {
-        return e.msg;
+        return e.message;
     }
     FAIL("no UnitError raised");
     return {};

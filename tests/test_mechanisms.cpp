@@ -108,7 +108,7 @@ TEST_CASE("mechanisms: parameters have bounds that hold their nominal value and 
             mech->set_parameter(p.name, p.nominal);
             CHECK(mech->parameters_nominal());
         }
-        CHECK_THROWS_AS(mech->set_parameter("no_such", 1), std::invalid_argument);
+        CHECK_THROWS_AS(mech->set_parameter("no_such", 1), InputError);
         // A clone carries the parameter values.
         const auto ps = mech->parameters();
         if (!ps.empty()) {
@@ -133,7 +133,7 @@ TEST_CASE("mechanisms: every alternative form is selectable by name and changes 
                 CHECK(solver::has_values(r.status));
             }
             mech.set_form(c.model, axis.axis, before);
-            CHECK_THROWS_AS(mech.set_form(c.model, axis.axis, "no_such_form"), std::invalid_argument);
+            CHECK_THROWS_AS(mech.set_form(c.model, axis.axis, "no_such_form"), InputError);
         }
     }
 }

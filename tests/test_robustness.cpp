@@ -268,7 +268,7 @@ TEST_CASE("robustness: mesh angle 1e308 rev is an input error and a non-finite a
             });
             FAIL("no topology error");
         } catch (const gearbox::TopologyError& e) {
-            CHECK_THAT(e.msg, Catch::Contains("mesh 'm12': angle is not a finite number"));
+            CHECK_THAT(e.message, Catch::Contains("mesh 'm12': angle is not a finite number"));
             CHECK(e.section == "meshes");
             CHECK(e.item == "m12");
             CHECK(e.key == "angle");

@@ -81,9 +81,9 @@ TEST_CASE("rotational speed: a bare 1/s is ambiguous", "[units][speed]") {
             (void)rot(t);
             FAIL("accepted");
         } catch (const units::UnitError& e) {
-            INFO(e.msg);
-            CHECK_THAT(e.msg, Catch::Contains("rad/s"));
-            CHECK_THAT(e.msg, Catch::Contains("Hz"));
+            INFO(e.message);
+            CHECK_THAT(e.message, Catch::Contains("rad/s"));
+            CHECK_THAT(e.message, Catch::Contains("Hz"));
         }
     }
 }

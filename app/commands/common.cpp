@@ -29,7 +29,7 @@ void apply_case_options(io::Case& k, const CommonOptions& c) {
         try {
             q = units::parse_quantity(c.oil_temp);
         } catch (const units::UnitError& e) {
-            throw InputError("", 0, 0, "--oil-temp", e.msg + " (expected e.g. '70degC')");
+            throw InputError("", 0, 0, "--oil-temp", e.message + " (expected e.g. '70degC')");
         }
         if (!q.absolute_temperature || q.value <= 0)
             throw InputError("", 0, 0, "--oil-temp", "'" + io::excerpt(c.oil_temp) + "' is not a temperature (e.g. '70degC')");
@@ -54,7 +54,7 @@ double absolute_temperature(const std::string& text, const char* what) {
     try {
         q = units::parse_quantity(text);
     } catch (const units::UnitError& e) {
-        throw InputError("", 0, 0, what, e.msg + " (expected e.g. '-10degC')");
+        throw InputError("", 0, 0, what, e.message + " (expected e.g. '-10degC')");
     }
     if (!q.absolute_temperature || !(q.value > 0))
         throw InputError("", 0, 0, what, "'" + io::excerpt(text) + "' is not a temperature (e.g. '-10degC')");
@@ -83,7 +83,7 @@ double temperature_difference(const std::string& text, const char* what) {
         if (f.dim != units::dim::temperature) throw units::UnitError("not a temperature difference");
         return q.value - f.offset;
     } catch (const units::UnitError& e) {
-        throw InputError("", 0, 0, what, "'" + io::excerpt(text) + "': " + e.msg + " (expected e.g. '0.4K')");
+        throw InputError("", 0, 0, what, "'" + io::excerpt(text) + "': " + e.message + " (expected e.g. '0.4K')");
     }
 }
 

@@ -72,7 +72,7 @@ std::optional<ColumnDef> column_definition(const std::string& name, const std::s
             one.rotation = f.rotation;
             return ColumnDef{q.key, units::as_rotational_speed(one, unit), f.offset};
         } catch (const units::UnitError& e) {
-            throw InputError(file, line, col, io::excerpt(name), e.msg);
+            throw InputError(file, line, col, io::excerpt(name), e.message);
         }
     }
     return std::nullopt;
@@ -212,7 +212,7 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
     // The criterion bounds the block loop below: at most window/block + 1 blocks per test.
     if (!(crit.window_s > 0 && crit.block_s > 0 && std::isfinite(crit.window_s) && crit.window_s / crit.block_s <= 1e6 &&
           crit.max_variation >= 0))
-        throw std::invalid_argument("stabilisation criterion: window and block must be positive, at most 1e6 blocks");
+        throw InputError("stabilisation criterion: window and block must be positive, at most 1e6 blocks");
     io::check_input_text(text, file, io::kMaxCsvFileBytes);
     Recordings rec;
     rec.file = file;

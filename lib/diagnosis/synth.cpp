@@ -34,7 +34,7 @@ std::pair<std::string, double> parse_effect_assignment(const std::string& text) 
     try {
         q = units::parse_quantity(value);
     } catch (const units::UnitError& err) {
-        throw InputError("", 0, 0, "--effect " + name, err.msg);
+        throw InputError("", 0, 0, "--effect " + name, err.message);
     }
     const units::Dimension want = e->unit == "W" ? units::dim::power : e->unit == "N*m" ? units::dim::torque : units::dim::none;
     if (q.dim != want && !(q.dim == units::dim::none))

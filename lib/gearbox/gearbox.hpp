@@ -11,6 +11,7 @@
 #include "clutch/wet_clutch.hpp"
 #include "geometry/gear_geometry.hpp"
 #include "mesh/loss_factor.hpp"
+#include "core/errors.hpp"
 
 namespace gearloss::gearbox {
 
@@ -76,12 +77,13 @@ struct Gearbox {
 // Where the error is in the case description, when one item is to blame: the section
 // ("meshes", "bearings", "gears"), the item's name and the key, so a reader can point at
 // its line (solver::Issue's convention); empty for the train as a whole.
-struct TopologyError : std::exception {
-    explicit TopologyError(std::string m, std::string section_ = {}, std::string item_ = {}, std::string key_ = {})
-        : msg(std::move(m)), section(std::move(section_)), item(std::move(item_)), key(std::move(key_)) {}
-    const char* what() const noexcept override { return msg.c_str(); }
-    std::string msg;
-    std::string section, item, key;
+// The key, when one is named, is the item's own key ("mount"); `where` is the item's place in
+// the case file when the model kept it.
+struct TopologyError : InputError {
+    explicit TopologyError(std::string m, std::string section_ = {}, std::string item_ = {}, std::string key_ = {},
+                           const SourceLocation& at = {})
+        : InputError(at, std::move(key_), std::move(m)), section(std::move(section_)), item(std::move(item_)) {}
+    std::string section, item;
 };
 
 // Immutable data derived from the topology: speeds per unit input speed,

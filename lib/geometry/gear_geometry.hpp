@@ -3,6 +3,7 @@
 // as in the MAAG Gear Book 1990). All lengths in metres, angles in rad.
 #include <optional>
 #include <string>
+#include "core/errors.hpp"
 
 namespace gearloss::geometry {
 
@@ -76,10 +77,8 @@ struct PairGeometry {
     double b_eff = 0;        // common face width
 };
 
-struct GeometryError : std::exception {
-    explicit GeometryError(std::string m) : msg(std::move(m)) {}
-    const char* what() const noexcept override { return msg.c_str(); }
-    std::string msg;
+struct GeometryError : InputError {
+    using InputError::InputError;
 };
 
 // Computes the pair geometry (gear 1 external; gear 2 external or internal,

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "io/output_paths.hpp"
+#include "core/errors.hpp"
 
 namespace gearloss::io {
 
@@ -66,10 +67,8 @@ void finish_stdout();
 // A reader closed the pipe on standard output.
 bool stdout_closed();
 
-struct IoError : std::exception {
-    explicit IoError(std::string m) : msg(std::move(m)) {}
-    const char* what() const noexcept override { return msg.c_str(); }
-    std::string msg;
+struct IoError : Error {
+    explicit IoError(std::string m) : Error({}, 0, 0, {}, std::move(m)) {}
 };
 
 // Set by the signal handler: long loops stop and outputs are discarded.

@@ -111,8 +111,9 @@ lubricant::Oil load_oil(const YamlNode& n) {
                 oil.viscosity = lubricant::WaltherLaw::fit(tv.front().first, tv.front().second, tv.back().first,
                                                            tv.back().second);
             }
-        } catch (const std::invalid_argument& e) {
-            v.at("points").fail(e.what());
+        } catch (const InputError& e) {
+            if (e.where().known()) throw;  // already at its line
+            v.at("points").fail(e.message);  // a fit that cannot hold these points
         }
     }
 
@@ -236,7 +237,7 @@ std::vector<double> parse_value_list(const std::string& text, const units::Dimen
         try {
             v = units::parse_quantity(q);
         } catch (const units::UnitError& e) {
-            throw InputError("", 0, 0, what, e.msg + " (expected e.g. '" + example + "')");
+            throw InputError("", 0, 0, what, e.message + " (expected e.g. '" + example + "')");
         }
         if (v.dim != d || v.absolute_temperature)
             throw InputError("", 0, 0, what,
@@ -245,7 +246,7 @@ std::vector<double> parse_value_list(const std::string& text, const units::Dimen
         try {
             out.push_back(units::as_rotational_speed(v, q));
         } catch (const units::UnitError& e) {
-            throw InputError("", 0, 0, what, e.msg + " (expected e.g. '" + example + "')");
+            throw InputError("", 0, 0, what, e.message + " (expected e.g. '" + example + "')");
         }
     }
     return out;
@@ -412,7 +413,7 @@ struct Loader {
                 (void)geometry::pair_geometry(model.gearbox.gears[m.gear[0]].spec, model.gearbox.gears[m.gear[1]].spec,
                                               m.centre_distance);
             } catch (const geometry::GeometryError& e) {
-                n.fail(e.msg);
+                n.fail(e.message);
             }
             model.gearbox.meshes.push_back(m);
         }
@@ -861,7 +862,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     try {
         m.finalise();
     } catch (const gearbox::TopologyError& e) {
-        (e.section.empty() ? gbn : locate_in_case(root, e.section, e.item, e.key)).fail(e.msg);
+        (e.section.empty() ? gbn : locate_in_case(root, e.section, e.item, e.key)).fail(e.message);
     }
     if (const auto issues = solver::validate(m); !issues.empty()) {
         const auto& first = issues.front();

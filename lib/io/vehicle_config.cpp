@@ -34,7 +34,7 @@ vehicle::FuelMap load_fuel_map(const YamlNode& n) {
     try {
         u = units::parse_unit(un.as_string());
     } catch (const units::UnitError& e) {
-        un.fail(e.msg + " (expected a mass flow unit, e.g. 'g/h' or 'kg/h')");
+        un.fail(e.message + " (expected a mass flow unit, e.g. 'g/h' or 'kg/h')");
     }
     if (!(u.dim == units::make_dim(0, 1, -1, 0)) || u.affine) un.fail("expected a mass flow unit, e.g. 'g/h'");
     const auto rows = n.at("fuel_rate").items();

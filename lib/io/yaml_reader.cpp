@@ -406,7 +406,7 @@ double YamlNode::as_quantity(const units::Dimension& expected, const char* examp
     try {
         q = units::parse_quantity(s);
     } catch (const units::UnitError& e) {
-        fail(e.msg + std::string(" (expected e.g. '") + example + "')");
+        fail(e.message + std::string(" (expected e.g. '") + example + "')");
     }
     if (q.dim != expected) {
         if (q.dim == units::dim::none && expected != units::dim::none)
@@ -419,7 +419,7 @@ double YamlNode::as_quantity(const units::Dimension& expected, const char* examp
     try {
         return units::as_rotational_speed(q, s);
     } catch (const units::UnitError& e) {
-        fail(e.msg + std::string(" (expected e.g. '") + example + "')");
+        fail(e.message + std::string(" (expected e.g. '") + example + "')");
     }
 }
 
@@ -429,7 +429,7 @@ double YamlNode::as_temperature() const {
     try {
         q = units::parse_quantity(s);
     } catch (const units::UnitError& e) {
-        fail(e.msg + " (expected e.g. '40 degC')");
+        fail(e.message + " (expected e.g. '40 degC')");
     }
     if (!q.absolute_temperature) fail("'" + excerpt(s) + "' is not a temperature; write e.g. '40 degC' or '313.15 K'");
     if (!(q.value > 0.0)) fail("'" + excerpt(s) + "' is below absolute zero");

@@ -1,3 +1,4 @@
+#include "core/errors.hpp"
 #include "losses/loss_mechanism.hpp"
 
 #include <cmath>
@@ -23,7 +24,7 @@ double LossMechanism::parameter(std::string_view name) const {
     const auto ps = parameters();
     for (size_t i = 0; i < ps.size(); ++i)
         if (ps[i].name == name) return values_[i];
-    throw std::invalid_argument(fmt::format("mechanism '{}' has no parameter '{}'", this->name(), name));
+    throw InputError(fmt::format("mechanism '{}' has no parameter '{}'", this->name(), name));
 }
 
 void LossMechanism::set_parameter(std::string_view name, double value) {
@@ -33,7 +34,7 @@ void LossMechanism::set_parameter(std::string_view name, double value) {
             values_[i] = value;
             return;
         }
-    throw std::invalid_argument(fmt::format("mechanism '{}' has no parameter '{}'", this->name(), name));
+    throw InputError(fmt::format("mechanism '{}' has no parameter '{}'", this->name(), name));
 }
 
 bool LossMechanism::parameters_nominal() const {
@@ -46,11 +47,11 @@ bool LossMechanism::parameters_nominal() const {
 std::string LossMechanism::form(const solver::Model& m, std::string_view axis) const {
     for (const auto& a : forms(m))
         if (a.axis == axis) return a.forms.front();
-    throw std::invalid_argument(fmt::format("mechanism '{}' has no form axis '{}'", name(), axis));
+    throw InputError(fmt::format("mechanism '{}' has no form axis '{}'", name(), axis));
 }
 
 void LossMechanism::set_form(solver::Model&, std::string_view axis, std::string_view) {
-    throw std::invalid_argument(fmt::format("mechanism '{}' has no form axis '{}'", name(), axis));
+    throw InputError(fmt::format("mechanism '{}' has no form axis '{}'", name(), axis));
 }
 
 void LossMechanism::validate(const solver::Model&, std::vector<solver::Issue>& out) const {

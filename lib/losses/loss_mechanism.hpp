@@ -143,12 +143,12 @@ public:
     // Parameters (with units and physical bounds) and their current values.
     virtual std::vector<Parameter> parameters() const { return {}; }
     double parameter(std::string_view name) const;
-    void set_parameter(std::string_view name, double value);  // std::invalid_argument for an unknown name
+    void set_parameter(std::string_view name, double value);  // InputError for an unknown name
     bool parameters_nominal() const;
     // Alternative forms, selectable by name.
     virtual std::vector<FormAxis> forms(const solver::Model&) const { return {}; }
     virtual std::string form(const solver::Model&, std::string_view axis) const;
-    // Selects a form (std::invalid_argument for an unknown axis or name). A mechanism whose
+    // Selects a form (InputError for an unknown axis or name). A mechanism whose
     // forms live in the model's options writes them there.
     virtual void set_form(solver::Model&, std::string_view axis, std::string_view form);
 

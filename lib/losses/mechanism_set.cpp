@@ -1,3 +1,4 @@
+#include "core/errors.hpp"
 #include "losses/mechanism_set.hpp"
 
 #include <atomic>
@@ -48,11 +49,11 @@ LossMechanism* MechanismSet::find(std::string_view name) {
 }
 const LossMechanism& MechanismSet::at(std::string_view name) const {
     if (const auto* m = find(name)) return *m;
-    throw std::invalid_argument("no loss mechanism '" + std::string(name) + "' (registered: " + registered_names() + ")");
+    throw InputError("no loss mechanism '" + std::string(name) + "' (registered: " + registered_names() + ")");
 }
 LossMechanism& MechanismSet::at(std::string_view name) {
     if (auto* m = find(name)) return *m;
-    throw std::invalid_argument("no loss mechanism '" + std::string(name) + "' (registered: " + registered_names() + ")");
+    throw InputError("no loss mechanism '" + std::string(name) + "' (registered: " + registered_names() + ")");
 }
 
 }  // namespace gearloss::losses

@@ -26,7 +26,7 @@ public:
     size_t index(std::string_view name) const;
     const LossMechanism* find(std::string_view name) const;
     LossMechanism* find(std::string_view name);
-    // std::invalid_argument naming the registered mechanisms when absent.
+    // InputError naming the registered mechanisms when absent.
     const LossMechanism& at(std::string_view name) const;
     LossMechanism& at(std::string_view name);
     // Identity of this set (each construction or copy has its own): per-point storage made

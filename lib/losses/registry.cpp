@@ -1,3 +1,4 @@
+#include "core/errors.hpp"
 #include "losses/registry.hpp"
 
 #include <stdexcept>
@@ -36,7 +37,7 @@ std::string registered_names() {
 std::unique_ptr<LossMechanism> create(const std::string& name) {
     for (const auto& r : registry())
         if (r.name == name) return r.create();
-    throw std::invalid_argument("no loss mechanism '" + name + "' (registered: " + registered_names() + ")");
+    throw InputError("no loss mechanism '" + name + "' (registered: " + registered_names() + ")");
 }
 
 }  // namespace gearloss::losses

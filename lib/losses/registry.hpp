@@ -17,7 +17,7 @@ struct Registration {
 
 // Every registered mechanism, in the order of the output columns.
 const std::vector<Registration>& registry();
-// A new mechanism by name, parameters nominal (std::invalid_argument when unknown).
+// A new mechanism by name, parameters nominal (InputError when unknown).
 std::unique_ptr<LossMechanism> create(const std::string& name);
 // The registered names, comma separated (for messages).
 std::string registered_names();

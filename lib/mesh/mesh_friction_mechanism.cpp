@@ -1,3 +1,4 @@
+#include "core/errors.hpp"
 #include "mesh/mesh_friction_mechanism.hpp"
 
 #include <cmath>
@@ -46,7 +47,7 @@ template <size_t N>
 int value_of(const NamedForm (&t)[N], std::string_view axis, std::string_view name) {
     for (const auto& f : t)
         if (name == f.name) return f.value;
-    throw std::invalid_argument(fmt::format("mesh friction has no {} form '{}'", axis, name));
+    throw InputError(fmt::format("mesh friction has no {} form '{}'", axis, name));
 }
 
 class MeshFriction final : public losses::LossMechanism {

@@ -5,6 +5,7 @@
 #include <array>
 #include <string>
 #include <string_view>
+#include "core/errors.hpp"
 
 namespace gearloss::units {
 
@@ -57,10 +58,9 @@ UnitFactor parse_unit(std::string_view expr);
 // Other dimensions: the SI value unchanged.
 double as_rotational_speed(const Quantity& q, std::string_view text);
 
-struct UnitError : std::exception {
-    explicit UnitError(std::string m) : msg(std::move(m)) {}
-    const char* what() const noexcept override { return msg.c_str(); }
-    std::string msg;
+// A unit that cannot be read; the caller knows where it was written and rethrows located.
+struct UnitError : InputError {
+    using InputError::InputError;
 };
 
 }  // namespace gearloss::units

@@ -25,6 +25,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/errors.hpp"
 #include "losses/registry.hpp"
 #include "solver/model.hpp"
 #include "thermal/air.hpp"
@@ -96,7 +97,7 @@ public:
                 form_ = Form(i);
                 return;
             }
-        throw std::invalid_argument(fmt::format("windage has no form '{}'", f));
+        throw InputError(fmt::format("windage has no form '{}'", f));
     }
     std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<WindagePoint>(); }
 
