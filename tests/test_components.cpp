@@ -10,12 +10,18 @@ using namespace gearloss;
 using Approx = Catch::Detail::Approx;
 
 namespace {
+// The SKF reference values are in the catalogue's units; the bearing model takes SI.
+constexpr double mm = 1e-3;                      // m
+constexpr double rpm = std::numbers::pi / 30.0;  // rad/s
+constexpr double cSt = 1e-6;                     // m^2/s
+constexpr double Nmm = 1e-3;                     // N*m
+
 bearings::BearingSpec dgbb_6205() {
     bearings::BearingSpec b;
     b.type = bearings::BearingType::deep_groove_ball;
-    b.d = 25;
-    b.D = 52;
-    b.B = 15;
+    b.d = 25 * mm;
+    b.D = 52 * mm;
+    b.B = 15 * mm;
     b.C0 = 7800;
     b.k = *bearings::skf_constants(b.type, "62");
     b.K_rs = 3e-8;
@@ -29,32 +35,32 @@ TEST_CASE("SKF model: 6205 worked values of the reference", "[bearings]") {
     // Hand calculation with the SKF (2004) equations: n 3000, nu 20, Fr 1000 N, Fa 0, K_rs 3e-8, mineral:
     // G_rr 0.02082, G_sl 125.02, phi_ish 0.9636, phi_rs 0.9673, M_rr 15.33, phi_bl 0.00748, M_sl 6.34, M 20.63 N mm.
     const auto b = dgbb_6205();
-    const auto g = bearings::skf_load_terms(b, 1000, 0, 3000);
-    CHECK(g.G_rr == Approx(0.02082).epsilon(1e-3));
+    const auto g = bearings::skf_load_terms(b, 1000, 0, 3000 * rpm);
+    CHECK(g.G_rr == Approx(0.02082).epsilon(1e-3));  // catalogue units (M_rr in N mm)
     CHECK(g.G_sl == Approx(125.02).epsilon(1e-3));
-    const auto m = bearings::skf_moment(b, 1000, 0, 3000, 20);
+    const auto m = bearings::skf_moment(b, 1000, 0, 3000 * rpm, 20 * cSt);
     CHECK(m.phi_ish == Approx(0.9636).epsilon(1e-3));
     CHECK(m.phi_rs == Approx(0.9673).epsilon(1e-3));
     CHECK(m.phi_bl == Approx(0.00748).epsilon(5e-3));
-    CHECK(m.rolling / (m.phi_ish * m.phi_rs) == Approx(15.33).epsilon(1e-3));
-    CHECK(m.sliding == Approx(6.34).epsilon(2e-3));
-    CHECK(m.total() == Approx(20.63).epsilon(1e-3));
+    CHECK(m.rolling / (m.phi_ish * m.phi_rs) == Approx(15.33 * Nmm).epsilon(1e-3));
+    CHECK(m.sliding == Approx(6.34 * Nmm).epsilon(2e-3));
+    CHECK(m.total() == Approx(20.63 * Nmm).epsilon(1e-3));
     // With an axial load of 500 N: M = 48.17 N mm.
-    CHECK(bearings::skf_moment(b, 1000, 500, 3000, 20).total() == Approx(48.17).epsilon(1e-3));
+    CHECK(bearings::skf_moment(b, 1000, 500, 3000 * rpm, 20 * cSt).total() == Approx(48.17 * Nmm).epsilon(1e-3));
 }
 
 TEST_CASE("SKF model: tapered roller 302 worked value", "[bearings]") {
     // Same size, Y 1.6, Fr 2000 N, Fa 500 N, n 3000, nu 20 -> M = 129.4 N mm.
     bearings::BearingSpec b;
     b.type = bearings::BearingType::tapered_roller;
-    b.d = 25;
-    b.D = 52;
+    b.d = 25 * mm;
+    b.D = 52 * mm;
     b.Y = 1.6;
     b.k = *bearings::skf_constants(b.type, "302");
     b.K_rs = 3e-8;
     b.mu_bl = 0.15;
     b.mu_ehl = 0.002;
-    CHECK(bearings::skf_moment(b, 2000, 500, 3000, 20).total() == Approx(129.4).epsilon(1e-3));
+    CHECK(bearings::skf_moment(b, 2000, 500, 3000 * rpm, 20 * cSt).total() == Approx(129.4 * Nmm).epsilon(1e-3));
 }
 
 TEST_CASE("SKF drag terms for the 6205 half submerged", "[bearings]") {
@@ -62,17 +68,17 @@ TEST_CASE("SKF drag terms for the 6205 half submerged", "[bearings]") {
     auto b = dgbb_6205();
     b.bath_H = 0.5 * b.dm();
     b.bath_VM = 0.0;
-    CHECK(bearings::skf_drag_moment(b, 3000, 20) == Approx(1.42).epsilon(5e-3));
+    CHECK(bearings::skf_drag_moment(b, 3000 * rpm, 20 * cSt) == Approx(1.42 * Nmm).epsilon(5e-3));
     b.bath_VM = 1e-3;
-    CHECK(bearings::skf_drag_moment(b, 3000, 20) == Approx(1.42 + 2.692).epsilon(5e-3));
+    CHECK(bearings::skf_drag_moment(b, 3000 * rpm, 20 * cSt) == Approx((1.42 + 2.692) * Nmm).epsilon(5e-3));
 }
 
 TEST_CASE("SKF precomputed form equals the direct evaluation", "[bearings]") {
     const auto b = dgbb_6205();
-    const auto p = bearings::SkfAtPoint::make(b, 1000, 300, 2500);
-    const double nu = 35;
+    const auto p = bearings::SkfAtPoint::make(b, 1000, 300, 2500 * rpm);
+    const double nu = 35;  // cSt: the folded form takes the powers of nu in cSt
     const double fast = p.moment(nu, std::pow(nu, 0.6), std::pow(nu, 0.64), std::pow(nu, 1.4), std::pow(nu, 1.379));
-    CHECK(fast == Approx(bearings::skf_moment(b, 1000, 300, 2500, nu).total()).epsilon(1e-12));
+    CHECK(fast == Approx(bearings::skf_moment(b, 1000, 300, 2500 * rpm, nu * cSt).total()).epsilon(1e-12));
     CHECK(bearings::SkfAtPoint::make(b, 1000, 0, 0).moment(nu, 1, 1, 1, 1) == 0.0);  // standstill
 }
 

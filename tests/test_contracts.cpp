@@ -152,9 +152,9 @@ lubricant::Oil oil_75W90() { return io::load_oil_file(test_support::source_path(
 bearings::BearingSpec bearing_of(bearings::BearingType t) {
     bearings::BearingSpec b;
     b.type = t;
-    b.d = 40;
-    b.D = 80;
-    b.B = 18;
+    b.d = 40e-3;  // m
+    b.D = 80e-3;
+    b.B = 18e-3;
     b.C0 = 19e3;
     const auto series = bearings::series_names(t);  // the first series of the type's SKF table
     b.k = *bearings::skf_constants(t, series.empty() ? "" : series.front());
@@ -262,7 +262,7 @@ TEST_CASE("contracts: every bearing type (SKF 2004 with oil-bath drag)", "[contr
         const auto b = bearing_of(t);
         const Loss P = [&](double n, double T, double F) {
             const double Fr = thrust(t) ? 0.0 : F, Fa = thrust(t) ? F : 0.25 * F;
-            return bearings::skf_moment(b, Fr, Fa, n, oil.nu_mm2s(T)).total() * 1e-3 * n * rpm;
+            return bearings::skf_moment(b, Fr, Fa, n * rpm, oil.nu_mm2s(T) * 1e-6).total() * n * rpm;
         };
         // Total: unchecked in T (rolling falls, sliding rises as the film thins: see above).
         check_contract({"bearing " + name, Trend::unchecked, Trend::rises, Trend::rises}, P,
@@ -271,8 +271,8 @@ TEST_CASE("contracts: every bearing type (SKF 2004 with oil-bath drag)", "[contr
         // where the film is not starved (nu below ~300 mm^2/s at these speeds).
         const Loss viscous = [&](double n, double T, double F) {
             const double Fr = thrust(t) ? 0.0 : F, Fa = thrust(t) ? F : 0.25 * F;
-            const auto M = bearings::skf_moment(b, Fr, Fa, n, oil.nu_mm2s(T));
-            return (M.rolling + M.drag) * 1e-3 * n * rpm;
+            const auto M = bearings::skf_moment(b, Fr, Fa, n * rpm, oil.nu_mm2s(T) * 1e-6);
+            return (M.rolling + M.drag) * n * rpm;
         };
         check_contract({"bearing " + name + ", rolling + drag", Trend::falls, Trend::rises, Trend::rises}, viscous,
                        {{500, 1500, 4000}, {degC + 50, degC + 75, degC + 100}, {500, 2000, 5000}});
@@ -373,9 +373,9 @@ TEST_CASE("fast path: the solver's per-temperature evaluation equals the compone
                     for (size_t i = 0; i < gb.bearings.size(); ++i) {
                         const double wb = L.bearing_speed_ratio[i] * w_in;
                         const double M = bearings::skf_moment(gb.bearings[i].spec, torque * L.bearing_Fr_pos[i],
-                                                              torque * L.bearing_Fa_pos[i], wb / rpm, s.nu_cSt)
-                                             .total();
-                        CHECK(test::each(r, "bearings", i) == Approx(M * 1e-3 * wb * gb.bearings[i].multiplicity).epsilon(1e-10));
+                                                              torque * L.bearing_Fa_pos[i], wb, s.nu_cSt * 1e-6)
+                                             .total();  // N*m
+                        CHECK(test::each(r, "bearings", i) == Approx(M * wb * gb.bearings[i].multiplicity).epsilon(1e-10));
                     }
                     for (size_t i = 0; i < gb.seals.size(); ++i)
                         CHECK(test::each(r, "seals", i) ==
@@ -410,11 +410,13 @@ TEST_CASE("fast path: the folded SKF form equals the direct SKF moment for every
             for (double nu : {5.0, 40.0, 400.0})
                 for (double F : {0.0, 800.0, 8000.0}) {
                     const double Fr = thrust(t) ? 0.0 : F, Fa = thrust(t) ? F : 0.3 * F;
-                    const auto folded = bearings::SkfAtPoint::make(b, Fr, Fa, n);
+                    // n in rpm, nu in cSt: the folded form takes the powers of nu in cSt.
+                    const auto folded = bearings::SkfAtPoint::make(b, Fr, Fa, n * rpm);
                     const double fast = folded.moment(nu, std::pow(nu, 0.6), std::pow(nu, 0.64), std::pow(nu, 1.4),
                                                       std::pow(nu, 1.379));
                     INFO(name << " n " << n << " nu " << nu << " F " << F);
-                    CHECK(fast == Approx(bearings::skf_moment(b, Fr, Fa, n, nu).total()).epsilon(1e-12).margin(1e-300));
+                    CHECK(fast ==
+                          Approx(bearings::skf_moment(b, Fr, Fa, n * rpm, nu * 1e-6).total()).epsilon(1e-12).margin(1e-300));
                 }
     }
 }

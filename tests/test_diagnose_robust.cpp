@@ -167,12 +167,14 @@ TEST_CASE("a recording with oil_temp_C = 9999 is not used, with the reason; neve
     try {
         diagnosis::diagnose(c.model, diagnosis::read_recordings_text(few, "few.csv"));
         FAIL("no error");
-    } catch (const std::invalid_argument& e) {
-        CHECK_THAT(std::string(e.what()), Catch::Contains("at least 4 recorded points"));
-        CHECK_THAT(std::string(e.what()), Catch::Contains("usable of 6"));
     } catch (const InputError& e) {
-        // the reader may refuse an ambient of 5000 degC itself: also an input error
-        CHECK_THAT(std::string(e.what()), Catch::Contains("5000"));
+        // Either the diagnosis refuses the 3 usable points, or the reader already refused an
+        // ambient of 5000 degC: an input error in both cases.
+        const std::string what = e.what();
+        INFO(what);
+        const bool too_few = what.find("at least 4 recorded points") != std::string::npos &&
+                             what.find("usable of 6") != std::string::npos;
+        CHECK((too_few || what.find("5000") != std::string::npos));
     }
 }
 

@@ -2,6 +2,7 @@
 // drag formula for a roller bearing (the ball-bearing form is checked against the
 // reference values in test_components.cpp). Kills mutation B2 of scripts/mutation-check.sh.
 #include <catch2/catch.hpp>
+#include <numbers>
 
 #include "bearings/skf_model.hpp"
 
@@ -22,22 +23,25 @@ TEST_CASE("independent: SKF oil-bath drag of a cylindrical roller bearing, by ha
     //   R_s = 0.36 d_m^2 (t - sin t) f_A = 0.36 x 2116 x (2.806696 - 0.328671) x 0.733125 = 1383.891
     //   second = 1.093e-7 x 9e6 x 97 336 x (3000 x 2116 x 0.986013 / 20)^-1.379 x 1383.891 = 3.49911 N mm
     //   M_drag = 11.67906 N mm.
+    // The model takes SI: the hand values above are converted explicitly.
+    constexpr double mm = 1e-3, rpm = std::numbers::pi / 30.0, cSt = 1e-6, Nmm = 1e-3;
     bearings::BearingSpec b;
     b.type = bearings::BearingType::cylindrical_roller;
-    b.d = 30;
-    b.D = 62;
-    b.B = 16;
+    b.d = 30 * mm;
+    b.D = 62 * mm;
+    b.B = 16 * mm;
     b.k = *bearings::skf_constants(b.type, "2");
     REQUIRE(b.k.K_Z == 5.1);
     REQUIRE(b.k.K_L == 0.65);
-    b.bath_H = 23.0;
+    b.bath_H = 23.0 * mm;
     b.bath_VM = 0.0;
-    CHECK(bearings::skf_drag_moment(b, 3000, 20) == Approx(3.49911).epsilon(1e-4));
+    CHECK(bearings::skf_drag_moment(b, 3000 * rpm, 20 * cSt) == Approx(3.49911 * Nmm).epsilon(1e-4));
     b.bath_VM = 5e-4;
-    CHECK(bearings::skf_drag_moment(b, 3000, 20) == Approx(8.17994 + 3.49911).epsilon(1e-4));
+    CHECK(bearings::skf_drag_moment(b, 3000 * rpm, 20 * cSt) == Approx((8.17994 + 3.49911) * Nmm).epsilon(1e-4));
     // The drag is in the full moment too, unchanged by load: M(Fr) - M_without_bath(Fr) = M_drag.
     auto dry = b;
     dry.bath_H.reset();
-    CHECK(bearings::skf_moment(b, 2000, 0, 3000, 20).total() - bearings::skf_moment(dry, 2000, 0, 3000, 20).total() ==
-          Approx(11.67906).epsilon(1e-4));
+    CHECK(bearings::skf_moment(b, 2000, 0, 3000 * rpm, 20 * cSt).total() -
+              bearings::skf_moment(dry, 2000, 0, 3000 * rpm, 20 * cSt).total() ==
+          Approx(11.67906 * Nmm).epsilon(1e-4));
 }

@@ -41,8 +41,9 @@ public:
         diagnosis::Diagnosis d;
         try {
             d = diagnosis::diagnose(k.model, rec, opt);
-        } catch (const std::invalid_argument& e) {
-            throw InputError(recordings_, 0, 0, "", e.what());
+        } catch (const InputError& e) {
+            if (!e.file.empty() || e.where().known()) throw;
+            throw InputError(recordings_, 0, 0, e.key, e.message);  // about the recordings as a whole
         }
         io::write_stdout(diagnosis::diagnosis_text(d));
         write_optional_file(json_, diagnosis::diagnosis_json(d));

@@ -12,12 +12,12 @@
 namespace gearloss::bearings {
 namespace {
 
-constexpr double rad_s_to_rpm = 30.0 / std::numbers::pi;
+constexpr double rad_s_to_rpm = 30.0 / std::numbers::pi;  // the report's speed column
 
 struct BearingPoint : losses::MechanismPointOf<BearingPoint> {
     std::vector<SkfAtPoint> skf;     // per bearing
     std::vector<double> omega;       // rad/s
-    std::vector<double> drag_coef;   // W per (nu_cSt)^(2/3)
+    std::vector<double> drag_coef;   // Palmgren drag, W per (nu_cSt)^(2/3)
     bool any_drag = false;           // a bearing with the SKF drag term
 };
 
@@ -58,12 +58,9 @@ public:
             const double Fcf = L.bearing_Fcf_per_w2[i] * in.omega_in * in.omega_in;  // planet centrifugal load
             const double Fr = Fcf > 0.0 ? std::hypot(Fr_gear, Fcf) : Fr_gear;
             const double Fa = T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]);
-            p.skf[i] = SkfAtPoint::make(gb.bearings[i].spec, Fr, Fa, w * rad_s_to_rpm);
-            if (f0 > 0.0) {
-                // Palmgren (1959): M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm], P = M0 omega.
-                const double nr = w * rad_s_to_rpm, dm = gb.bearings[i].spec.dm();
-                p.drag_coef[i] = 1e-7 * f0 * std::cbrt(nr * nr) * dm * dm * dm * 1e-3 * w;
-            }
+            p.skf[i] = SkfAtPoint::make(gb.bearings[i].spec, Fr, Fa, w);
+            // Palmgren (1959): M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm], P = M0 omega.
+            if (f0 > 0.0) p.drag_coef[i] = palmgren_drag_coef(gb.bearings[i].spec, f0, w);
             p.any_drag = p.any_drag || p.skf[i].drag_b != 0.0;
         }
     }
@@ -85,14 +82,16 @@ public:
         const auto& p = static_cast<const BearingPoint&>(pt);
         if (d) d->reset(p.skf.size(), 1);
         double total = 0.0;
+        // The SKF and Palmgren correlations take nu in cSt (their catalogue unit): its powers are
+        // computed here once per temperature, from the ln(nu/cSt) shared by every mechanism.
         const double nu = e.oil.nu_cSt;
         if (m.options.bearings && !p.skf.empty()) {
             const double lnnu = e.ln_nu_cSt;
             const double nu06 = std::exp(0.6 * lnnu), nu064 = std::exp(0.64 * lnnu), nu14 = std::exp(1.4 * lnnu);
             const double nu1379 = p.any_drag ? std::exp(1.379 * lnnu) : 0.0;
             for (size_t i = 0; i < p.skf.size(); ++i) {
-                const double M = p.skf[i].moment(nu, nu06, nu064, nu14, nu1379);      // N*mm
-                const double P = M * 1e-3 * p.omega[i] * gb.bearings[i].multiplicity;  // x planets
+                const double M = p.skf[i].moment(nu, nu06, nu064, nu14, nu1379);  // N*m
+                const double P = M * p.omega[i] * gb.bearings[i].multiplicity;      // x planets
                 total += P;
                 if (d) d->at(i) = P;
             }

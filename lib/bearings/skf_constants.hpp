@@ -1,6 +1,6 @@
 #pragma once
-// Geometry constants of the SKF (2004) frictional moment model by bearing type
-// and series (SKF 2004 tables of R/S constants, K_Z/K_L and seal constants).
+// Constants of the SKF (2004) frictional moment model by bearing type and series (R/S, K_Z/K_L), in
+// the catalogue's units (mm, r/min, mm^2/s, N*mm): skf_model.hpp takes SI and converts (skf_model.cpp).
 #include <optional>
 #include <string>
 #include <vector>

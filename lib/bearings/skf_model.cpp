@@ -1,15 +1,48 @@
+// SKF (2004/2013) rolling-bearing friction: load terms, moments and oil-bath drag, evaluated in the
+// catalogue's units behind the SI interface of skf_model.hpp.
 #include "bearings/skf_model.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 namespace gearloss::bearings {
+namespace {
 
-SkfLoadTerms skf_load_terms(const BearingSpec& b, double Fr, double Fa, double n) {
+// The SKF correlations are empirical and dimensional (e.g. M_rr = G_rr (nu n)^0.6 with
+// G_rr ~ d_m^1.96): they were fitted with lengths in mm, speed in r/min, kinematic viscosity
+// in mm^2/s and moments in N*mm, and are evaluated in those units. These are the bearing
+// model's only unit conversions: the inputs on entry (Catalogue::of), the moments on exit.
+constexpr double kMmPerM = 1e3;
+constexpr double kRpmPerRadS = 30.0 / std::numbers::pi;
+constexpr double kCStPerM2s = 1e6;  // mm^2/s per m^2/s
+constexpr double kNmPerNmm = 1e-3;
+
+// A bearing and its speed in the catalogue's units.
+struct Catalogue {
+    double n = 0;                     // r/min, magnitude
+    double d = 0, D = 0, B = 0, dm = 0;  // mm
+    double seal_ds = 0;               // seal counterface diameter, mm
+    std::optional<double> H;          // oil-bath level, mm
+
+    static Catalogue of(const BearingSpec& b, double omega) {
+        Catalogue c;
+        c.n = std::abs(omega) * kRpmPerRadS;
+        c.d = b.d * kMmPerM;
+        c.D = b.D * kMmPerM;
+        c.B = b.B * kMmPerM;
+        c.dm = 0.5 * (c.d + c.D);
+        c.seal_ds = b.seal_ds ? *b.seal_ds * kMmPerM : c.d + 0.2 * (c.D - c.d);  // inner-ring shoulder estimate
+        if (b.bath_H) c.H = *b.bath_H * kMmPerM;
+        return c;
+    }
+};
+
+SkfLoadTerms load_terms(const BearingSpec& b, const Catalogue& c, double Fr, double Fa) {
     using std::pow;
     const SkfConstants& k = b.k;
-    const double dm = b.dm();
+    const double dm = c.dm, n = c.n;
     Fr = std::abs(Fr);
     Fa = std::abs(Fa);
     SkfLoadTerms g;
@@ -77,26 +110,26 @@ SkfLoadTerms skf_load_terms(const BearingSpec& b, double Fr, double Fa, double n
     return g;
 }
 
-namespace {
 // Split of the 2013 drag form into the nu-independent first term and the
 // coefficient of nu^1.379 in the second.
-void drag_terms(const BearingSpec& b, double n, double& first, double& second_coef) {
+void drag_terms(const BearingSpec& b, const Catalogue& c, double& first, double& second_coef) {
     first = second_coef = 0.0;
-    if (!b.bath_H || n <= 0.0) return;
-    const double dm = b.dm();
-    const double H = std::clamp(*b.bath_H, 0.0, 1.2 * dm);
+    const double n = c.n;
+    if (!c.H || n <= 0.0) return;
+    const double dm = c.dm;
+    const double H = std::clamp(*c.H, 0.0, 1.2 * dm);
     if (H <= 0.0) return;
     const double t = 2.0 * std::acos((0.6 * dm - H) / (0.6 * dm));
     const double ft = t <= std::numbers::pi ? std::sin(0.5 * t) : 1.0;
-    const double fA = 0.05 * b.k.K_Z * (b.D + b.d) / (b.D - b.d);
+    const double fA = 0.05 * b.k.K_Z * (c.D + c.d) / (c.D - c.d);
     const double Rs = 0.36 * dm * dm * (t - std::sin(t)) * fA;
     if (is_roller(b.type)) {
-        const double K_roll = b.k.K_L * b.k.K_Z * (b.d + b.D) / (b.D - b.d) * 1e-12;
-        const double lD = 5.0 * b.k.K_L * b.B / dm;
+        const double K_roll = b.k.K_L * b.k.K_Z * (c.d + c.D) / (c.D - c.d) * 1e-12;
+        const double lD = 5.0 * b.k.K_L * c.B / dm;
         const double Cw = 2.789e-10 * lD * lD * lD - 2.786e-4 * lD * lD + 0.0195 * lD + 0.6439;
-        first = 4.0 * b.bath_VM * K_roll * Cw * b.B * std::pow(dm, 4) * n * n;
+        first = 4.0 * b.bath_VM * K_roll * Cw * c.B * std::pow(dm, 4) * n * n;
     } else {
-        const double K_ball = b.k.rows * b.k.K_Z * (b.d + b.D) / (b.D - b.d) * 1e-12;
+        const double K_ball = b.k.rows * b.k.K_Z * (c.d + c.D) / (c.D - c.d) * 1e-12;
         first = 0.4 * b.bath_VM * K_ball * std::pow(dm, 5) * n * n;
     }
     // 1.093e-7 n^2 d_m^3 (n d_m^2 f_t / nu)^-1.379 R_s
@@ -104,39 +137,51 @@ void drag_terms(const BearingSpec& b, double n, double& first, double& second_co
 }
 }  // namespace
 
-double skf_drag_moment(const BearingSpec& b, double n, double nu) {
-    double first, coef;
-    drag_terms(b, std::abs(n), first, coef);
-    return first + coef * std::pow(nu, 1.379);
+SkfLoadTerms skf_load_terms(const BearingSpec& b, double Fr, double Fa, double omega) {
+    return load_terms(b, Catalogue::of(b, omega), Fr, Fa);
 }
 
-SkfAtPoint SkfAtPoint::make(const BearingSpec& b, double Fr, double Fa, double n_rpm) {
+double skf_drag_moment(const BearingSpec& b, double omega, double nu_m2s) {
+    double first, coef;
+    drag_terms(b, Catalogue::of(b, omega), first, coef);
+    return (first + coef * std::pow(nu_m2s * kCStPerM2s, 1.379)) * kNmPerNmm;
+}
+
+double palmgren_drag_coef(const BearingSpec& b, double f0, double omega) {
+    const Catalogue c = Catalogue::of(b, omega);
+    const double nr = c.n, dm = c.dm;
+    return 1e-7 * f0 * std::cbrt(nr * nr) * dm * dm * dm * kNmPerNmm * std::abs(omega);
+}
+
+SkfAtPoint SkfAtPoint::make(const BearingSpec& b, double Fr, double Fa, double omega) {
+    const Catalogue c = Catalogue::of(b, omega);
     SkfAtPoint p;
-    p.n = std::abs(n_rpm);
-    const SkfLoadTerms g = skf_load_terms(b, Fr, Fa, p.n);
-    const double dm = b.dm();
+    p.n = c.n;
+    const SkfLoadTerms g = load_terms(b, c, Fr, Fa);
+    const double dm = c.dm;
     p.rr = g.G_rr * std::pow(p.n, 0.6);
     p.a_ish = 1.84e-9 * std::pow(p.n * dm, 1.28);
-    p.a_rs = b.K_rs * p.n * (b.d + b.D) * std::sqrt(b.k.K_Z / (2.0 * (b.D - b.d)));
+    p.a_rs = b.K_rs * p.n * (c.d + c.D) * std::sqrt(b.k.K_Z / (2.0 * (c.D - c.d)));
     p.a_bl = 2.6e-8 * std::pow(p.n, 1.4) * dm;
     p.G_sl = g.G_sl;
     p.alpha_F = g.alpha_F;
     p.mu_bl = b.mu_bl;
     p.mu_ehl = b.mu_ehl;
     p.M_seal = (b.seal_KS1 > 0 || b.seal_KS2 > 0) && p.n > 0
-                   ? b.seal_KS1 * std::pow(b.seal_ds, b.seal_beta) + b.seal_KS2
+                   ? b.seal_KS1 * std::pow(c.seal_ds, b.seal_beta) + b.seal_KS2
                    : 0.0;
-    drag_terms(b, p.n, p.drag_a, p.drag_b);
+    drag_terms(b, c, p.drag_a, p.drag_b);
     return p;
 }
 
-double SkfAtPoint::moment(double nu, double nu06, double nu064, double nu14, double nu1379) const {
+double SkfAtPoint::moment(double nu_cSt, double nu_cSt_06, double nu_cSt_064, double nu_cSt_14,
+                          double nu_cSt_1379) const {
     if (n <= 0.0) return 0.0;
-    const double phi_ish = 1.0 / (1.0 + a_ish * nu064);
-    const double phi_rs = std::exp(-a_rs * nu);
-    const double phi_bl = std::exp(-a_bl * nu14);
+    const double phi_ish = 1.0 / (1.0 + a_ish * nu_cSt_064);
+    const double phi_rs = std::exp(-a_rs * nu_cSt);
+    const double phi_bl = std::exp(-a_bl * nu_cSt_14);
     const double mu_sl = phi_bl * mu_bl + (1.0 - phi_bl) * mu_ehl;
-    return phi_ish * phi_rs * rr * nu06 + G_sl * mu_sl + M_seal + drag_a + drag_b * nu1379;
+    return (phi_ish * phi_rs * rr * nu_cSt_06 + G_sl * mu_sl + M_seal + drag_a + drag_b * nu_cSt_1379) * kNmPerNmm;
 }
 
 const char* SkfAtPoint::fault() const {
@@ -150,17 +195,18 @@ const char* SkfAtPoint::fault() const {
     return nullptr;
 }
 
-SkfMoment skf_moment(const BearingSpec& b, double Fr, double Fa, double n_rpm, double nu) {
-    const SkfAtPoint p = SkfAtPoint::make(b, Fr, Fa, n_rpm);
+SkfMoment skf_moment(const BearingSpec& b, double Fr, double Fa, double omega, double nu_m2s) {
+    const SkfAtPoint p = SkfAtPoint::make(b, Fr, Fa, omega);
     SkfMoment m;
     if (p.n <= 0.0) return m;
+    const double nu = nu_m2s * kCStPerM2s;
     m.phi_ish = 1.0 / (1.0 + p.a_ish * std::pow(nu, 0.64));
     m.phi_rs = std::exp(-p.a_rs * nu);
     m.phi_bl = std::exp(-p.a_bl * std::pow(nu, 1.4));
-    m.rolling = m.phi_ish * m.phi_rs * p.rr * std::pow(nu, 0.6);
-    m.sliding = p.G_sl * (m.phi_bl * p.mu_bl + (1.0 - m.phi_bl) * p.mu_ehl);
-    m.seal = p.M_seal;
-    m.drag = p.drag_a + p.drag_b * std::pow(nu, 1.379);
+    m.rolling = m.phi_ish * m.phi_rs * p.rr * std::pow(nu, 0.6) * kNmPerNmm;
+    m.sliding = p.G_sl * (m.phi_bl * p.mu_bl + (1.0 - m.phi_bl) * p.mu_ehl) * kNmPerNmm;
+    m.seal = p.M_seal * kNmPerNmm;
+    m.drag = (p.drag_a + p.drag_b * std::pow(nu, 1.379)) * kNmPerNmm;
     return m;
 }
 

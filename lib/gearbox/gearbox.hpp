@@ -40,7 +40,7 @@ struct Mesh {
 
 struct Bearing {
     std::string name;
-    bearings::BearingSpec spec;
+    bearings::BearingSpec spec;  // SI (m); see bearings/skf_model.hpp
     int shaft = -1;
     double position = 0;        // axial [m]
     int under_gear = -1;        // >= 0: between this free (or planet) gear and its shaft (or carrier)

@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 #include <numbers>
 
-#include "bearings/skf_model.hpp"
+#include "bearings/skf_constants.hpp"
 #include "core/errors.hpp"
 #include "core/message_text.hpp"
 #include "mesh/ehl_path.hpp"

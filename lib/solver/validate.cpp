@@ -205,10 +205,10 @@ void validate_gearbox(const Model& m, std::vector<Issue>& out) {
         Collector c{out, "bearings", b.name};
         if (!index_ok(b.shaft, gb.shafts)) c.structural("shaft", "not one of the shafts");
         if (b.under_gear >= 0 && !index_ok(b.under_gear, gb.gears)) c.structural("under_gear", "not one of the gears");
-        c.range("d", s.d, 0.5, 1e5, "bore d [mm]");  // the smallest catalogue bearings: 0.6 mm
-        c.range("D", s.D, 1.0, 1e5, "outer diameter D [mm]");
-        if (finite(s.d) && finite(s.D) && !(s.D > s.d)) c.add("D", fmt::format("outer diameter {:g} mm must exceed the bore {:g} mm", s.D, s.d));
-        c.range("B", s.B, 0.0, 1e5, "width B [mm]", true);
+        c.range("d", s.d, 0.5e-3, 100.0, "bore d [m]");  // the smallest catalogue bearings: 0.6 mm
+        c.range("D", s.D, 1e-3, 100.0, "outer diameter D [m]");
+        if (finite(s.d) && finite(s.D) && !(s.D > s.d)) c.add("D", fmt::format("outer diameter {:g} m must exceed the bore {:g} m", s.D, s.d));
+        c.range("B", s.B, 0.0, 100.0, "width B [m]", true);
         c.non_negative("C0", s.C0, "static load rating C0 [N]");
         if (s.type == bearings::BearingType::deep_groove_ball && !(s.C0 > 0))
             c.add("C0", "deep groove ball bearings need a positive static load rating C0");
@@ -220,8 +220,9 @@ void validate_gearbox(const Model& m, std::vector<Issue>& out) {
         c.non_negative("lubrication", s.K_rs, "replenishment constant K_rs");
         c.range("lubrication", s.mu_bl, 0.0, 1.0, "mu_bl", false, true);
         c.range("lubrication", s.mu_ehl, 0.0, 1.0, "mu_ehl", false, true);
-        for (double v : {s.seal_KS1, s.seal_KS2, s.seal_beta, s.seal_ds}) c.non_negative("seals", v, "a seal constant");
-        if (s.bath_H) c.non_negative("oil_bath", *s.bath_H, "oil bath level [mm]");
+        for (double v : {s.seal_KS1, s.seal_KS2, s.seal_beta}) c.non_negative("seals", v, "a seal constant");
+        if (s.seal_ds) c.non_negative("seals", *s.seal_ds, "seal counterface diameter [m]");
+        if (s.bath_H) c.non_negative("oil_bath", *s.bath_H, "oil bath level [m]");
         c.range("oil_bath", s.bath_VM, 0.0, 0.01, "drag factor V_M");
     }
     for (const auto& se : gb.seals) {
