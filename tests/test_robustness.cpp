@@ -453,3 +453,37 @@ TEST_CASE("robustness: the out_of_range status cell carries its cause without co
     CHECK_FALSE(solver::has_values(solver::PointStatus::out_of_range));
     CHECK(solver::has_values(solver::PointStatus::above_oil_limit));
 }
+
+TEST_CASE("errors found after loading point at the line recorded when the case was read", "[robustness]") {
+    // The model keeps where each item was written: the file may change or vanish afterwards.
+    const std::string text = base();
+    io::Case k;
+    std::string file;
+    {
+        test_support::TempConfig cfg(text);
+        k = io::load_case(cfg.path);
+        file = cfg.path;
+        std::ofstream(cfg.path) << "# rewritten after loading\n" << text;  // every line moves down by one
+    }
+    REQUIRE(k.model.source);
+    k.model.gearbox.bearings[1].spec.C0 = kNaN;
+    const auto e = validation_error(k);
+    CHECK(e.file == file);
+    CHECK(e.key == "bearings.B1_RMS11.C0");
+    CHECK(e.line == test_support::line_of(text, "{name: B1_RMS11"));
+    // A bearing of `count: 2` ("B6_6307.2") is found under its written name.
+    io::Case k2 = transfer_box();
+    bool found = false;
+    for (auto& b : k2.model.gearbox.bearings)
+        if (b.name == "B6_6307.2") b.spec.C0 = kNaN, found = true;
+    REQUIRE(found);
+    const auto e2 = validation_error(k2);
+    CHECK(e2.key == "bearings.B6_6307.2.C0");
+    CHECK(e2.line == test_support::line_of(text, "{name: B6_6307"));
+    // The index itself: key, then item, then section, then the file.
+    const auto& src = *k.model.source;
+    CHECK(src.find("bearings", "B1_RMS11", "no_such_key").line == test_support::line_of(text, "{name: B1_RMS11"));
+    CHECK(src.find("thermal", "", "ambient").line > 0);
+    CHECK(src.find("nowhere", "", "").line == 0);
+    CHECK(src.find("nowhere", "", "").file == file);
+}

@@ -128,6 +128,10 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     Case c;
     c.file = file;
     const YamlNode root = YamlNode::load_text(text, file);
+    // Where every item and key was written, kept with the model for errors found later.
+    auto source = std::make_shared<SourceIndex>();
+    source->set_file(file);
+    index_sources(root, "", *source);
     root.allow_keys({"name", "description", "oil", "materials", "shafts", "gears", "meshes", "bearings", "seals",
                      "clutches", "housing", "thermal", "gearbox", "operating", "options", "mechanisms", "calibration", "vehicle",
                      "sweep"});
@@ -140,7 +144,10 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
         const fs::path p = fs::path(base_dir) / oil.as_string();
         std::error_code ec;  // non-throwing: a malformed name is an input error, not a crash
         if (!fs::is_regular_file(p, ec)) oil.fail("oil file '" + excerpt(p.string(), 200) + "' does not exist or is not a file");
-        m.oil = load_oil_file(p.string());
+        const YamlNode oil_root = YamlNode::load_file(p.string());
+        const YamlNode oil_node = oil_root.has("oil") ? oil_root.at("oil") : oil_root;
+        m.oil = load_oil(oil_node);
+        index_sources(oil_node, "oil", *source);  // the oil's keys in their own file
     } else {
         m.oil = load_oil(oil);
     }
@@ -225,6 +232,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
                 v->at("gears").items()[i].fail("'" + excerpt(c.vehicle->gears[i]) + "' is not one of gearbox.ratios");
     }
 
+    m.source = std::move(source);
     // Errors found once the model is assembled point at the item they come from.
     try {
         m.finalise();

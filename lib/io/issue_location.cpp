@@ -58,4 +58,32 @@ YamlNode locate_in_case(const YamlNode& root, const std::string& section, const 
     return descend(*node, key);
 }
 
+namespace {
+void index_below(const YamlNode& node, const std::string& prefix, SourceIndex& out, int depth) {
+    if (depth > 16) return;  // deeper than any key the model reports (the reader bounds nesting)
+    auto join = [&](const std::string& k) { return prefix.empty() ? k : prefix + "." + k; };
+    if (node.is_map()) {
+        for (const auto& [k, child] : node.entries()) {
+            out.add(join(k), child.location());
+            index_below(child, join(k), out, depth + 1);
+        }
+    } else if (node.is_sequence()) {
+        // Named items only (gears, bearings, ...): a list of values (speeds, points) is one key.
+        if (node.raw().size() == 0 || !node.raw()[0].IsMap()) return;
+        for (const auto& it : node.items()) {
+            const auto n = it.is_map() ? it.get("name") : std::nullopt;
+            if (!n || !n->is_scalar()) continue;
+            const std::string name = n->as_string();
+            out.add(join(name), it.location());
+            index_below(it, join(name), out, depth + 1);
+        }
+    }
+}
+}  // namespace
+
+void index_sources(const YamlNode& node, const std::string& prefix, SourceIndex& out) {
+    if (!prefix.empty()) out.add(prefix, node.location());
+    index_below(node, prefix, out, 0);
+}
+
 }  // namespace gearloss::io

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "core/source_index.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace gearloss::io {
@@ -17,5 +18,9 @@ std::optional<YamlNode> find_named_item(const YamlNode& list, const std::string&
 // file is looked up in that file.
 YamlNode locate_in_case(const YamlNode& root, const std::string& section, const std::string& item,
                         const std::string& key);
+
+// Records where every key and list item below `node` was written, under `prefix`, with list
+// items by their `name`, as SourceIndex::find looks them up.
+void index_sources(const YamlNode& node, const std::string& prefix, SourceIndex& out);
 
 }  // namespace gearloss::io

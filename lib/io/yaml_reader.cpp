@@ -241,6 +241,12 @@ YamlNode YamlNode::load_text(const std::string& text, const std::string& name) {
     }
 }
 
+SourceLocation YamlNode::location() const {
+    const YAML::Mark m = node_.Mark();
+    const bool known = !m.is_null() && m.line >= 0;
+    return {file_, known ? m.line + 1 : 0, known ? m.column + 1 : 0};
+}
+
 void YamlNode::fail(const std::string& message) const {
     const YAML::Mark m = node_.Mark();
     const bool known = !m.is_null() && m.line >= 0;

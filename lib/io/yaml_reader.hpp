@@ -41,6 +41,8 @@ public:
     bool is_scalar() const { return node_.IsScalar(); }
     bool has(const std::string& key) const;
 
+    // Where the node was written (line 0 when unknown).
+    SourceLocation location() const;
     [[noreturn]] void fail(const std::string& message) const;
     // "file:line:col: key.path: message", for warnings that point at this node.
     std::string located(const std::string& message) const;

@@ -31,12 +31,18 @@ std::string fixed(double v, int d) { return io::csv_fixed(v, d); }
 }  // namespace
 
 namespace {
-// The issue as an error at the line of its item (the node's position in the YAML text).
+// The issue as an error at the line of its item: from the places the loader recorded, or (a
+// model without them) by finding the item in the case file again.
 InputError locate(const io::Case& k, const solver::Issue& is, const std::string& message, const CaseOverrides& o) {
     if (is.section == "thermal" && is.key == "oil_temperature" && !o.oil_temp.empty())
         return InputError("", 0, 0, "--oil-temp", message);
     if (is.section == "operating" && is.key == "speeds" && o.speeds) return InputError("", 0, 0, "--speed", message);
     if (is.section == "operating" && is.key == "torques" && o.torques) return InputError("", 0, 0, "--torque", message);
+    if (k.model.source && !(is.section == "oil" && !o.oil.empty())) {
+        SourceLocation at = k.model.source->find(is.section, is.item, is.key);
+        if (at.file.empty()) at.file = k.file;
+        return InputError(at, is.path(), message);
+    }
     try {
         std::optional<io::YamlNode> node;
         if (is.section == "oil" && !o.oil.empty()) {

@@ -1,9 +1,11 @@
 #pragma once
 // The complete description of one gearbox case: topology and its derived
 // layout, the oil, the selected loss models and the thermal settings.
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/source_index.hpp"
 #include "gearbox/gearbox.hpp"
 #include "losses/mechanism_set.hpp"
 #include "lubricant/oil.hpp"
@@ -62,6 +64,9 @@ struct Model {
     Calibration calibration;
     // The loss mechanisms (registry order), with their parameters and forms.
     losses::MechanismSet mechanisms;
+    // Where the case wrote each item and key (empty for a model built in code): errors found
+    // after loading point at their line through it.
+    std::shared_ptr<const SourceIndex> source;
     // Whether the calibration and every mechanism's calibration parameters are neutral.
     bool calibration_neutral() const;
     // Mean entrainment-independent data of each mesh computed once.
