@@ -1,6 +1,8 @@
 #pragma once
 // Input errors carry where they come from so the CLI can print
-// "file:line:col: key.path: message" and exit non-zero.
+// "file:line:col: key.path: message" and exit non-zero; an IoError is a failure to write an
+// output (or an interrupt), exit 3 (README "Exit codes").
+#include <exception>
 #include <stdexcept>
 #include <string>
 
@@ -24,6 +26,14 @@ struct InputError : std::runtime_error {
         if (!k.empty()) s.append(k).append(": ");
         return s.append(m);
     }
+};
+
+// An output that could not be written, or an interrupt (core/interrupt.hpp): nothing is
+// renamed and temporary files are removed (io/atomic_file.hpp).
+struct IoError : std::exception {
+    explicit IoError(std::string m) : msg(std::move(m)) {}
+    const char* what() const noexcept override { return msg.c_str(); }
+    std::string msg;
 };
 
 }  // namespace gearloss

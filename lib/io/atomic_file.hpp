@@ -11,11 +11,12 @@
 //  - every write, flush, fsync, close and rename is checked (IoError, exit 3); a reader
 //    that closed its pipe (EPIPE, with SIGPIPE ignored) ends that stream quietly;
 //  - an interrupt (g_interrupted) stops the writing (IoError) and nothing is renamed.
-#include <atomic>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "io/output_paths.hpp"
 
 namespace gearloss::io {
@@ -66,13 +67,9 @@ void finish_stdout();
 // A reader closed the pipe on standard output.
 bool stdout_closed();
 
-struct IoError : std::exception {
-    explicit IoError(std::string m) : msg(std::move(m)) {}
-    const char* what() const noexcept override { return msg.c_str(); }
-    std::string msg;
-};
-
-// Set by the signal handler: long loops stop and outputs are discarded.
-extern std::atomic<bool> g_interrupted;
+// IoError (exit 3) and the interrupt flag (set by the signal handler: long loops stop and
+// outputs are discarded) are core's; the io names stay.
+using gearloss::g_interrupted;
+using gearloss::IoError;
 
 }  // namespace gearloss::io
