@@ -87,15 +87,15 @@ mut M8 mesh lib/mesh/ehl_contact.cpp "Jaeger mean flash constant 1.064 -> 1.11 (
     'if (std::abs(in.u1) > 0) dT1 = 1.064 * q1' 'if (std::abs(in.u1) > 0) dT1 = 1.11 * q1'
 mut M9 mesh lib/mesh/ehl_contact.cpp "3-pressure Hertz shortcut: outer Gauss weight not doubled" \
     '2 * 0.2369268850561891' '0.2369268850561891'
-mut S1 mesh lib/mesh/mesh_friction_mechanism.cpp "mean roughness (Ra1+Ra2)/2 -> sum Ra1+Ra2 (issue 12)" \
+mut S1 mesh lib/mechanisms/mesh_friction_mechanism.cpp "mean roughness (Ra1+Ra2)/2 -> sum Ra1+Ra2 (issue 12)" \
     'const double Ra_um = 0.5 * (g0.Ra + g1.Ra) * 1e6;' 'const double Ra_um = (g0.Ra + g1.Ra) * 1e6;'
-mut S2 churning lib/churning/churning_mechanism.cpp "nu^0.21 of the churning fast path -> nu^0.20" \
+mut S2 churning lib/mechanisms/churning_mechanism.cpp "nu^0.21 of the churning fast path -> nu^0.20" \
     'std::exp(0.21 * std::log(e.oil.nu))' 'std::exp(0.20 * std::log(e.oil.nu))'
-mut S3 bearings lib/bearings/bearing_mechanism.cpp "nu^0.64 of the bearing fast path -> nu^0.6" \
+mut S3 bearings lib/mechanisms/bearing_mechanism.cpp "nu^0.64 of the bearing fast path -> nu^0.6" \
     'nu064 = std::exp(0.64 * lnnu)' 'nu064 = std::exp(0.6 * lnnu)'
-mut S4 mesh lib/mesh/mesh_friction_mechanism.cpp "mu ~ eta^-0.05 of the mesh fast path -> eta^-0.04" \
+mut S4 mesh lib/mechanisms/mesh_friction_mechanism.cpp "mu ~ eta^-0.05 of the mesh fast path -> eta^-0.04" \
     'std::exp(-0.05 * std::log(s.eta * 1e3))' 'std::exp(-0.04 * std::log(s.eta * 1e3))'
-mut S5 clutch lib/clutch/clutch_drag_mechanism.cpp "clutch drag heats the oil instead of the clutch-pack node" \
+mut S5 clutch lib/mechanisms/clutch_drag_mechanism.cpp "clutch drag heats the oil instead of the clutch-pack node" \
     'bool heats_oil() const override { return false; }' 'bool heats_oil() const override { return true; }'
 mut C1 churning lib/churning/changenet_velex.cpp "Changenet-Velex 1.366 -> 1.40 (+2.5 %)" \
     'pre * 1.366 *' 'pre * 1.40 *'

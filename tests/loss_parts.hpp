@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "losses/registry.hpp"
-#include "mesh/mesh_friction_mechanism.hpp"
+#include "mechanisms/mesh_friction_mechanism.hpp"
 #include "solver/operating_point.hpp"
 
 namespace gearloss::test {

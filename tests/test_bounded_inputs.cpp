@@ -16,10 +16,10 @@
 #include <unistd.h>
 
 #include "core/errors.hpp"
-#include "cycle/drive_cycle.hpp"
 #include "diagnosis/recordings.hpp"
 #include "io/config.hpp"
 #include "io/csv_read.hpp"
+#include "io/drive_cycle_csv.hpp"
 #include "io/reports.hpp"
 #include "io/yaml_reader.hpp"
 #include "test_support.hpp"
@@ -259,8 +259,8 @@ TEST_CASE("only regular files are read: FIFOs, devices and directories are refus
         {"oil", [](const std::string& f) { io::load_oil_file(f); }},
         {"yaml", [](const std::string& f) { io::YamlNode::load_file(f); }},
         {"recordings", [](const std::string& f) { diagnosis::read_recordings(f); }},
-        {"cycle", [](const std::string& f) { cycle::load_cycle_csv(f); }},
-        {"cycle by name", [](const std::string& f) { cycle::resolve_cycle(f, {}); }},
+        {"cycle", [](const std::string& f) { io::load_cycle_csv(f); }},
+        {"cycle by name", [](const std::string& f) { io::resolve_cycle(f, {}); }},
     };
     std::vector<std::pair<std::string, std::string>> paths = {{fifo, "a FIFO"}, {tmp, "a directory"}};
     for (const char* dev : {"/dev/zero", "/dev/urandom", "/dev/null"})
@@ -290,7 +290,7 @@ TEST_CASE("messages never quote a file that is not YAML or CSV, and quote at mos
         const std::string f = dir.write("secret", content);
         for (const auto& read : std::vector<std::function<void()>>{
                  [&] { io::load_case(f); }, [&] { io::load_oil_file(f); }, [&] { diagnosis::read_recordings(f); },
-                 [&] { cycle::load_cycle_csv(f); }}) {
+                 [&] { io::load_cycle_csv(f); }}) {
             const auto e = input_error(read);
             INFO(e.what());
             const std::string w = e.what();
@@ -419,7 +419,7 @@ TEST_CASE("recordings: semicolon- and tab-separated files get a hint", "[bounded
     // Cycle files too.
     TempDir dir;
     const std::string cyc = dir.write("cycle.csv", "time_s;speed_kmh\n0;0\n1;5\n");
-    CHECK_THAT(input_error([&] { cycle::load_cycle_csv(cyc); }).message, Catch::Contains("looks semicolon-separated"));
+    CHECK_THAT(input_error([&] { io::load_cycle_csv(cyc); }).message, Catch::Contains("looks semicolon-separated"));
 }
 
 TEST_CASE("recordings: bad cells are errors with line and column", "[bounded][recordings]") {
@@ -451,7 +451,7 @@ TEST_CASE("recordings: bad cells are errors with line and column", "[bounded][re
     CHECK(kw.line == 2);
     CHECK(kw.column == 3);
     CHECK_THAT(kw.message, Catch::Contains("out of range"));
-    // Speeds, torques and losses beyond the ranges the model states (solver/validate.hpp) are
+    // Speeds, torques and losses beyond the ranges the model states (model/validate.hpp) are
     // errors at their cell: a loss of 1e155 W made a residual statistic of the diagnosis
     // overflow (an internal error) before.
     const auto pw = input_error([] {

@@ -393,7 +393,7 @@ TEST_CASE("fast path: the solver's local EHL mesh loss equals a cold-started dir
         const auto r = solver::evaluate_losses(m, p, m.oil_state(T_oil), true);
         for (size_t i = 0; i < m.gearbox.meshes.size(); ++i) {
             const auto& md = m.layout.meshes[i];
-            const auto& ms = mesh::mesh_friction_point(m, p).meshes[i];
+            const auto& ms = mesh::mesh_friction_point(m, p.data).meshes[i];
             const double ref = ms.power == 0.0 ? 0.0
                                                : mesh::ehl_mesh_loss(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets,
                                                                      ms.contact.E_prime, ms.sigma, T_oil, m.oil, m.oil.traction);

@@ -7,6 +7,7 @@
 #include "cycle/simulate.hpp"
 #include "io/config.hpp"
 #include "io/cycle_report.hpp"
+#include "io/drive_cycle_csv.hpp"
 #include "solver/operating_point.hpp"
 #include "test_support.hpp"
 #include "torque_converter/torque_converter.hpp"
@@ -37,19 +38,19 @@ cycle::DriveCycle steady_cycle(double kmh, int seconds) {
 
 TEST_CASE("drive cycles: duration and distance against the published figures", "[cycle]") {
     // NEDC: 1180 samples (0-1179 s; the official 1180 s cycle ends at rest), 11.023 km official.
-    const auto nedc = cycle::resolve_cycle("nedc", cycle_dirs());
+    const auto nedc = io::resolve_cycle("nedc", cycle_dirs());
     CHECK(nedc.time.size() == 1180);
     CHECK(nedc.duration() == 1179.0);
     CHECK(nedc.distance() / 1e3 == Approx(11.023).margin(0.005));
     // WLTC class 3b (UN GTR No. 15): 1800 s, 23.266 km integrated from the shipped 1 Hz trace.
-    const auto wltc = cycle::resolve_cycle("wltc", cycle_dirs());
+    const auto wltc = io::resolve_cycle("wltc", cycle_dirs());
     CHECK(wltc.duration() == 1800.0);
     CHECK(wltc.distance() / 1e3 == Approx(23.266).margin(0.005));
     // Seed 003's ARTEMIS (urban + motorway 130): 2061 s and 33 605 m.
-    const auto art = cycle::resolve_cycle("artemis", cycle_dirs());
+    const auto art = io::resolve_cycle("artemis", cycle_dirs());
     CHECK(art.duration() == 2061.0);
     CHECK(art.distance() == Approx(33605).margin(10));
-    CHECK_THROWS_AS(cycle::resolve_cycle("no-such-cycle", cycle_dirs()), InputError);
+    CHECK_THROWS_AS(io::resolve_cycle("no-such-cycle", cycle_dirs()), InputError);
 }
 
 TEST_CASE("wet clutch drag: Couette shear against a hand calculation", "[cycle][clutch]") {
@@ -129,7 +130,7 @@ TEST_CASE("cycle: the thermal network conserves energy", "[cycle]") {
     // Heat generated (gearbox, converter, clutch drag) = heat to ambient + change of stored heat,
     // on the three-node network of the automatic over the NEDC from -10 degC.
     const auto pt = powertrain("configs/automatic-6speed.yaml");
-    const auto dc = cycle::resolve_cycle("nedc", cycle_dirs());
+    const auto dc = io::resolve_cycle("nedc", cycle_dirs());
     const double T0 = kC - 10;
     const auto r = cycle::simulate_cycle(pt, dc, cycle::uniform(T0), T0, false).totals;
     const double generated = r.gearbox_loss() + r.E_tc + r.E_heater;
@@ -192,7 +193,7 @@ TEST_CASE("seed 003 trends: pre-warming helps more from -10 than from 23 degC, a
         o.start_temperature = o.ambient = kC + start_C;
         o.prewarm_target = kC + 90;
         o.heater_power = 2000;
-        const auto s = io::run_cycle_study(pt, cycle::resolve_cycle(name, cycle_dirs()), o);
+        const auto s = io::run_cycle_study(pt, io::resolve_cycle(name, cycle_dirs()), o);
         return (s.cold.totals.fuel - s.prewarmed->fuel) / s.cold.totals.fuel;
     };
     const double nedc_cold = saving("nedc", -10), nedc_mild = saving("nedc", 23);

@@ -10,7 +10,6 @@
 #include <thread>
 
 #include "core/errors.hpp"
-#include "cycle/drive_cycle.hpp"
 #include "cycle/simulate.hpp"
 #include "diagnosis/diagnose.hpp"
 #include "diagnosis/effects.hpp"
@@ -18,6 +17,7 @@
 #include "diagnosis/synth.hpp"
 #include "io/config.hpp"
 #include "io/cycle_report.hpp"
+#include "io/drive_cycle_csv.hpp"
 #include "io/interrupt.hpp"
 #include "test_support.hpp"
 
@@ -194,7 +194,7 @@ TEST_CASE("an interrupt stops diagnose, synth and a cycle with io::Interrupted; 
         so.raw_log = false;
         const auto a = load("configs/automatic-6speed.yaml");
         const auto pt = io::load_powertrain(a, std::nullopt);
-        const auto nedc = cycle::resolve_cycle("nedc", {test_support::source_path("configs/cycles")});
+        const auto nedc = io::resolve_cycle("nedc", {test_support::source_path("configs/cycles")});
         CHECK_THROWS_AS(cycle::simulate_cycle(pt, nedc, cycle::uniform(263.15), 263.15, true), io::Interrupted);
         CHECK_THROWS_AS(cycle::prewarm(pt, cycle::uniform(263.15), 363.15, 1000, 263.15), io::Interrupted);
     }

@@ -10,8 +10,8 @@
 #include "losses/loss_mechanism.hpp"
 #include "losses/registry.hpp"
 #include "map/map_runner.hpp"
+#include "model/validate.hpp"
 #include "solver/operating_point.hpp"
-#include "solver/validate.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -25,8 +25,8 @@
 #include "map/compare.hpp"
 #include "map/map_runner.hpp"
 #include "mesh/ehl_contact.hpp"
+#include "model/validate.hpp"
 #include "solver/operating_point.hpp"
-#include "solver/validate.hpp"
 #include "test_support.hpp"
 #include "thermal/equilibrium.hpp"
 

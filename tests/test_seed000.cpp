@@ -4,8 +4,8 @@
 #include <numbers>
 
 #include "io/config.hpp"
+#include "mechanisms/mesh_friction_mechanism.hpp"
 #include "mesh/ehl_path.hpp"
-#include "mesh/mesh_friction_mechanism.hpp"
 #include "solver/operating_point.hpp"
 #include "test_support.hpp"
 
@@ -22,7 +22,7 @@ TEST_CASE("seed 000 trends along the path of contact and for the gearbox", "[ehl
     const double w = 1600 * std::numbers::pi / 30, T = 720, T70 = 273.15 + 70;
     const auto p = solver::prepare_point(m, w, T);
     const auto& md = m.layout.meshes[0];
-    const auto& ms = mesh::mesh_friction_point(m, p).meshes[0];
+    const auto& ms = mesh::mesh_friction_point(m, p.data).meshes[0];
     const auto prof = mesh::ehl_path(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, 1,
                                      ms.contact.E_prime, ms.sigma, T70, m.oil, m.oil.traction, 41);
     const auto& pts = prof.points;

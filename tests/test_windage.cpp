@@ -1,4 +1,5 @@
-// Gear windage (lib/windage/gear_windage.cpp) against published values and hand calculations.
+// Gear windage (lib/windage/gear_windage.cpp and its mechanism, lib/mechanisms/windage_mechanism.cpp)
+// against published values and hand calculations.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -8,11 +9,7 @@
 #include "solver/operating_point.hpp"
 #include "thermal/air.hpp"
 #include "test_support.hpp"
-
-namespace gearloss::windage {
-double anderson_loewenthal_power(double R, double b, double omega, double mu);
-double free_disk_power(double R, double omega, double rho, double nu);
-}  // namespace gearloss::windage
+#include "windage/gear_windage.hpp"
 
 using namespace gearloss;
 namespace {

@@ -36,7 +36,7 @@ void apply_case_options(io::Case& k, const CommonOptions& c) {
         k.model.thermal.mode = solver::ThermalMode::fixed;
         k.model.thermal.oil_temperature = q.value;
     }
-    map::validate_case(k, {.oil_temp = c.oil_temp, .oil = c.oil, .grid = false});  // solver/validate.hpp
+    map::validate_case(k, {.oil_temp = c.oil_temp, .oil = c.oil, .grid = false});  // model/validate.hpp
 }
 
 io::Case load_with_options(const CommonOptions& c, bool warn_on_stderr) {

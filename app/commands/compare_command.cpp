@@ -38,7 +38,7 @@ public:
         io::Case a = base, b = base;
         io::replace_oil(a, io::load_oil_file(oils_[0]));
         io::replace_oil(b, io::load_oil_file(oils_[1]));
-        for (int i : {0, 1}) {  // each oil with the grid (solver/validate.hpp)
+        for (int i : {0, 1}) {  // each oil with the grid (model/validate.hpp)
             map::CaseOverrides o = grid_.case_overrides();
             o.oil_temp = common_.oil_temp;
             o.oil = oils_[i];

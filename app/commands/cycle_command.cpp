@@ -8,6 +8,8 @@
 #include "commands/common.hpp"
 #include "io/atomic_file.hpp"
 #include "io/cycle_report.hpp"
+#include "io/data_dir.hpp"
+#include "io/drive_cycle_csv.hpp"
 #include "io/interrupt.hpp"
 #include "io/output_paths.hpp"
 #include "map/map_runner.hpp"
@@ -47,9 +49,11 @@ public:
         no_grid.grid = false;
         map::validate_case(k, no_grid);
         const auto pt = io::load_powertrain(k, oil_.empty() ? std::nullopt : std::optional<std::string>(oil_));
-        const std::vector<std::string> dirs = {(std::filesystem::path(config_).parent_path() / "cycles").string(),
-                                               GEARLOSS_CYCLES_DIR};
-        const auto dc = cycle::resolve_cycle(cycle_, dirs);
+        // A named cycle: the case's own cycles/ folder first, then the cycles gearloss ships,
+        // looked up where the program runs (io/data_dir.hpp) and only when needed.
+        const auto dc = io::resolve_cycle(cycle_, {(std::filesystem::path(config_).parent_path() / "cycles").string()}, [&] {
+            return (io::data_dir("--cycle", "'" + cycle_ + "' is a shipped cycle") / "cycles").string();
+        });
         io::CycleStudyOptions so;
         so.start_temperature = absolute_temperature(start_temp_, "--start-temp");
         so.ambient = ambient_.empty() ? so.start_temperature : absolute_temperature(ambient_, "--ambient");

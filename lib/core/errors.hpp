@@ -8,7 +8,7 @@
 //   │   ├── units::UnitError       a unit that cannot be read (the caller adds the location)
 //   │   ├── geometry::GeometryError  an impossible gear pair
 //   │   └── gearbox::TopologyError   a gear train that cannot work (names its item)
-//   └── io::IoError               a file cannot be read or written (exit 3)
+//   └── IoError                   an output that could not be written, or an interrupt (exit 3)
 //
 // Anything else escaping the library (std::bad_alloc, a logic_error) is an internal error.
 #include <stdexcept>
@@ -53,6 +53,12 @@ struct InputError : Error {
     explicit InputError(std::string message_) : Error({}, 0, 0, {}, std::move(message_)) {}
     InputError(const SourceLocation& at, std::string key_, std::string message_)
         : Error(at.file, at.line, at.column, std::move(key_), std::move(message_)) {}
+};
+
+// An output that could not be written, or an interrupt (core/interrupt.hpp): nothing is
+// renamed and temporary files are removed (io/atomic_file.hpp; also io::IoError).
+struct IoError : Error {
+    explicit IoError(std::string m) : Error({}, 0, 0, {}, std::move(m)) {}
 };
 
 }  // namespace gearloss

@@ -1,6 +1,6 @@
 #pragma once
-// Drive cycles: vehicle speed traces (1 Hz CSV `time_s,speed_kmh[,gear]`) and the
-// named regulatory cycles shipped in configs/cycles/.
+// Drive cycles: vehicle speed traces (read from 1 Hz CSV `time_s,speed_kmh[,gear]`, and the
+// named regulatory cycles shipped in configs/cycles/, by io/drive_cycle_csv.hpp).
 #include <string>
 #include <vector>
 
@@ -15,14 +15,9 @@ struct DriveCycle {
     double distance() const;    // m, trapezoid rule
 };
 
-// Reads a cycle CSV; errors name the file, line and column.
-DriveCycle load_cycle_csv(const std::string& file);
 // `a` followed by `b`, b starting one time step after a's last sample.
 DriveCycle concatenate(const DriveCycle& a, const DriveCycle& b, const std::string& name);
-// A name (nedc, wltc, wltc-class3b, artemis, artemis-urban, artemis-rural,
-// artemis-motorway-130, artemis-motorway-150) resolved in `dirs`, or a CSV file path.
-DriveCycle resolve_cycle(const std::string& name_or_file, const std::vector<std::string>& dirs);
-// The names resolve_cycle knows.
-std::vector<std::string> cycle_names();
+
+// Reading cycle files and the named cycles: io/drive_cycle_csv.hpp.
 
 }  // namespace gearloss::cycle

@@ -9,10 +9,10 @@
 #include <limits>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "core/message_text.hpp"
-#include "io/interrupt.hpp"
+#include "model/validate.hpp"
 #include "solver/operating_point.hpp"
-#include "solver/validate.hpp"
 
 namespace gearloss::cycle {
 
@@ -194,7 +194,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
     double last_loss = 0;
     if (keep_trace) res.trace.reserve(cycle.time.size());
     for (size_t i = 0; i + 1 < cycle.time.size(); ++i) {
-        io::throw_if_interrupted();  // SIGINT / SIGTERM: io::Interrupted, exit 130 / 143
+        throw_if_interrupted();  // SIGINT / SIGTERM: Interrupted, exit 130 / 143
         const double dt = cycle.time[i + 1] - cycle.time[i];
         const double v = 0.5 * (cycle.speed[i] + cycle.speed[i + 1]);
         const double a = (cycle.speed[i + 1] - cycle.speed[i]) / dt;
@@ -318,7 +318,7 @@ PrewarmResult prewarm(const Powertrain& pt, const thermal::NodeTemperatures& sta
     // 1 s steps; the crossing is interpolated linearly inside the last one.
     double t = 0;
     while (t < max_time) {
-        io::throw_if_interrupted();
+        throw_if_interrupted();
         const State before = x;
         integrate(pt, load, ambient, x, t, t + 1.0);
         if (x[kOil] >= target) {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cycle/drive_cycle.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 #include "thermal/network.hpp"
 #include "torque_converter/torque_converter.hpp"
 #include "vehicle/vehicle.hpp"

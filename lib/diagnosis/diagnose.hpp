@@ -16,7 +16,7 @@
 
 #include "diagnosis/effects.hpp"
 #include "diagnosis/recordings.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::diagnosis {
 

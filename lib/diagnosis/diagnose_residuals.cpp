@@ -6,7 +6,7 @@
 #include <numeric>
 
 #include "diagnosis/diagnose_internal.hpp"
-#include "solver/validate.hpp"
+#include "model/validate.hpp"
 
 namespace gearloss::diagnosis::detail {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "losses/loss_mechanism.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::diagnosis {
 

@@ -12,7 +12,7 @@
 
 #include "core/errors.hpp"
 #include "io/csv_read.hpp"
-#include "solver/validate.hpp"
+#include "model/validate.hpp"
 #include "units/units.hpp"
 
 namespace gearloss::diagnosis {
@@ -175,7 +175,7 @@ double cell(const std::string& file, const Table& t, size_t r, const std::string
     const double si = v * t.def[it->second].scale + t.def[it->second].offset;
     if (!std::isfinite(si))
         throw InputError(file, t.lines[r], column, name, "'" + io::excerpt(s) + "' is out of range (overflows in SI units)");
-    // The ranges the model states (solver/validate.hpp), so that no statistic of the diagnosis
+    // The ranges the model states (model/validate.hpp), so that no statistic of the diagnosis
     // overflows: a recording outside them is an error at its cell, not a point to fit.
     std::optional<std::string> fault;
     if (key == "speed_in" || key == "speed_out") fault = solver::speed_fault(si);

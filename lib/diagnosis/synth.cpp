@@ -111,7 +111,7 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
     const double gain = h.art.torque_gain, offset = h.art.torque_offset;
     std::string out;
     solver::PointState p;
-    // A point the model cannot evaluate (solver/validate.hpp) stops the campaign with its cause.
+    // A point the model cannot evaluate (model/validate.hpp) stops the campaign with its cause.
     const auto prepare = [&](double w, double T) {
         solver::prepare_point(m, w, T, p);
         if (!p.fault.empty())

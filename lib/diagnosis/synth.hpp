@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "io/config.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::diagnosis {
 

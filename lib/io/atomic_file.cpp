@@ -14,8 +14,6 @@
 
 namespace gearloss::io {
 
-std::atomic<bool> g_interrupted{false};
-
 namespace {
 
 std::atomic<bool> g_stdout_closed{false};

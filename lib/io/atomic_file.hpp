@@ -11,13 +11,13 @@
 //  - every write, flush, fsync, close and rename is checked (IoError, exit 3); a reader
 //    that closed its pipe (EPIPE, with SIGPIPE ignored) ends that stream quietly;
 //  - an interrupt (g_interrupted) stops the writing (IoError) and nothing is renamed.
-#include <atomic>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "io/output_paths.hpp"
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
+#include "io/output_paths.hpp"
 
 namespace gearloss::io {
 
@@ -67,11 +67,9 @@ void finish_stdout();
 // A reader closed the pipe on standard output.
 bool stdout_closed();
 
-struct IoError : Error {
-    explicit IoError(std::string m) : Error({}, 0, 0, {}, std::move(m)) {}
-};
-
-// Set by the signal handler: long loops stop and outputs are discarded.
-extern std::atomic<bool> g_interrupted;
+// IoError (exit 3) and the interrupt flag (set by the signal handler: long loops stop and
+// outputs are discarded) are core's; the io names stay.
+using gearloss::g_interrupted;
+using gearloss::IoError;
 
 }  // namespace gearloss::io

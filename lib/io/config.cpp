@@ -13,7 +13,7 @@
 #include "io/issue_location.hpp"
 #include "io/mechanism_config.hpp"
 #include "io/sweep.hpp"
-#include "solver/validate.hpp"
+#include "model/validate.hpp"
 
 namespace gearloss::io {
 

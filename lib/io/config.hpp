@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "io/yaml_reader.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 #include "torque_converter/torque_converter.hpp"
 #include "vehicle/vehicle.hpp"
 

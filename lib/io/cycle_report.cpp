@@ -9,7 +9,7 @@
 #include "core/errors.hpp"
 #include "io/csv_format.hpp"
 #include "io/json.hpp"
-#include "solver/validate.hpp"
+#include "model/validate.hpp"
 
 namespace gearloss::io {
 

@@ -1,6 +1,7 @@
 #pragma once
 // SIGINT and SIGTERM stop any command (README "Exit codes"):
-//  - on_interrupt_signal (the handler) sets g_interrupted and remembers the signal;
+//  - on_interrupt_signal (the handler) sets g_interrupted (core/interrupt.hpp) and remembers
+//    the signal;
 //  - every long loop polls interrupted(): outside a parallel region it throws Interrupted
 //    (throw_if_interrupted), inside one it skips the remaining iterations and the code after
 //    the region throws;
@@ -11,6 +12,7 @@
 #include <csignal>
 #include <cstdio>
 
+#include "core/interrupt.hpp"
 #include "io/atomic_file.hpp"
 
 namespace gearloss::io {
@@ -24,15 +26,10 @@ inline void on_interrupt_signal(int sig) noexcept {
     g_interrupted.store(true, std::memory_order_relaxed);
 }
 
-inline bool interrupted() noexcept { return g_interrupted.load(std::memory_order_relaxed); }
-
-struct Interrupted : IoError {
-    Interrupted() : IoError("interrupted; no output file written") {}
-};
-
-inline void throw_if_interrupted() {
-    if (interrupted()) throw Interrupted();
-}
+// The flag, its poll and the exception are core's (the computations below io poll them).
+using gearloss::interrupted;
+using gearloss::Interrupted;
+using gearloss::throw_if_interrupted;
 
 // 130 (SIGINT) or 143 (SIGTERM): the one mapping of an interrupt to an exit code.
 inline int interrupt_exit_code() noexcept { return g_interrupt_signal.load(std::memory_order_relaxed) == SIGTERM ? 143 : 130; }

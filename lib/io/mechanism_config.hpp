@@ -4,7 +4,7 @@
 // settings and selected forms). Keys come from the mechanisms themselves
 // (losses::LossMechanism::parameters, forms), so a new mechanism needs no edit here.
 #include "io/yaml_reader.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::io {
 

@@ -7,8 +7,8 @@
 #include "bearings/skf_constants.hpp"
 #include "core/errors.hpp"
 #include "core/message_text.hpp"
+#include "mechanisms/mesh_friction_mechanism.hpp"
 #include "mesh/ehl_path.hpp"
-#include "mesh/mesh_friction_mechanism.hpp"
 #include "io/json.hpp"
 
 namespace gearloss::io {
@@ -271,7 +271,7 @@ std::string mesh_profile_csv(const Case& c, const std::string& mesh_name, double
     }
     if (k < 0) throw InputError("", 0, 0, "--mesh", "unknown mesh '" + excerpt(mesh_name) + "'; meshes: " + names);
     const solver::PointState p = solver::prepare_point(m, omega_in, torque_in);
-    const auto& ms = mesh::mesh_friction_point(m, p).meshes[static_cast<size_t>(k)];
+    const auto& ms = mesh::mesh_friction_point(m, p.data).meshes[static_cast<size_t>(k)];
     const auto& md = m.layout.meshes[static_cast<size_t>(k)];
     if (ms.F_bn <= 0.0 || ms.omega_rel == 0.0)
         throw InputError("", 0, 0, "--mesh", "mesh '" + excerpt(mesh_name) + "' carries no load or does not turn at this point");

@@ -5,8 +5,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
-#include "solver/model.hpp"
-#include "solver/validate.hpp"
+#include "core/issue.hpp"
 
 namespace gearloss::losses {
 

@@ -16,15 +16,15 @@
 #include <string_view>
 #include <vector>
 
+#include "core/issue.hpp"
 #include "lubricant/oil.hpp"
 
 namespace gearloss::units {
 struct Dimension;
 }
 namespace gearloss::solver {
-struct Model;
-struct Issue;
-}  // namespace gearloss::solver
+struct Model;  // model/model.hpp, a folder above this one (a model holds its mechanisms)
+}
 
 namespace gearloss::losses {
 

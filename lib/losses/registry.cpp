@@ -5,9 +5,10 @@
 
 namespace gearloss::losses {
 
-// The registered mechanisms: one line each, NAME and the factory its source file defines
-// (`std::unique_ptr<LossMechanism> FACTORY()` in namespace gearloss::losses). The order is
-// the order of the output columns.
+// The registered mechanisms: one line each, NAME and the factory its source file in
+// mechanisms/ defines (`std::unique_ptr<LossMechanism> FACTORY()` in namespace
+// gearloss::losses; the same static library, gearloss_physics). The order is the order of the
+// output columns.
 #define GEARLOSS_LOSS_MECHANISMS(X)              \
     X("mesh", create_mesh_friction)              \
     X("churning", create_churning)               \

@@ -1,6 +1,7 @@
 #pragma once
-// The name-keyed factory of loss mechanisms. A new mechanism is one source file (its
-// physics and a class implementing losses::LossMechanism) plus one line in registry.cpp.
+// The name-keyed factory of loss mechanisms. A new mechanism is its physics (in the folder
+// named after it), a class implementing losses::LossMechanism (mechanisms/<name>_mechanism.cpp)
+// and one line in registry.cpp (CONTRIBUTING.md, "Adding a loss mechanism").
 #include <functional>
 #include <memory>
 #include <string>

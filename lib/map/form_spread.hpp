@@ -8,7 +8,7 @@
 
 #include "io/config.hpp"
 #include "map/map_runner.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::io {
 class Json;

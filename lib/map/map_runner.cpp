@@ -15,11 +15,11 @@
 
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
-#include "io/json.hpp"
 #include "io/issue_location.hpp"
+#include "io/json.hpp"
 #include "io/yaml_reader.hpp"
 #include "losses/loss_mechanism.hpp"
-#include "solver/validate.hpp"
+#include "model/validate.hpp"
 
 namespace gearloss::map {
 

@@ -7,7 +7,7 @@
 #include <limits>
 #include <numbers>
 
-#include "solver/validate.hpp"
+#include "model/validate.hpp"
 
 namespace gearloss::solver {
 

@@ -9,7 +9,7 @@
 
 #include "losses/loss_mechanism.hpp"
 #include "losses/mechanism_set.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::solver {
 

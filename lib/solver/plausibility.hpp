@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::solver {
 

@@ -7,7 +7,7 @@
 
 #include "bearings/skf_model.hpp"
 #include "losses/registry.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::bearings {
 namespace {

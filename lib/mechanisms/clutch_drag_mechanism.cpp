@@ -6,7 +6,7 @@
 
 #include "clutch/wet_clutch.hpp"
 #include "losses/registry.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::clutch {
 namespace {

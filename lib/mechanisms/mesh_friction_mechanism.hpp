@@ -2,14 +2,11 @@
 // Mesh friction as a loss mechanism: P_VZP = mu_mZ H_V |P_roll| per mesh (Niemann &
 // Winter 1983; mu_mZ after Schlenk 1994 or ISO/TS 6336-20, or the mixed-film split of
 // Fernandes et al. 2015, or local thermal EHL along the path of contact).
+#include <memory>
 #include <vector>
 
 #include "losses/loss_mechanism.hpp"
 #include "mesh/friction.hpp"
-
-namespace gearloss::solver {
-struct PointState;
-}
 
 namespace gearloss::mesh {
 
@@ -34,7 +31,8 @@ struct MeshFrictionPoint : losses::MechanismPointOf<MeshFrictionPoint> {
 // Detail quantities of the mesh mechanism, per mesh (MechanismDetail::at(mesh, q)).
 enum MeshQuantity : size_t { kMeshPower = 0, kMeshMu, kMeshLambda, kMeshHmin, kMeshHc, kMeshQuantities };
 
-// The mesh terms of a prepared point.
-const MeshFrictionPoint& mesh_friction_point(const solver::Model& m, const solver::PointState& p);
+// The mesh terms of a prepared point, from its per-mechanism data (solver::PointState::data).
+const MeshFrictionPoint& mesh_friction_point(const solver::Model& m,
+                                             const std::vector<std::unique_ptr<losses::MechanismPoint>>& data);
 
 }  // namespace gearloss::mesh

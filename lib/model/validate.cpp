@@ -1,4 +1,4 @@
-#include "solver/validate.hpp"
+#include "model/validate.hpp"
 
 #include "losses/loss_mechanism.hpp"
 
@@ -292,15 +292,6 @@ std::string summarise(const std::vector<Issue>& issues) {
     }
     return message;
 }
-
-std::string Issue::path() const {
-    std::string p = section;
-    if (!item.empty()) p += (p.empty() ? "" : ".") + item;
-    if (!key.empty()) p += (p.empty() ? "" : ".") + key;
-    return p;
-}
-
-std::string Issue::text() const { return path() + ": " + message; }
 
 OilValidity oil_validity(const lubricant::Oil& oil) {
     OilValidity v;

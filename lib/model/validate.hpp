@@ -10,7 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "solver/model.hpp"
+#include "core/issue.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::solver {
 
@@ -19,16 +20,6 @@ inline constexpr double kMaxSpeed_rpm = 1e6;      // |n_in|
 inline constexpr double kMaxTorque_Nm = 1e8;      // |T_in|
 inline constexpr double kMinAmbient_K = 173.15;   // -100 degC
 inline constexpr double kMaxAmbient_K = 573.15;   // +300 degC
-
-struct Issue {
-    std::string section;  // top-level key of the case description: "thermal", "bearings", "oil", "operating", ...
-    std::string item;     // name of the list item ("B1_RMS11"); empty in a mapping section
-    std::string key;      // key inside the item or section, dotted ("C0", "ambient", "heat_rejection.housing.area")
-    std::string message;
-    bool structural = false;   // an index or count that would make the analysis of the train fail (finalise() throws)
-    std::string path() const;  // "bearings.B1_RMS11.C0", "thermal.ambient"
-    std::string text() const;  // "bearings.B1_RMS11.C0: message"
-};
 
 // Temperatures [K] within which the oil's description holds (both bounds exclusive): above
 // the pole of its Vogel law (or 0 K), below the temperature at which its density, or the

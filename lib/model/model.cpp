@@ -1,7 +1,7 @@
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 #include "losses/loss_mechanism.hpp"
-#include "solver/validate.hpp"
+#include "model/validate.hpp"
 
 #include <algorithm>
 #include <boost/math/tools/toms748_solve.hpp>
@@ -55,7 +55,7 @@ double Model::heat_flow(double T_oil, double T_amb, double omega_in) const {
 
 void Model::finalise() {
     // Indices that would make the analysis read out of bounds (a model built in code): a
-    // topology error before anything else. The other checks are validate()'s (solver/validate.hpp).
+    // topology error before anything else. The other checks are validate()'s (model/validate.hpp).
     for (const Issue& is : validate(*this))
         if (is.structural) throw gearbox::TopologyError(is.text(), is.section, is.item, is.key);
     layout = gearbox::analyse(gearbox);

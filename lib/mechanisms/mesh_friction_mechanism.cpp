@@ -1,5 +1,5 @@
 #include "core/errors.hpp"
-#include "mesh/mesh_friction_mechanism.hpp"
+#include "mechanisms/mesh_friction_mechanism.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -8,8 +8,7 @@
 
 #include "losses/registry.hpp"
 #include "mesh/ehl_path.hpp"
-#include "solver/model.hpp"
-#include "solver/operating_point.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::mesh {
 namespace {
@@ -245,8 +244,9 @@ std::string MeshFriction::report(const solver::Model& m, const losses::PointInpu
 
 }  // namespace
 
-const MeshFrictionPoint& mesh_friction_point(const solver::Model& m, const solver::PointState& p) {
-    return static_cast<const MeshFrictionPoint&>(*p.data.at(m.mechanisms.index("mesh")));
+const MeshFrictionPoint& mesh_friction_point(const solver::Model& m,
+                                             const std::vector<std::unique_ptr<losses::MechanismPoint>>& data) {
+    return static_cast<const MeshFrictionPoint&>(*data.at(m.mechanisms.index("mesh")));
 }
 
 }  // namespace gearloss::mesh

@@ -4,8 +4,8 @@
 #include <fmt/format.h>
 
 #include "losses/registry.hpp"
+#include "model/model.hpp"
 #include "seals/radial_lip_seal.hpp"
-#include "solver/model.hpp"
 
 namespace gearloss::seals {
 namespace {

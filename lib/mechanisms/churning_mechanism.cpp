@@ -7,7 +7,7 @@
 
 #include "churning/changenet_velex.hpp"
 #include "losses/registry.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace gearloss::churning {
 namespace {
