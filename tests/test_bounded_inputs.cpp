@@ -28,32 +28,10 @@
 using namespace gearloss;
 
 namespace {
+using test_support::TempDir;
 
 namespace fs = std::filesystem;
 
-// A private temporary directory, removed with everything in it.
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "gearloss-bounded-XXXXXX").string();
-        if (!::mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = tmpl;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::string write(const std::string& name, const std::string& text) const {
-        const fs::path p = path / name;
-        std::ofstream(p, std::ios::binary) << text;
-        return p.string();
-    }
-    std::string fifo(const std::string& name) const {
-        const fs::path p = path / name;
-        if (::mkfifo(p.c_str(), 0600) != 0) throw std::runtime_error("mkfifo failed");
-        return p.string();
-    }
-};
 
 std::string shipped(const std::string& file) {
     return test_support::read_file(test_support::source_path("configs/" + file));

@@ -9,23 +9,13 @@
 #include <unistd.h>
 
 #include "io/data_dir.hpp"
+#include "test_support.hpp"
 
 using namespace gearloss;
 namespace fs = std::filesystem;
 
 namespace {
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "gearloss-data-dir-XXXXXX").string();
-        if (!::mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = tmpl;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
+using test_support::TempDir;
 }  // namespace
 
 TEST_CASE("data dir: installed, source tree, GEARLOSS_DATA_DIR", "[data_dir]") {

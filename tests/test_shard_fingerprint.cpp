@@ -15,18 +15,7 @@ using namespace gearloss;
 namespace fs = std::filesystem;
 
 namespace {
-// A scratch directory of its own (removed at the end of the test).
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        static int counter = 0;
-        path = fs::temp_directory_path() /
-               ("gearloss-fp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-        fs::create_directories(path / "oils");
-    }
-    ~TempDir() { fs::remove_all(path); }
-    void write(const std::string& name, const std::string& text) const { std::ofstream(path / name) << text; }
-};
+using test_support::TempDir;
 
 std::string source(const std::string& rel) { return test_support::read_file(test_support::source_path(rel)); }
 

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <filesystem>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <fstream>
 #include <sstream>
@@ -46,5 +47,34 @@ inline int line_of(const std::string& text, const std::string& needle) {
     if (p == std::string::npos) throw std::runtime_error("test setup: '" + needle + "' not found");
     return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(p), '\n'));
 }
+
+// A private temporary directory, removed with everything in it at the end of its scope.
+struct TempDir {
+    std::filesystem::path path;
+    TempDir() {
+        std::string tmpl = (std::filesystem::temp_directory_path() / "gearloss-test-XXXXXX").string();
+        if (!::mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+        path = tmpl;
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    // Writes `text` to `name` below the directory (creating its folders); returns the path.
+    std::string write(const std::string& name, const std::string& text) const {
+        const std::filesystem::path p = path / name;
+        std::filesystem::create_directories(p.parent_path());
+        std::ofstream(p, std::ios::binary) << text;
+        return p.string();
+    }
+    // A named pipe `name` in the directory; returns its path.
+    std::string fifo(const std::string& name) const {
+        const std::filesystem::path p = path / name;
+        if (::mkfifo(p.c_str(), 0600) != 0) throw std::runtime_error("mkfifo failed");
+        return p.string();
+    }
+};
 
 }  // namespace test_support

@@ -157,10 +157,7 @@ private:
         if (spread_) {
             axes = map::spread_axes(k.model, spread_axes_);
             if (axes.empty()) throw InputError(k.file, 0, 0, "--spread", "no mechanism of this case has alternative forms");
-            if (map::combination_count(axes) > map::kMaxSpreadCombinations)
-                throw InputError("", 0, 0, "--spread",
-                                 fmt::format("{} form axes give more than {} combinations; choose some with --spread-axes",
-                                             axes.size(), map::kMaxSpreadCombinations));
+            map::require_spread_size(axes);  // before the nominal map, not after it
         }
         const auto t0 = std::chrono::steady_clock::now();
         const auto results = map::run_map(k.model, k.grid, opt);

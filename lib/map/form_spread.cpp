@@ -46,6 +46,13 @@ size_t combination_count(const std::vector<SpreadAxis>& axes) {
     return n;
 }
 
+void require_spread_size(const std::vector<SpreadAxis>& axes) {
+    if (combination_count(axes) > kMaxSpreadCombinations)
+        throw InputError("", 0, 0, "--spread",
+                         fmt::format("{} form axes give more than {} combinations; choose some with --spread-axes",
+                                     axes.size(), kMaxSpreadCombinations));
+}
+
 namespace {
 // The form index of each axis in combination i (mixed radix, the first axis fastest).
 std::vector<size_t> digits(const std::vector<SpreadAxis>& axes, size_t i) {
@@ -76,11 +83,8 @@ std::string combination_label(const std::vector<SpreadAxis>& axes, size_t i) {
 
 std::vector<PointSpread> run_spread(const solver::Model& m, const io::OperatingGrid& grid,
                                     const std::vector<SpreadAxis>& axes, const MapOptions& opt) {
+    require_spread_size(axes);
     const size_t combinations = combination_count(axes);
-    if (combinations > kMaxSpreadCombinations)
-        throw InputError("", 0, 0, "--spread",
-                         fmt::format("more than {} combinations of forms; choose axes with --spread-axes",
-                                     kMaxSpreadCombinations));
     std::vector<PointSpread> spread(grid.size());
     MapOptions one = opt;
     one.detail = false;

@@ -48,8 +48,10 @@ struct PointSpread {
     size_t unsolved = 0;           // combinations without (no equilibrium, out of range)
 };
 
-// Combinations above this count need `--spread-axes` (the map's cost grows with them).
+// Combinations above this count need `--spread-axes` (the map's cost grows with them);
+// require_spread_size throws the InputError (run_spread calls it too).
 inline constexpr size_t kMaxSpreadCombinations = 512;
+void require_spread_size(const std::vector<SpreadAxis>& axes);
 
 // Solves the grid once per combination (each with its own oil temperature when the case is
 // thermally coupled), keeping only each point's running minimum and maximum, so memory does
