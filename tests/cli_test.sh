@@ -317,6 +317,11 @@ check "spread-axes without --spread: exit 2" bash -c "test $? -eq 2 && grep -q -
 "$bin" map "$src/configs/transfer-box.yaml" --spread --spread-axes mesh.fricton -o "$tmp/sx.csv" 2> "$tmp/err.txt"
 check "spread: unknown axis named with the known ones" \
     bash -c "test $? -eq 2 && grep -q 'mesh.fricton' '$tmp/err.txt' && grep -q 'windage.form' '$tmp/err.txt' && test ! -e '$tmp/sx.csv'"
+for bad in , mesh.friction, ''; do
+    "$bin" map "$src/configs/transfer-box.yaml" --spread --spread-axes "$bad" -o "$tmp/sx.csv" 2> "$tmp/err.txt"
+    check "spread-axes '$bad': exit 2 naming the option" \
+        bash -c "test $? -eq 2 && grep -q -- '--spread-axes' '$tmp/err.txt' && ! grep -q -- \"'-o'\" '$tmp/err.txt' && test ! -e '$tmp/sx.csv'"
+done
 "$bin" map "$src/configs/transfer-box.yaml" --spread --shard 1/2 -o "$tmp/sx.csv" 2> "$tmp/err.txt"
 check "spread with --shard: exit 2" bash -c "test $? -eq 2 && grep -q -- '--spread' '$tmp/err.txt'"
 "$bin" map "$src/configs/transfer-box.yaml" --spread --format vecto -o "$tmp/sx.vtlm" 2> "$tmp/err.txt"

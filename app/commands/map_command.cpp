@@ -1,5 +1,6 @@
 // gearloss map: every operating point of the grid to CSV (sweeps, shards), or VECTO
 // torque-loss tables per gear (--format vecto).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -44,9 +45,9 @@ public:
         s->add_flag("--spread", spread_,
                     "also solve every combination of the mechanisms' alternative forms and add, per point, "
                     "P_total_min_W, P_total_max_W and the forms giving each");
-        s->add_option("--spread-axes", spread_axes_, "restrict --spread to these form axes, e.g. "
-                                                     "mesh.friction,windage.form (see `gearloss check`)")
-            ->delimiter(',');
+        // One argument split here: CLI11's delimiter takes the next argument when the list is empty.
+        spread_axes_option_ = s->add_option("--spread-axes", spread_axes_text_, "restrict --spread to these form axes, e.g. "
+                                                          "mesh.friction,windage.form (see `gearloss check`)");
         s->add_option("--format", format_, "csv (loss breakdown) or vecto (torque-loss table per gear, negative "
                                            "torques included)")->check(CLI::IsMember({"csv", "vecto"}));
         s->footer("Examples:\n  gearloss map configs/transfer-box.yaml --speed 600,700,800rpm --torque 150,200,250Nm -o out.csv\n"
@@ -59,7 +60,11 @@ public:
         io::require_distinct_outputs({{"--output", out_}, {"--json", json_}});
         io::require_outputs_not_inputs({{"--output", out_}, {"--json", json_}},
                                        {{"config", common_.config}, {"--oil", common_.oil}});
-        if (!spread_axes_.empty() && !spread_)
+        const bool axes_given = spread_axes_option_ && spread_axes_option_->count() > 0;
+        if (axes_given && spread_axes_text_.empty())
+            throw InputError("", 0, 0, "--spread-axes", "empty: name the axes, e.g. mesh.friction,windage.form");
+        spread_axes_ = split_axes(spread_axes_text_);
+        if (axes_given && !spread_)
             throw InputError("", 0, 0, "--spread-axes", "give --spread as well");
         if (spread_ && format_ == "vecto")
             throw InputError("", 0, 0, "--spread", "--format vecto writes loss tables; the form spread is a csv column");
@@ -76,7 +81,24 @@ private:
     std::string out_ = "-", json_, shard_, format_ = "csv";
     int threads_ = 0;
     bool detail_ = false, stats_ = false, spread_ = false;
+    std::string spread_axes_text_;
+    CLI::Option* spread_axes_option_ = nullptr;
     std::vector<std::string> spread_axes_;
+
+    // "mesh.friction,windage.form" -> its axes; an empty name is an error naming the option.
+    static std::vector<std::string> split_axes(const std::string& text) {
+        std::vector<std::string> out;
+        if (text.empty()) return out;
+        for (size_t a = 0; a <= text.size();) {
+            const size_t e = std::min(text.find(',', a), text.size());
+            if (e == a)
+                throw InputError("", 0, 0, "--spread-axes",
+                                 fmt::format("'{}': an empty axis name (e.g. mesh.friction,windage.form)", text));
+            out.push_back(text.substr(a, e - a));
+            a = e + 1;
+        }
+        return out;
+    }
 
     // One torque-loss table per gear (the selected ratio, or every ratio).
     int run_vecto() {
