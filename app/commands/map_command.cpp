@@ -100,22 +100,20 @@ private:
         return out;
     }
 
-    // One torque-loss table per gear (the selected ratio, or every ratio).
+    // One torque-loss table per gear (the selected ratio, or every ratio), from one loaded case.
     int run_vecto() {
-        const io::Case first = load_with_options(common_);
+        io::Case k = load_with_options(common_);
+        grid_.apply(k, kVectoExamples);  // a point list with --speed/--torque becomes a grid, as for csv
+        if (!k.grid.is_grid) throw InputError(k.file, 0, 0, "operating", "--format vecto needs a speeds x torques grid");
         std::vector<std::string> ratios;
-        if (!common_.ratio.empty() || first.ratio_names.empty()) ratios.push_back(common_.ratio);
-        else ratios = first.ratio_names;
+        if (!common_.ratio.empty() || k.model.gearbox.ratios.empty()) ratios.push_back(k.model.ratio);
+        else ratios = k.model.ratio_names();
         if (ratios.size() > 1 && out_ == "-")
             throw InputError("", 0, 0, "--output", "several gears: give -o FILE (written as FILE_<ratio>.vtlm per gear)");
         map::MapOptions opt;
         opt.threads = threads_;
         for (const auto& ratio : ratios) {
-            CommonOptions cr = common_;
-            cr.ratio = ratio;
-            io::Case k = load_with_options(cr);
-            grid_.apply(k, kVectoExamples);  // a point list with --speed/--torque becomes a grid, as for csv
-            if (!k.grid.is_grid) throw InputError(k.file, 0, 0, "operating", "--format vecto needs a speeds x torques grid");
+            if (!ratio.empty()) k.model.select_ratio(ratio);
             const auto rows = map::vecto_loss_map(k.model, k.grid.speeds, k.grid.torques, opt);
             io::throw_if_interrupted();
             std::string file = out_;

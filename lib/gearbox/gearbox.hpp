@@ -61,6 +61,12 @@ struct ClutchPack {
     int gear = -1;
 };
 
+// A ratio of a multi-speed gearbox: its name and the free gears it locks to their shafts.
+struct Ratio {
+    std::string name;
+    std::vector<int> engaged;
+};
+
 struct Gearbox {
     std::vector<Shaft> shafts;
     std::vector<Gear> gears;
@@ -70,6 +76,7 @@ struct Gearbox {
     std::vector<ClutchPack> clutches;
     int input_shaft = -1, output_shaft = -1;
     std::vector<int> engaged;   // free gears locked to their shaft in the selected ratio
+    std::vector<Ratio> ratios;  // every ratio the case defines, in its order (empty: one fixed train)
     std::optional<double> oil_level;  // y of the oil surface in the housing frame [m]
     double oil_volume = 0;      // m^3
 };

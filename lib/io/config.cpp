@@ -5,6 +5,7 @@
 #include <charconv>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <map>
 
 #include "io/case_plausibility.hpp"
@@ -166,7 +167,6 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     m.gearbox.input_shaft = L.shaft_ref(gbn.at("input"));
     m.gearbox.output_shaft = L.shaft_ref(gbn.at("output"));
     if (auto rs = gbn.get("ratios")) {
-        std::map<std::string, std::vector<int>> ratios;
         for (auto& [name, rn] : rs->entries()) {
             if (const std::string why = name_problem(name, YamlNode::kMaxNameBytes); !why.empty())
                 rn.fail("ratio '" + excerpt(name) + "': " + why);
@@ -177,20 +177,19 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
                 if (!m.gearbox.gears[gi].free) g.fail("gear '" + g.as_string() + "' is fixed to its shaft; only 'mount: free' gears are engaged");
                 eng.push_back(gi);
             }
-            ratios[name] = eng;
-            c.ratio_names.push_back(name);
+            m.gearbox.ratios.push_back({name, eng});
         }
-        std::string sel = ratio_override ? *ratio_override : (gbn.has("ratio") ? gbn.at("ratio").as_string() : "");
+        const std::string sel = ratio_override ? *ratio_override : (gbn.has("ratio") ? gbn.at("ratio").as_string() : "");
         if (sel.empty()) gbn.fail("several ratios are defined; select one with 'ratio' (or --ratio)");
-        auto it = ratios.find(sel);
-        if (it == ratios.end()) {
-            std::string all;
-            for (const auto& n : c.ratio_names) all += (all.empty() ? "" : ", ") + n;
+        const auto it = std::find_if(m.gearbox.ratios.begin(), m.gearbox.ratios.end(),
+                                     [&](const auto& r) { return r.name == sel; });
+        if (it == m.gearbox.ratios.end()) {
+            const std::string all = fmt::format("{}", fmt::join(m.ratio_names(), ", "));
             if (ratio_override) throw InputError(file, 0, 0, "--ratio", "unknown ratio '" + sel + "'; defined: " + all);
             gbn.at("ratio").fail("unknown ratio '" + excerpt(sel) + "'; defined: " + all);
         }
-        m.gearbox.engaged = it->second;
-        c.ratio = sel;
+        m.gearbox.engaged = it->engaged;
+        m.ratio = sel;
     } else if (ratio_override) {
         throw InputError(file, 0, 0, "--ratio", "the config defines no 'gearbox.ratios'");
     }
@@ -228,20 +227,37 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     if (auto v = root.get("vehicle")) {
         load_vehicle(*v, c);
         for (size_t i = 0; i < c.vehicle->gears.size(); ++i)
-            if (std::find(c.ratio_names.begin(), c.ratio_names.end(), c.vehicle->gears[i]) == c.ratio_names.end())
+            if (std::ranges::none_of(m.gearbox.ratios, [&](const auto& r) { return r.name == c.vehicle->gears[i]; }))
                 v->at("gears").items()[i].fail("'" + excerpt(c.vehicle->gears[i]) + "' is not one of gearbox.ratios");
     }
 
     m.source = std::move(source);
-    // Errors found once the model is assembled point at the item they come from.
-    try {
-        m.finalise();
-    } catch (const gearbox::TopologyError& e) {
-        (e.section.empty() ? gbn : locate_in_case(root, e.section, e.item, e.key)).fail(e.message);
-    }
-    if (const auto issues = solver::validate(m); !issues.empty()) {
-        const auto& first = issues.front();
-        locate_in_case(root, first.section, first.item, first.key).fail(solver::summarise(issues));
+    // Errors found once the model is assembled point at the item they come from. Every
+    // ratio is checked here, so a ratio selected at run time (Model::select_ratio, for a
+    // drive cycle or a loss table per gear) needs no check that could fail without a line.
+    const auto assemble = [&](solver::Model& mm) {
+        const bool other = mm.ratio != m.ratio;
+        const std::string in_ratio = other ? "ratio '" + mm.ratio + "': " : "";
+        const YamlNode ratio_node = other ? gbn.at("ratios").at(mm.ratio) : gbn;
+        try {
+            mm.finalise();
+        } catch (const gearbox::TopologyError& e) {
+            (e.section.empty() ? ratio_node : locate_in_case(root, e.section, e.item, e.key)).fail(in_ratio + e.message);
+        }
+        if (const auto issues = solver::validate(mm); !issues.empty()) {
+            const auto& first = issues.front();
+            locate_in_case(root, first.section, first.item, first.key).fail(in_ratio + solver::summarise(issues));
+        }
+    };
+    assemble(m);
+    if (m.gearbox.ratios.size() > 1) {
+        solver::Model other = m;
+        for (const auto& r : m.gearbox.ratios)
+            if (r.name != m.ratio) {
+                other.gearbox.engaged = r.engaged;
+                other.ratio = r.name;
+                assemble(other);
+            }
     }
     // Ohlendorf's closed form (and the single-pair average) assume 1 <= eps_alpha < 2.
     if (m.options.loss_factor != mesh::LossFactorModel::wimmer)

@@ -35,8 +35,6 @@ struct Case {
     std::string file;
     solver::Model model;
     OperatingGrid grid;
-    std::vector<std::string> ratio_names;
-    std::string ratio;
     std::optional<vehicle::Vehicle> vehicle;  // for `gearloss cycle`
     std::optional<torque_converter::TorqueConverter> torque_converter;
     std::vector<SweepAxis> sweep;  // `sweep:` axes (map runs every combination; io/sweep.hpp)

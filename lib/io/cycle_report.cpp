@@ -23,13 +23,10 @@ cycle::Powertrain load_powertrain(const Case& c, const std::optional<std::string
     cycle::Powertrain pt;
     pt.vehicle = *c.vehicle;
     pt.torque_converter = c.torque_converter;
-    std::optional<lubricant::Oil> oil;
-    if (oil_file) oil = load_oil_file(*oil_file);
-    for (const auto& g : c.vehicle->gears) {
-        Case k = load_case(c.file, g);
-        if (oil) replace_oil(k, *oil);
-        pt.gears.push_back(std::move(k.model));
-    }
+    // One loaded case; each gear is the model with that ratio selected (no re-reading).
+    Case k = c;
+    if (oil_file) replace_oil(k, load_oil_file(*oil_file));
+    for (const auto& g : c.vehicle->gears) pt.gears.push_back(k.model.with_ratio(g));
     return pt;
 }
 

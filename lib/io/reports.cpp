@@ -33,7 +33,7 @@ std::string status_line(const solver::Model& m, const solver::PointResult& r) {
 std::string point_report(const Case& c, const solver::PointResult& r) {
     const auto& m = c.model;
     std::string s;
-    s += fmt::format("{} — oil {}{}\n", m.name, m.oil.name, c.ratio.empty() ? "" : ", ratio " + c.ratio);
+    s += fmt::format("{} — oil {}{}\n", m.name, m.oil.name, m.ratio.empty() ? "" : ", ratio " + m.ratio);
     if (r.status == solver::PointStatus::out_of_range) {
         // The inputs as given, however large (or not finite): short, never "inf" or 300 digits.
         s += fmt::format("input  {} rpm  {} N*m  {} W\n", finite_number_text(r.speed_in * rpm),
@@ -78,7 +78,7 @@ std::string check_report(const Case& c) {
     const auto& L = m.layout;
     std::string s = fmt::format("{}: configuration is valid\n", c.file);
     s += fmt::format("overall ratio n_out/n_in = {:.6f} (i = n_in/n_out = {:.5f}){}\n", L.ratio, 1.0 / L.ratio,
-                     c.ratio.empty() ? "" : ", ratio '" + c.ratio + "'");
+                     m.ratio.empty() ? "" : ", ratio '" + m.ratio + "'");
     s += "\nmeshes (lengths in mm)\n";
     for (size_t i = 0; i < gb.meshes.size(); ++i) {
         const auto& md = L.meshes[i];
@@ -161,7 +161,7 @@ std::string check_json(const Case& c) {
     j.key("file").value(c.file);
     j.key("name").value(m.name);
     j.key("valid").value(true);
-    j.key("ratio_name").value(c.ratio);
+    j.key("ratio_name").value(m.ratio);
     j.key("speed_ratio_out_in").value(L.ratio);
     // A key with the values of the two gears of a mesh.
     const auto both = [&j](const char* key, const auto& a, const auto& b) { j.key(key).begin_array().value(a).value(b).end_array(); };

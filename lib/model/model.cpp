@@ -6,6 +6,10 @@
 #include <algorithm>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/errors.hpp"
 
 namespace gearloss::solver {
 
@@ -65,6 +69,31 @@ void Model::finalise() {
         const auto& m2 = gearbox.gears[gearbox.meshes[i].gear[1]].spec.material;
         mesh_E_prime[i] = 2.0 / ((1.0 - m1.poisson * m1.poisson) / m1.E + (1.0 - m2.poisson * m2.poisson) / m2.E);
     }
+}
+
+std::vector<std::string> Model::ratio_names() const {
+    std::vector<std::string> v;
+    for (const auto& r : gearbox.ratios) v.push_back(r.name);
+    return v;
+}
+
+void Model::select_ratio(std::string_view name) {
+    const auto it = std::find_if(gearbox.ratios.begin(), gearbox.ratios.end(), [&](const auto& r) { return r.name == name; });
+    if (it == gearbox.ratios.end()) {
+        const std::string defined = fmt::format("{}", fmt::join(ratio_names(), ", "));
+        throw InputError("", 0, 0, "gearbox.ratio",
+                         gearbox.ratios.empty() ? std::string("the case defines no 'gearbox.ratios'")
+                                                : fmt::format("unknown ratio '{}'; defined: {}", name, defined));
+    }
+    gearbox.engaged = it->engaged;
+    ratio = it->name;
+    finalise();
+}
+
+Model Model::with_ratio(std::string_view name) const {
+    Model m = *this;
+    m.select_ratio(name);
+    return m;
 }
 
 }  // namespace gearloss::solver

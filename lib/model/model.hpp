@@ -3,6 +3,7 @@
 // layout, the oil, the selected loss models and the thermal settings.
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/source_index.hpp"
@@ -72,6 +73,14 @@ struct Model {
     // Mean entrainment-independent data of each mesh computed once.
     std::vector<double> mesh_E_prime;  // Pa
     void finalise();  // derive layout and per-mesh constants; throws on bad topology
+    // The selected one of gearbox.ratios ("" for a train without ratios).
+    std::string ratio;
+    // Selects a ratio at run time (engages its gears and derives the layout again), so a
+    // drive cycle or one loss table per gear reuses one loaded case. The loader checks every
+    // ratio; InputError (key gearbox.ratio) for a name that is not one of gearbox.ratios.
+    void select_ratio(std::string_view name);
+    Model with_ratio(std::string_view name) const;
+    std::vector<std::string> ratio_names() const;
     // Oil state with the calibration's viscosity factor applied.
     lubricant::OilState oil_state(double T) const;
     // Steady heat flow to ambient [W] at oil temperature T_oil, with the calibration applied;
