@@ -5,8 +5,48 @@
 # CSV writing excluded). Reported: best and median points/s, and the speed-up. Then the time of `gearloss diagnose` on a 30-point
 # campaign (median of 5 runs, wall clock including start-up).
 # Usage: scripts/benchmark.sh [REPS]
+#        scripts/benchmark.sh --against OLD_GEARLOSS [REPS]
+#   Before/after a change: REPS (default 9) alternating runs of this build and of another
+#   gearloss binary (e.g. built from the commit before the change): a 200 x 200 map of the
+#   transfer gearbox on 1 thread (solve timed inside gearloss) and a WLTC cycle of the
+#   six-speed manual (wall clock, case loading included); medians and the after/before ratio.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = "--against" ]; then
+    old=$(realpath "${2:?--against needs the other gearloss binary}")
+    reps=${3:-9}
+    scripts/install-deps.sh
+    scripts/build.sh > /dev/null
+    tmp=$(mktemp -d)
+    trap 'rm -rf "$tmp"' EXIT
+    sp=$(python3 -c "print(','.join(f'{300+i*2700/199:.3f}' for i in range(200)))")rpm
+    tq=$(python3 -c "print(','.join(f'{10+i*390/199:.3f}' for i in range(200)))")Nm
+    for _ in $(seq "$reps"); do
+        for side in after before; do
+            bin=build/app/gearloss
+            [ "$side" = before ] && bin=$old
+            "$bin" map configs/transfer-box.yaml --speed "$sp" --torque "$tq" --threads 1 --stats -o "$tmp/map.csv" \
+                2>> "$tmp/map-$side.txt"
+            python3 -c 'import subprocess, sys, time
+t0 = time.perf_counter()
+subprocess.run(sys.argv[1:], check=True, stdout=subprocess.DEVNULL)
+print(time.perf_counter() - t0)' "$bin" cycle configs/manual-6speed.yaml --cycle wltc --start-temp -10degC \
+                >> "$tmp/cycle-$side.txt"
+        done
+    done
+    python3 - "$tmp" <<'PY'
+import re, statistics, sys
+d = sys.argv[1]
+rate = {s: statistics.median(float(re.search(r"([0-9.]+) points/s", l).group(1)) for l in open(f"{d}/map-{s}.txt"))
+        for s in ("before", "after")}
+wall = {s: statistics.median(float(l) for l in open(f"{d}/cycle-{s}.txt")) for s in ("before", "after")}
+print(f"200 x 200 map, 1 thread, median points/s: before {rate['before']:,.0f}, after {rate['after']:,.0f} "
+      f"(after/before {rate['after'] / rate['before']:.3f})")
+print(f"WLTC cycle of the manual, wall clock median: before {wall['before'] * 1e3:.0f} ms, after {wall['after'] * 1e3:.0f} ms "
+      f"(after/before {wall['after'] / wall['before']:.3f})")
+PY
+    exit 0
+fi
 reps=${1:-25}
 scripts/install-deps.sh
 scripts/build.sh > /dev/null
