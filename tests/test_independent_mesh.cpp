@@ -82,7 +82,7 @@ TEST_CASE("independent: Dowson-Higginson minimum film and the thermal reductions
     // Line contact of the Ertel-Grubin hand check in test_geometry_mesh.cpp: eta0 0.05 Pa s,
     // u_e 5 m/s, E' 230.8 GPa, R 10 mm, alpha 2e-8 1/Pa, w 500 N/mm:
     //   U = eta0 u_e/(E' R) = 0.25/2.308e9 = 1.08319e-10;  G = alpha E' = 4616;  W = w/(E' R) = 2.16638e-4
-    // Dowson-Higginson (1966): H_min = 2.65 U^0.70 G^0.54 W^-0.13
+    // Dowson & Higginson (1966): H_min = 2.65 U^0.70 G^0.54 W^-0.13
     //   U^0.70 = 1.05753e-7, G^0.54 = 95.2146, W^-0.13 = 2.99471
     //   H_min = 2.65 x 1.05753e-7 x 95.2146 x 2.99471 = 7.99092e-5 -> h_min = H_min R = 0.799092 um.
     // Kills M4 (+4 %).

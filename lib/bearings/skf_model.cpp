@@ -110,7 +110,7 @@ SkfLoadTerms load_terms(const BearingSpec& b, const Catalogue& c, double Fr, dou
     return g;
 }
 
-// Split of the 2013 drag form into the nu-independent first term and the
+// Split of the SKF (2013) drag form into the nu-independent first term and the
 // coefficient of nu^1.379 in the second.
 void drag_terms(const BearingSpec& b, const Catalogue& c, double& first, double& second_coef) {
     first = second_coef = 0.0;

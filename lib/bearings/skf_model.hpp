@@ -57,7 +57,7 @@ struct SkfMoment {
 // Full evaluation (used by the tests): Fr, Fa in N, omega in rad/s, nu in m^2/s.
 SkfMoment skf_moment(const BearingSpec& b, double Fr, double Fa, double omega, double nu_m2s);
 
-// Oil-bath drag moment [N*m] (2013 catalogue form): omega in rad/s, nu in m^2/s.
+// Oil-bath drag moment [N*m] (SKF (2013) catalogue form): omega in rad/s, nu in m^2/s.
 double skf_drag_moment(const BearingSpec& b, double omega, double nu_m2s);
 
 // Palmgren (1959) no-load moment M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N*mm; nu in mm^2/s, n in r/min,

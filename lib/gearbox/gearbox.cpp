@@ -40,7 +40,7 @@ std::string body_name(const Gearbox& gb, const Layout& L, int b) {
     return "?";
 }
 
-// Pitch-line constraint of every mesh, relative to its carrier (ISO/Willis):
+// Pitch-line constraint of every mesh, relative to its carrier (ISO 21771; Willis 1841):
 //   r_w0 (w_A - w_C) + s r_w1 (w_B - w_C) = 0,  s = +1 external, -1 internal.
 // Rows of J; the same rows, transposed, map the tangential mesh forces
 // (Lagrange multipliers) to body torques.

@@ -1,6 +1,6 @@
 #pragma once
 // Involute helical gear pair geometry with profile shift (ISO 21771 / DIN 3960,
-// as in the MAAG Gear Book 1990). All lengths in metres, angles in rad.
+// as in MAAG (1990), the Gear Book). All lengths in metres, angles in rad.
 #include <optional>
 #include <string>
 #include "core/errors.hpp"

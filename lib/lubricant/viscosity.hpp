@@ -16,7 +16,7 @@ struct VogelLaw {
     double dlnnu_dT(double T_C) const;
 };
 
-// ASTM D341 (Walther): log10 log10(nu + 0.7) = A - B log10(T_K), nu in mm^2/s.
+// ASTM D341 (Walther 1931): log10 log10(nu + 0.7) = A - B log10(T_K), nu in mm^2/s.
 struct WaltherLaw {
     double A = 0, B = 0;
     static WaltherLaw fit(double T1_K, double nu1_mm2s, double T2_K, double nu2_mm2s);

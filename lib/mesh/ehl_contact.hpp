@@ -2,7 +2,7 @@
 // Thermal EHL traction of one line contact (Hertz: Johnson 1985, ch. 4; after
 // Olver & Spikes 1998 and Evans & Johnson 1986): Roelands viscosity at the film
 // temperature, Eyring shear capped by a limiting shear stress, integrated over
-// the Hertz pressure; flash temperature (Jaeger band source, Blok partition) and
+// the Hertz pressure; flash temperature (Jaeger 1942 band source, Blok 1937 partition) and
 // Couette shear heating, converged by bracketing; mixed friction through Lambda.
 #include "lubricant/oil.hpp"
 #include "mesh/friction.hpp"

@@ -10,7 +10,7 @@ const char* to_string(LossFactorModel m);
 
 // Ohlendorf (1958): H_V = pi (u+1)/(z1 u cos beta_b) (1 - eps_a + eps1^2 + eps2^2).
 double loss_factor_ohlendorf(const geometry::PairGeometry& g, int z1);
-// Single-pair kinematic average (Buckingham): (eps1^2 + eps2^2)/eps_a instead of the bracket.
+// Single-pair kinematic average (Buckingham 1949): (eps1^2 + eps2^2)/eps_a instead of the bracket.
 double loss_factor_buckingham(const geometry::PairGeometry& g, int z1);
 
 // Contact lines swept over one base pitch on the plane of action, with the
