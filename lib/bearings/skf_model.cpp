@@ -185,6 +185,11 @@ double SkfAtPoint::moment(double nu_cSt, double nu_cSt_06, double nu_cSt_064, do
 }
 
 const char* SkfAtPoint::fault() const {
+    // Once per bearing and point: one test of the sum (a NaN or infinity in any term makes it
+    // non-finite), the term named only when it fails.
+    if (alpha_F < 0.5 * std::numbers::pi &&
+        std::isfinite(n + rr + a_ish + a_rs + G_sl + a_bl + mu_bl + mu_ehl + M_seal + drag_a + drag_b))
+        return nullptr;
     if (!(alpha_F < 0.5 * std::numbers::pi)) return "contact angle";  // also NaN
     if (!std::isfinite(n)) return "speed";
     if (!std::isfinite(rr) || !std::isfinite(a_ish) || !std::isfinite(a_rs)) return "rolling moment";

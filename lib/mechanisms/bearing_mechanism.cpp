@@ -67,11 +67,11 @@ public:
 
     std::string point_fault(const solver::Model& m, const losses::MechanismPoint& pt) const override {
         const auto& p = static_cast<const BearingPoint&>(pt);
+        // Called once per point: the message is built only for a fault.
         for (size_t i = 0; i < p.skf.size(); ++i) {
-            const std::string name = "bearing " + m.gearbox.bearings[i].name;
-            if (!std::isfinite(p.omega[i])) return name + " speed";
-            if (const char* f = p.skf[i].fault()) return name + " " + f;
-            if (!std::isfinite(p.drag_coef[i])) return name + " drag";
+            const char* f = !std::isfinite(p.omega[i]) ? "speed" : p.skf[i].fault();
+            if (!f && !std::isfinite(p.drag_coef[i])) f = "drag";
+            if (f) return "bearing " + m.gearbox.bearings[i].name + " " + f;
         }
         return {};
     }

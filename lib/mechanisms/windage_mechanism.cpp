@@ -88,7 +88,8 @@ public:
         auto& p = static_cast<WindagePoint&>(out);
         p.omega.assign(m.gearbox.gears.size(), 0.0);
         for (size_t g = 0; g < p.omega.size(); ++g) p.omega[g] = L.body_speed_ratio[L.body_of_gear[g]] * in.omega_in;
-        p.box = param(kEmpirical) * std::pow(std::abs(in.omega_in) * 30.0 / std::numbers::pi / 1000.0, 2.9);
+        const double C = param(kEmpirical);  // 0 unless calibrated: no pow per point then
+        p.box = C == 0.0 ? 0.0 : C * std::pow(std::abs(in.omega_in) * 30.0 / std::numbers::pi / 1000.0, 2.9);
     }
     std::string point_fault(const solver::Model& m, const losses::MechanismPoint& pt) const override {
         const auto& p = static_cast<const WindagePoint&>(pt);
