@@ -7,6 +7,7 @@
 // those units in one place. The catalogue constants (SkfConstants, K_rs, the seal's K_S1 and K_S2)
 // keep the catalogue's units. One exception, for speed: SkfAtPoint::moment takes the viscosity
 // powers that every bearing shares in cSt (= mm^2/s), computed once per temperature by the caller.
+#include <array>
 #include <optional>
 
 #include "bearings/skf_constants.hpp"
@@ -48,6 +49,25 @@ struct SkfLoadTerms {
 // (speed enters only through the centrifugal F_g of angular-contact types).
 SkfLoadTerms skf_load_terms(const BearingSpec& b, double Fr, double Fa, double omega);
 
+// The powers of a bearing's dimensions in its SKF terms (d_m to the type's exponents in the load
+// functions, the seal counterface term d_s^beta, d_m^4 or d_m^5 of the drag): independent of
+// load, speed and oil, so a caller that evaluates a bearing at many points computes them once
+// (SkfAtPoint::make's second form) and again only when the dimensions it was made from change.
+struct SkfGeometry {
+    std::array<double, 6> power{};
+    static SkfGeometry of(const BearingSpec& b);
+    // Whether these powers were made from b's present dimensions, type and seal exponent.
+    bool matches(const BearingSpec& b) const {
+        return made && type == b.type && d == b.d && D == b.D && seal_beta == b.seal_beta &&
+               seal_ds == b.seal_ds.value_or(-1.0);
+    }
+
+private:
+    bool made = false;
+    BearingType type{};
+    double d = 0, D = 0, seal_beta = 0, seal_ds = -1.0;
+};
+
 struct SkfMoment {
     double rolling = 0, sliding = 0, seal = 0, drag = 0;  // N*m
     double phi_ish = 1, phi_rs = 1, phi_bl = 1;
@@ -80,6 +100,8 @@ struct SkfAtPoint {
     double alpha_F = 0;      // contact angle of a deep groove ball bearing under axial load [rad]
     // Fr, Fa in N, omega in rad/s.
     static SkfAtPoint make(const BearingSpec& b, double Fr, double Fa, double omega);
+    // Same with the bearing's geometry powers computed beforehand (g.matches(b)).
+    static SkfAtPoint make(const BearingSpec& b, const SkfGeometry& g, double Fr, double Fa, double omega);
     // The kinematic viscosity in cSt (= mm^2/s, the catalogue unit) and its powers ^0.6, ^0.64,
     // ^1.4, ^1.379, shared by every bearing at one temperature (from losses::Evaluation::ln_nu_cSt);
     // returns M [N*m].

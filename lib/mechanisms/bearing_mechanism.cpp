@@ -16,6 +16,9 @@ constexpr double rad_s_to_rpm = 30.0 / std::numbers::pi;  // the report's speed 
 
 struct BearingPoint : losses::MechanismPointOf<BearingPoint> {
     std::vector<SkfAtPoint> skf;     // per bearing
+    // Per bearing: the powers of its dimensions, kept from point to point (this storage is
+    // reused for the points a thread solves) and made again only when the bearing differs.
+    std::vector<SkfGeometry> geometry;
     std::vector<double> omega;       // rad/s
     std::vector<double> drag_coef;   // Palmgren drag, W per (nu_cSt)^(2/3)
     bool any_drag = false;           // a bearing with the SKF drag term
@@ -44,6 +47,7 @@ public:
         auto& p = static_cast<BearingPoint&>(out);
         const size_t n = gb.bearings.size();
         p.skf.assign(n, SkfAtPoint{});
+        p.geometry.resize(n);
         p.omega.assign(n, 0.0);
         p.drag_coef.assign(n, 0.0);
         p.any_drag = false;
@@ -58,7 +62,9 @@ public:
             const double Fcf = L.bearing_Fcf_per_w2[i] * in.omega_in * in.omega_in;  // planet centrifugal load
             const double Fr = Fcf > 0.0 ? std::hypot(Fr_gear, Fcf) : Fr_gear;
             const double Fa = T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]);
-            p.skf[i] = SkfAtPoint::make(gb.bearings[i].spec, Fr, Fa, w);
+            const auto& spec = gb.bearings[i].spec;
+            if (!p.geometry[i].matches(spec)) p.geometry[i] = SkfGeometry::of(spec);
+            p.skf[i] = SkfAtPoint::make(spec, p.geometry[i], Fr, Fa, w);
             // Palmgren (1959): M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm], P = M0 omega.
             if (f0 > 0.0) p.drag_coef[i] = palmgren_drag_coef(gb.bearings[i].spec, f0, w);
             p.any_drag = p.any_drag || p.skf[i].drag_b != 0.0;
