@@ -312,6 +312,22 @@ for r in rows:
 s = json.load(open('$tmp/spread.json'))['spread']
 assert s['combinations'] == 12 and [a['axis'] for a in s['axes']] == ['mesh.friction', 'windage.form'], s
 assert s['widest_relative_spread'] > 0"
+# Forms that do not apply to a case (Ohlendorf's and Buckingham's H_V at eps_alpha = 2.09) are
+# left out, counted in the JSON and named in one line on stderr; the map succeeds.
+"$bin" map "$src/tests/high-contact-ratio.yaml" --spread --spread-axes mesh.loss_factor -o "$tmp/hr.csv" --json "$tmp/hr.json" 2> "$tmp/err.txt"
+check "spread: forms that do not apply are skipped, exit 0" test $? -eq 0
+check "spread: one stderr line naming the skipped combinations and why" bash -c "test \$(wc -l < '$tmp/err.txt') -eq 1 &&
+    grep -q '2 of 3 form combinations do not apply to this case' '$tmp/err.txt' &&
+    grep -q \"first: mesh.loss_factor=ohlendorf: mesh 'm' has eps_alpha = 2.086\" '$tmp/err.txt'"
+check "spread: not applicable in the JSON, not unsolved in the CSV" python3 -c "
+import csv, json
+s = json.load(open('$tmp/hr.json'))['spread']
+assert s['combinations'] == 3 and s['combinations_not_applicable'] == 2, s
+assert s['not_applicable'] == ['mesh.loss_factor=ohlendorf', 'mesh.loss_factor=buckingham'], s
+assert s['points_with_unsolved_combinations'] == 0, s
+for r in csv.DictReader(open('$tmp/hr.csv')):
+    assert r['combinations_unsolved'] == '0' and r['forms_at_min'] == r['forms_at_max'] == 'nominal', r
+    assert r['P_total_min_W'] == r['P_total_W'] == r['P_total_max_W'], r"
 "$bin" map "$src/configs/transfer-box.yaml" --spread-axes mesh.friction -o "$tmp/sx.csv" 2> "$tmp/err.txt"
 check "spread-axes without --spread: exit 2" bash -c "test $? -eq 2 && grep -q -- '--spread-axes' '$tmp/err.txt' && test ! -e '$tmp/sx.csv'"
 "$bin" map "$src/configs/transfer-box.yaml" --spread --spread-axes mesh.fricton -o "$tmp/sx.csv" 2> "$tmp/err.txt"

@@ -138,10 +138,10 @@ Loss solver_part(const solver::Model& m, std::function<double(const solver::Loss
 }
 
 solver::Model only(solver::Model m, bool mesh, bool churning, bool bearings, bool seals) {
-    m.options.mesh = mesh;
-    m.options.churning = churning;
-    m.options.bearings = bearings;
-    m.options.seals = seals;
+    m.mechanisms.at("mesh").set_enabled(mesh);
+    m.mechanisms.at("churning").set_enabled(churning);
+    m.mechanisms.at("bearings").set_enabled(bearings);
+    m.mechanisms.at("seals").set_enabled(seals);
     return m;
 }
 
@@ -172,7 +172,7 @@ TEST_CASE("contracts: mesh friction, every mean-friction model and the local EHL
     const auto box = only(transfer_box(), true, false, false, false);
     auto with = [&](mesh::FrictionModel f) {
         auto m = box;
-        m.options.friction = f;
+        mesh::mesh_forms(m).friction = f;
         return m;
     };
     const auto mesh_loss = [](const solver::LossBreakdown& L) { return test::part(L, "mesh"); };
@@ -210,7 +210,7 @@ TEST_CASE("contracts: churning, seals and the calibration terms through the solv
                    solver_part(wind, [](const solver::LossBreakdown& L) { return test::part(L, "windage"); }), kBoxGrid);
     // Palmgren no-load drag M0 = 1e-7 f0 (nu n)^(2/3) d_m^3: falls with T, rises with n, no load.
     auto drag = only(box, false, false, false, false);
-    drag.options.bearings = true;
+    drag.mechanisms.at("bearings").set_enabled(true);
     auto no_drag = drag;
     drag.mechanisms.at("bearings").set_parameter("drag_f0", 2);
     const Loss with_drag = solver_part(drag, [](const solver::LossBreakdown& L) { return test::part(L, "bearings"); });
@@ -335,7 +335,7 @@ TEST_CASE("fast path: the solver's per-temperature evaluation equals the compone
         for (double n : {100.0, 800.0, 2500.0})
             for (double T_oil : {degC + 20, degC + 70, degC + 110})
                 for (double torque : {40.0, 250.0}) {
-                    m.options.friction = friction;
+                    mesh::mesh_forms(m).friction = friction;
                     const double w_in = n * rpm;
                     const auto p = solver::prepare_point(m, w_in, torque);
                     const auto s = m.oil_state(T_oil);
@@ -355,7 +355,7 @@ TEST_CASE("fast path: the solver's per-temperature evaluation equals the compone
                             const double mu = friction == mesh::FrictionModel::schlenk
                                                   ? mesh::mean_friction_schlenk(w, v, md.geom.rho_redC * 1e3, s.eta * 1e3, Ra, m.oil.X_L)
                                                   : mesh::mean_friction_iso_6336_20(w, v, md.geom.rho_redC * 1e3, s.eta * 1e3, Ra, m.oil.X_L);
-                            ref = mu * md.loss_factor(m.options.loss_factor) * std::abs(torque * w_in) * md.rolling_per_W;
+                            ref = mu * md.loss_factor(mesh::mesh_forms(m).loss_factor) * std::abs(torque * w_in) * md.rolling_per_W;
                         }
                         CHECK(test::each(r, "mesh", i) == Approx(ref).epsilon(1e-10));
                     }
@@ -387,7 +387,7 @@ TEST_CASE("fast path: the solver's local EHL mesh loss equals a cold-started dir
     // The solver warm-starts each contact's thermal loop from the previous temperature of the
     // point; the direct call starts from the bulk. Both stop at |dT| < 0.1 K: equal within 0.2 %.
     auto m = transfer_box();
-    m.options.friction = mesh::FrictionModel::ehl_local;
+    mesh::mesh_forms(m).friction = mesh::FrictionModel::ehl_local;
     const auto p = solver::prepare_point(m, 1500 * rpm, 200);
     for (double T_oil : {degC + 50, degC + 90, degC + 60}) {
         const auto r = solver::evaluate_losses(m, p, m.oil_state(T_oil), true);

@@ -85,7 +85,7 @@ TEST_CASE("calibration terms act inside the loss model and the thermal solve", "
     // Halving the heat rejection with a constant loss doubles the temperature rise
     // (resistance model: Q = (T - Ta)/R).
     auto r = transfer();
-    r.model.options.mesh = r.model.options.bearings = r.model.options.churning = r.model.options.seals = false;
+    for (const char* name : {"mesh", "bearings", "churning", "seals"}) r.model.mechanisms.at(name).set_enabled(false);
     r.model.mechanisms.at("auxiliary").set_parameter("power", 200);
     r.model.thermal.rejection.model = thermal::ThermalResistance{0.1, 0, 0};
     const double rise1 = solver::solve_point(r.model, w, T).oil_temperature - r.model.thermal.ambient;

@@ -9,7 +9,9 @@
 
 #include "core/errors.hpp"
 #include "io/config.hpp"
+#include "io/json.hpp"
 #include "map/form_spread.hpp"
+#include "model/validate.hpp"
 #include "solver/operating_point.hpp"
 #include "test_support.hpp"
 
@@ -67,7 +69,9 @@ TEST_CASE("form spread: the extremes are the losses of the cases written with th
     map::MapOptions opt;
     opt.threads = 1;
     const auto nominal = map::run_map(c.model, grid, opt);
-    const auto spread = map::run_spread(c.model, grid, axes, opt);
+    const auto result = map::run_spread(c.model, grid, axes, opt);
+    CHECK(result.not_applicable.empty());  // every form holds for the transfer box (eps_alpha 1.32..1.49)
+    const auto& spread = result.points;
     REQUIRE(spread.size() == grid.size());
     for (size_t p = 0; p < grid.size(); ++p) {
         const auto [w, T] = grid.at(p);
@@ -109,7 +113,7 @@ TEST_CASE("form spread: windage forms alone, at a fixed oil temperature, add exa
     grid.torques = {150};
     map::MapOptions opt;
     opt.threads = 1;
-    const auto s = map::run_spread(fixed, grid, axes, opt)[0];
+    const auto s = map::run_spread(fixed, grid, axes, opt).points[0];
     const auto nominal = solver::solve_point(fixed, grid.speeds[0], 150, false);
     REQUIRE(solver::has_values(nominal.status));
     CHECK(s.P_min == nominal.losses.total());
@@ -137,4 +141,78 @@ TEST_CASE("form spread: unknown axes are errors naming the option and the known 
     }
     // A repeated axis counts once.
     CHECK(map::spread_axes(c.model, {"windage.form", "windage.form"}).size() == 1);
+}
+
+TEST_CASE("form spread: combinations whose forms do not apply to the case are left out, not unsolved", "[spread]") {
+    // eps_alpha = 2.086 (hand calculation in the file): Ohlendorf's and Buckingham's H_V do not
+    // apply, Wimmer's (the case's) does.
+    const std::string text = test_support::read_file(test_support::source_path("tests/high-contact-ratio.yaml"));
+    const auto c = load_text(text);
+    REQUIRE(c.model.layout.meshes.at(0).geom.eps_alpha == Approx(2.0862).epsilon(1e-4));
+    REQUIRE(solver::validate(c.model).empty());
+    // The loader refuses the same case with a closed form, at the line that chose it.
+    const std::string ohlendorf = test_support::replace_once(text, "gear_loss_factor: wimmer", "gear_loss_factor: ohlendorf");
+    try {
+        (void)load_text(ohlendorf);
+        FAIL("no error");
+    } catch (const InputError& e) {
+        CHECK(e.key == "options.gear_loss_factor");
+        CHECK(e.line == test_support::line_of(ohlendorf, "gear_loss_factor: ohlendorf"));
+        CHECK_THAT(e.message, Catch::Contains("mesh 'm' has eps_alpha = 2.086"));
+    }
+
+    const auto axes = map::spread_axes(c.model, {});
+    const size_t n = map::combination_count(axes);
+    REQUIRE(n == 108);
+    // The combinations that do not apply: those with a closed-form H_V, 2 of the 3 forms.
+    std::set<size_t> closed_form;
+    for (size_t i = 0; i < n; ++i) {
+        const std::string label = map::combination_label(axes, i);
+        if (label.find("mesh.loss_factor=ohlendorf") != std::string::npos ||
+            label.find("mesh.loss_factor=buckingham") != std::string::npos)
+            closed_form.insert(i);
+    }
+    REQUIRE(closed_form.size() == 72);
+
+    io::OperatingGrid grid;
+    grid.is_grid = true;
+    grid.speeds = {1000 * kRpm, 3000 * kRpm};
+    grid.torques = {100};
+    map::MapOptions opt;
+    opt.threads = 1;
+    const auto nominal = map::run_map(c.model, grid, opt);
+    const auto spread = map::run_spread(c.model, grid, axes, opt);  // does not throw
+    std::set<size_t> skipped;
+    for (const auto& s : spread.not_applicable) {
+        skipped.insert(s.combination);
+        CHECK_THAT(s.reason, Catch::Contains("mesh 'm' has eps_alpha = 2.086"));
+    }
+    CHECK(skipped == closed_form);
+    CHECK(map::not_applicable_combinations(c.model, axes).size() == 72);
+    REQUIRE(spread.points.size() == grid.size());
+    for (size_t p = 0; p < grid.size(); ++p) {
+        INFO("point " << p);
+        const auto& s = spread.points[p];
+        // Neither solved nor unsolved: the 36 combinations with Wimmer's H_V are all that count.
+        CHECK(s.solved + s.unsolved == 36);
+        CHECK(closed_form.count(s.at_min) == 0);
+        CHECK(closed_form.count(s.at_max) == 0);
+        // The nominal map is the case's own, within the spread.
+        const auto direct = solver::solve_point(c.model, grid.at(p).first, grid.at(p).second, false);
+        REQUIRE(solver::has_values(nominal[p].status));
+        CHECK(nominal[p].losses.total() == direct.losses.total());
+        CHECK(s.P_min <= nominal[p].losses.total());
+        CHECK(nominal[p].losses.total() <= s.P_max);
+    }
+    // The line on stderr and the JSON summary name them.
+    CHECK_THAT(map::not_applicable_note(axes, spread.not_applicable),
+               Catch::StartsWith("72 of 108 form combinations do not apply to this case") &&
+                   Catch::Contains("first: mesh.loss_factor=ohlendorf: mesh 'm' has eps_alpha = 2.086"));
+    CHECK(map::not_applicable_note(axes, {}).empty());
+    io::Json j;
+    j.begin_object();
+    map::spread_summary_json(j, axes, spread, nominal);
+    j.end_object();
+    CHECK_THAT(j.str(), Catch::Contains("\"combinations\":108,\"combinations_not_applicable\":72,"
+                                        "\"not_applicable\":[\"mesh.loss_factor=ohlendorf\","));
 }

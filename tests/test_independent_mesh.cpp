@@ -10,6 +10,7 @@
 
 #include "geometry/gear_geometry.hpp"
 #include "io/config.hpp"
+#include "mechanisms/mesh_friction_mechanism.hpp"
 #include "mesh/ehl_contact.hpp"
 #include "mesh/friction.hpp"
 #include "solver/operating_point.hpp"
@@ -72,7 +73,7 @@ TEST_CASE("independent: FZG C worked example through the whole model (mean rough
     CHECK(test::each(r.losses, "mesh", 0, mesh::kMeshMu) == Approx(0.0517).margin(1e-4));
     CHECK(test::part(r.losses, "mesh") == Approx(478).margin(1.0));
 
-    m.options.friction = mesh::FrictionModel::iso_6336_20;
+    mesh::mesh_forms(m).friction = mesh::FrictionModel::iso_6336_20;
     const auto iso = solver::solve_point(m, 1500 * rpm, 302, true);
     CHECK(test::each(iso.losses, "mesh", 0, mesh::kMeshMu) == Approx(0.064605).margin(1e-4));
     CHECK(test::part(iso.losses, "mesh") == Approx(597.6).margin(1.5));

@@ -10,6 +10,7 @@
 #include "losses/loss_mechanism.hpp"
 #include "losses/registry.hpp"
 #include "map/map_runner.hpp"
+#include "mechanisms/mesh_friction_mechanism.hpp"
 #include "model/validate.hpp"
 #include "solver/operating_point.hpp"
 #include "test_support.hpp"
@@ -23,6 +24,18 @@ const char* kCases[] = {"transfer-box.yaml",   "fzg-c40-paor.yaml",    "spur-see
                         "manual-6speed.yaml",  "automatic-6speed.yaml", "planetary-test.yaml",
                         "wind-turbine-2.5MW.yaml"};
 io::Case load(const char* f) { return io::load_case(test_support::source_path(std::string("configs/") + f)); }
+
+// The error of loading a case's text (the test fails when it loads).
+InputError load_error(const std::string& text) {
+    test_support::TempConfig cfg(text);
+    try {
+        (void)io::load_case(cfg.path);
+    } catch (const InputError& e) {
+        return e;
+    }
+    FAIL("no error");
+    return InputError("", 0, 0, "", "");
+}
 }  // namespace
 
 TEST_CASE("mechanisms: the registry creates each mechanism by its name, once", "[mechanisms]") {
@@ -59,7 +72,7 @@ TEST_CASE("mechanisms: every mechanism keeps its contract on every shipped case"
                     // The hot path and the detailed evaluation agree exactly; so does total_loss.
                     // (The local EHL model warm-starts its film temperatures from the previous
                     // evaluation of the point: equal within its iteration tolerance.)
-                    const double tol = m.options.friction == mesh::FrictionModel::ehl_local ? 1e-3 : 0.0;
+                    const double tol = mesh::mesh_forms(m).friction == mesh::FrictionModel::ehl_local ? 1e-3 : 0.0;
                     CHECK(solver::total_loss(m, p, T_oil) == Approx(full.total()).epsilon(tol));
                     for (size_t i = 0; i < m.mechanisms.size(); ++i) {
                         const auto& mech = m.mechanisms[i];
@@ -179,27 +192,17 @@ TEST_CASE("mechanisms: calibration per mechanism, the earlier flat keys and the 
     CHECK(by_block.losses.total() != nominal.losses.total());
 
     // Errors name the file, line and key.
-    auto error = [&](const std::string& text) -> InputError {
-        test_support::TempConfig cfg(text);
-        try {
-            (void)io::load_case(cfg.path);
-        } catch (const InputError& e) {
-            return e;
-        }
-        FAIL("no error");
-        return InputError("", 0, 0, "", "");
-    };
     const std::string bad1 = base + "calibration:\n  churning: {factor: 500}\n";
-    auto e = error(bad1);
+    auto e = load_error(bad1);
     CHECK(e.line == test_support::line_of(bad1, "  churning: {factor: 500}"));
     CHECK_THAT(e.message, Catch::Contains("must be in [0, 100]"));
-    e = error(base + "calibration:\n  gearing: {factor: 2}\n");
+    e = load_error(base + "calibration:\n  gearing: {factor: 2}\n");
     CHECK_THAT(e.message, Catch::Contains("unknown calibration key 'gearing'"));
-    e = error(base + "mechanisms:\n  mesh: {friction: coulomb}\n");
+    e = load_error(base + "mechanisms:\n  mesh: {friction: coulomb}\n");
     CHECK_THAT(e.message, Catch::Contains("'coulomb' is not one of: schlenk, iso_6336_20, fernandes_mixed, ehl_local"));
-    e = error(base + "mechanisms:\n  mesh: {friction_factor: 1.2}\n");
+    e = load_error(base + "mechanisms:\n  mesh: {friction_factor: 1.2}\n");
     CHECK_THAT(e.message, Catch::Contains("belongs under 'calibration:'"));
-    e = error(base + "mechanisms:\n  tyres: {form: x}\n");
+    e = load_error(base + "mechanisms:\n  tyres: {form: x}\n");
     CHECK_THAT(e.message, Catch::Contains("no loss mechanism 'tyres'"));
 }
 
@@ -240,4 +243,76 @@ TEST_CASE("mechanisms: the drag of open clutch packs heats the clutch-pack node,
     CHECK(L.into_oil(m) == Approx(L.total() - L.power[k]).epsilon(1e-12));
     for (size_t i = 0; i < m.mechanisms.size(); ++i)
         if (i != k) CHECK(m.mechanisms[i].heats_oil());
+}
+
+TEST_CASE("mechanisms: a mechanism switched off loses nothing and leaves the others unchanged", "[mechanisms]") {
+    std::set<std::string> exercised;  // mechanisms seen losing power, to switch off
+    for (const char* f : kCases) {
+        io::Case c = load(f);
+        auto& m = c.model;
+        // Something to lose for every mechanism: a windage form and the calibration's terms.
+        m.mechanisms.at("windage").set_form(m, "form", "free_disk");
+        m.mechanisms.at("windage").set_parameter("empirical_W_at_1000rpm", 12);
+        m.mechanisms.at("auxiliary").set_parameter("power", 20);
+        m.mechanisms.at("bearings").set_parameter("drag_f0", 2);
+        const auto s = m.oil_state(353.15);
+        const auto on = solver::evaluate_losses(m, solver::prepare_point(m, 1500 * kRpm, 200), s, true, true);
+        for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+            INFO(f << " " << m.mechanisms[i].name());
+            if (on.power[i] > 0) exercised.insert(std::string(m.mechanisms[i].name()));
+            auto off = m;
+            off.mechanisms[i].set_enabled(false);
+            CHECK(m.mechanisms[i].enabled());  // the copy's own state
+            const auto p = solver::prepare_point(off, 1500 * kRpm, 200);
+            REQUIRE(p.fault.empty());
+            const auto r = solver::evaluate_losses(off, p, s, true, true);
+            CHECK(r.power[i] == 0);
+            for (size_t k = 0; k < m.mechanisms[i].components(m).size(); ++k) CHECK(r.detail[i].at(k, 0) == 0);
+            for (size_t j = 0; j < m.mechanisms.size(); ++j)
+                if (j != i) CHECK(r.power[j] == on.power[j]);
+            CHECK(r.total() == Approx(on.total() - on.power[i]).epsilon(1e-12));
+        }
+    }
+    CHECK(exercised.size() == losses::registry().size());
+}
+
+TEST_CASE("mechanisms: the mesh's mixed-film friction pair, in the options and the mechanisms block", "[mechanisms]") {
+    const std::string base = test_support::replace_once(
+        test_support::read_file(test_support::source_path("configs/transfer-box.yaml")), "mesh_friction: schlenk",
+        "mesh_friction: fernandes_mixed");
+    const size_t mesh = losses::MechanismSet{}.index("mesh");
+    auto mesh_loss = [&](const std::string& text) {
+        test_support::TempConfig cfg(text);
+        auto c = io::load_case(cfg.path);
+        c.model.thermal.mode = solver::ThermalMode::fixed;  // the same films whatever the pair
+        c.model.thermal.oil_temperature = 353.15;
+        return solver::solve_point(c.model, 1500 * kRpm, 200).losses.power[mesh];
+    };
+    const std::string options = test_support::replace_once(base, "mesh_friction: fernandes_mixed",
+                                                           "mesh_friction: fernandes_mixed\n  gear_friction: {mu_bl: 0.12, mu_ehl: 0.03}");
+    CHECK(mesh_loss(options) == mesh_loss(base + "mechanisms:\n  mesh: {mu_bl: 0.12, mu_ehl: 0.03}\n"));
+    CHECK(mesh_loss(options) != mesh_loss(base));
+    // mu = xi mu_bl + (1 - xi) mu_ehl (Fernandes et al. 2015) with mu_ehl = 0: the loss is
+    // proportional to mu_bl at a fixed film.
+    CHECK(mesh_loss(base + "mechanisms:\n  mesh: {mu_bl: 0.2, mu_ehl: 0}\n") ==
+          Approx(2 * mesh_loss(base + "mechanisms:\n  mesh: {mu_bl: 0.1, mu_ehl: 0}\n")).epsilon(1e-12));
+    // A pair out of order is an error at the key that set it.
+    const std::string block = base + "mechanisms:\n  mesh: {mu_ehl: 0.5}\n";
+    auto e = load_error(block);
+    CHECK(e.key == "mechanisms.mesh.mu_ehl");
+    CHECK(e.line == test_support::line_of(block, "  mesh: {mu_ehl: 0.5}"));
+    CHECK_THAT(e.message, Catch::Contains("need 0 <= mu_ehl < mu_bl < 1"));
+    const std::string opt = test_support::replace_once(base, "mesh_friction: fernandes_mixed",
+                                                       "mesh_friction: fernandes_mixed\n  gear_friction: {mu_ehl: 0.5}");
+    e = load_error(opt);
+    CHECK(e.key == "options.gear_friction");
+    CHECK(e.line == test_support::line_of(opt, "gear_friction: {mu_ehl: 0.5}"));
+    CHECK_THAT(e.message, Catch::Contains("need 0 <= mu_ehl < mu_bl < 1"));
+    CHECK_THAT(load_error(base + "mechanisms:\n  mesh: {mu_bl: 1.5}\n").message, Catch::Contains("must be in [0, 1]"));
+    // Set in code: validate() names the pair.
+    io::Case c = load("transfer-box.yaml");
+    c.model.mechanisms.at("mesh").set_parameter("mu_ehl", 0.2);
+    const auto issues = solver::validate(c.model);
+    REQUIRE(issues.size() == 1);
+    CHECK(issues[0].path() == "options.gear_friction");
 }

@@ -75,7 +75,7 @@ TEST_CASE("planetary efficiency: the basic-efficiency formula against the full c
     // taken from the computation, the combination from the formula.
     auto c = variant("ring_mount", "sun_shaft", "carrier");
     auto& m = c.model;
-    m.options.churning = m.options.bearings = m.options.seals = false;
+    for (const char* name : {"churning", "bearings", "seals"}) m.mechanisms.at(name).set_enabled(false);
     m.thermal.mode = solver::ThermalMode::fixed;
     m.thermal.oil_temperature = 333.15;
     for (double n : {500.0, 2000.0})

@@ -24,6 +24,7 @@
 #include "io/cycle_report.hpp"
 #include "map/compare.hpp"
 #include "map/map_runner.hpp"
+#include "mechanisms/mesh_friction_mechanism.hpp"
 #include "mesh/ehl_contact.hpp"
 #include "model/validate.hpp"
 #include "solver/operating_point.hpp"
@@ -347,7 +348,7 @@ TEST_CASE("robustness: the EHL film-temperature loop terminates on inputs that a
     }
     // The local thermal-EHL friction model on the whole gearbox: ok, and out_of_range at 1e7 N m.
     io::Case e = transfer_box();
-    e.model.options.friction = mesh::FrictionModel::ehl_local;
+    mesh::mesh_forms(e.model).friction = mesh::FrictionModel::ehl_local;
     CHECK(solver::has_values(solve(e.model, 800, 200).status));
     require_out_of_range(solve(e.model, 800, 1e7), "contact angle");
 }

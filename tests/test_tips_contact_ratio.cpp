@@ -25,6 +25,7 @@
 #include "core/errors.hpp"
 #include "geometry/gear_geometry.hpp"
 #include "io/config.hpp"
+#include "mechanisms/mesh_friction_mechanism.hpp"
 #include "mesh/loss_factor.hpp"
 #include "test_support.hpp"
 
@@ -213,7 +214,7 @@ TEST_CASE("spur pair: Wimmer H_V equals Ohlendorf", "[loss_factor]") {
 
 TEST_CASE("transfer box: default loss factor is wimmer, 12-20 % above Ohlendorf", "[loss_factor][helical][config]") {
     auto c = io::load_case(test_support::source_path("configs/transfer-box.yaml"));
-    CHECK(c.model.options.loss_factor == mesh::LossFactorModel::wimmer);
+    CHECK(mesh::mesh_forms(c.model).loss_factor == mesh::LossFactorModel::wimmer);
     // Independent Ohlendorf per mesh (gear data of the shipped file; m24 and m35 at a_w = 95 mm):
     //   m12 w2/w1 23/32 m 3.5 x 0.415/0.381, a_w from the shifts: 0.137448
     //   m24 w4/w2 27/23 m 3.5 x 0.161/0.415, a_w 95 mm
@@ -237,7 +238,7 @@ TEST_CASE("transfer box: default loss factor is wimmer, 12-20 % above Ohlendorf"
             INFO(m.name << ": Ohlendorf (hand) " << ohl << ", library " << md.H_V_ohlendorf << ", Wimmer "
                         << md.H_V_wimmer);
             CHECK(md.H_V_ohlendorf == Approx(ohl).epsilon(1e-5));
-            CHECK(md.loss_factor(c.model.options.loss_factor) == md.H_V_wimmer);
+            CHECK(md.loss_factor(mesh::mesh_forms(c.model).loss_factor) == md.H_V_wimmer);
             const double excess = md.H_V_wimmer / ohl - 1.0;
             CHECK(excess >= 0.12);
             CHECK(excess <= 0.20);
@@ -253,15 +254,15 @@ TEST_CASE("transfer box: default loss factor is wimmer, 12-20 % above Ohlendorf"
         REQUIRE(p != std::string::npos);
         const auto e = text.find('\n', p);
         TempConfig cfg(text.substr(0, p) + text.substr(e + 1));
-        CHECK(io::load_case(cfg.path).model.options.loss_factor == mesh::LossFactorModel::wimmer);
+        CHECK(mesh::mesh_forms(io::load_case(cfg.path).model).loss_factor == mesh::LossFactorModel::wimmer);
     }
     {
         TempConfig cfg(test_support::replace_once(text, key, "  gear_loss_factor: ohlendorf"));
-        CHECK(io::load_case(cfg.path).model.options.loss_factor == mesh::LossFactorModel::ohlendorf);
+        CHECK(mesh::mesh_forms(io::load_case(cfg.path).model).loss_factor == mesh::LossFactorModel::ohlendorf);
     }
     {
         TempConfig cfg(test_support::replace_once(text, key, "  gear_loss_factor: buckingham"));
-        CHECK(io::load_case(cfg.path).model.options.loss_factor == mesh::LossFactorModel::buckingham);
+        CHECK(mesh::mesh_forms(io::load_case(cfg.path).model).loss_factor == mesh::LossFactorModel::buckingham);
     }
 }
 
@@ -326,6 +327,15 @@ TEST_CASE("ohlendorf with eps_alpha < 1 is an error at options.gear_loss_factor"
         CHECK_THAT(e.key, Catch::Contains("options.gear_loss_factor"));
         CHECK(e.line == test_support::line_of(t, "gear_loss_factor: ohlendorf"));
     });
+    // Chosen in the mechanisms block (which the loader reads after `options:`, so it wins), the
+    // error points at that line.
+    const std::string block = t + "mechanisms:\n  mesh: {loss_factor: buckingham}\n";
+    expect_input_error(test_support::replace_once(block, "gear_loss_factor: ohlendorf", "gear_loss_factor: wimmer"),
+                       [&](const InputError& e) {
+                           CHECK(e.key == "mechanisms.mesh.loss_factor");
+                           CHECK(e.line == test_support::line_of(block, "  mesh: {loss_factor: buckingham}"));
+                           CHECK_THAT(e.message, Catch::Contains("outside the 1..2 that this closed form assumes"));
+                       });
     // The same pair with full-depth teeth (eps_alpha = 1.286 > 1) takes ohlendorf.
     std::string ok = fzg_helical("", "");
     ok = test_support::replace_once(ok, "gear_loss_factor: wimmer", "gear_loss_factor: ohlendorf");

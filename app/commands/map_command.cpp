@@ -178,6 +178,8 @@ private:
             axes = map::spread_axes(k.model, spread_axes_);
             if (axes.empty()) throw InputError(k.file, 0, 0, "--spread", "no mechanism of this case has alternative forms");
             map::require_spread_size(axes);  // before the nominal map, not after it
+            const auto note = map::not_applicable_note(axes, map::not_applicable_combinations(k.model, axes));
+            if (!note.empty()) std::fprintf(stderr, "gearloss: map --spread: %s\n", note.c_str());
         }
         const auto t0 = std::chrono::steady_clock::now();
         const auto results = map::run_map(k.model, k.grid, opt);
@@ -192,7 +194,7 @@ private:
             std::fprintf(stderr, "points %zu, solve %.4f s, %.0f points/s, %.2f loss evaluations/point, %zu without equilibrium\n",
                          results.size(), seconds, results.size() / seconds, double(evals) / results.size(), no_eq);
         }
-        std::vector<map::PointSpread> spread;
+        map::SpreadResult spread;
         if (spread_) {
             spread = map::run_spread(k.model, k.grid, axes, opt);
             io::throw_if_interrupted();
@@ -201,7 +203,7 @@ private:
         auto with_spread = [&](std::string line, size_t i) {
             if (!spread_) return line;
             line.pop_back();
-            return line + "," + (i == size_t(-1) ? map::spread_csv_header() : map::spread_csv_cells(axes, spread[i])) + "\n";
+            return line + "," + (i == size_t(-1) ? map::spread_csv_header() : map::spread_csv_cells(axes, spread.points[i])) + "\n";
         };
         io::AtomicFile f(out_);
         std::string buf = with_spread(map::csv_header(k.model, detail_), size_t(-1));

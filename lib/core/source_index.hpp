@@ -20,6 +20,8 @@ public:
     // keys, else the item (a bearing "B6.2" of `count: 2` under "B6"), else the section, else
     // the file alone.
     SourceLocation find(const std::string& section, const std::string& item, const std::string& key) const;
+    // Whether the case wrote exactly this path (of two spellings of a setting, the one it used).
+    bool has(const std::string& path) const { return at_.count(path) != 0; }
     size_t size() const { return at_.size(); }
 
 private:

@@ -203,7 +203,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
     if (auto lv = h.get("oil_level")) m.gearbox.oil_level = lv->as_quantity(units::dim::length, "-60 mm");
 
     detail::load_thermal(root.at("thermal"), m.thermal);
-    if (auto o = root.get("options")) detail::load_options(*o, m.options);
+    if (auto o = root.get("options")) detail::load_options(*o, m);
     if (auto mech = root.get("mechanisms")) load_mechanism_settings(*mech, m);
     if (auto cal = root.get("calibration")) load_calibration(*cal, m);
 
@@ -259,16 +259,6 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
                 assemble(other);
             }
     }
-    // Ohlendorf's closed form (and the single-pair average) assume 1 <= eps_alpha < 2.
-    if (m.options.loss_factor != mesh::LossFactorModel::wimmer)
-        for (size_t i = 0; i < m.layout.meshes.size(); ++i) {
-            const auto& g = m.layout.meshes[i].geom;
-            if (g.eps_alpha < 1.0 || g.eps_alpha >= 2.0)
-                root.at("options").at("gear_loss_factor").fail(fmt::format(
-                    "mesh '{}' has eps_alpha = {:.3f}, outside the 1..2 that this closed form assumes; use 'wimmer' "
-                    "(rigid load sharing over the contact lines)",
-                    m.gearbox.meshes[i].name, g.eps_alpha));
-        }
     check_case_plausibility(root, c, lubrication);
     return c;
 }

@@ -36,7 +36,7 @@ struct Loader {
 };
 
 // config_options.cpp
-void load_options(const YamlNode& n, solver::LossOptions& o);
+void load_options(const YamlNode& n, solver::Model& m);
 void load_thermal(const YamlNode& n, solver::ThermalSettings& t);
 
 }  // namespace gearloss::io::detail

@@ -1,40 +1,45 @@
-// Case loader: the `options:` block (loss-model choices) and the `thermal:` block (heat path, docs/config.md).
+// Case loader: the `options:` block (the loss mechanisms' choices) and the `thermal:` block (heat path, docs/config.md).
 #include "io/config_internal.hpp"
+#include "mechanisms/mesh_friction_mechanism.hpp"
 
 namespace gearloss::io::detail {
 
-void load_options(const YamlNode& n, solver::LossOptions& o) {
+void load_options(const YamlNode& n, solver::Model& m) {
     n.allow_keys({"losses", "gear_loss_factor", "mesh_friction", "film_thermal_correction", "lambda_roughness",
                   "gear_friction"});
+    // The loss mechanisms own these choices; `options:` is their spelling of earlier versions
+    // (the mechanisms block, read after it, sets the same).
     if (auto l = n.get("losses")) {
         l->allow_keys({"mesh", "churning", "bearings", "seals"});
-        if (auto v = l->get("mesh")) o.mesh = v->as_bool();
-        if (auto v = l->get("churning")) o.churning = v->as_bool();
-        if (auto v = l->get("bearings")) o.bearings = v->as_bool();
-        if (auto v = l->get("seals")) o.seals = v->as_bool();
+        for (const char* name : {"mesh", "churning", "bearings", "seals"})
+            if (auto v = l->get(name)) m.mechanisms.at(name).set_enabled(v->as_bool());
     }
+    auto& f = mesh::mesh_forms(m);
     if (auto v = n.get("gear_loss_factor"))
-        o.loss_factor = v->as_enum<mesh::LossFactorModel>({{"ohlendorf", mesh::LossFactorModel::ohlendorf},
+        f.loss_factor = v->as_enum<mesh::LossFactorModel>({{"ohlendorf", mesh::LossFactorModel::ohlendorf},
                                                           {"buckingham", mesh::LossFactorModel::buckingham},
                                                           {"wimmer", mesh::LossFactorModel::wimmer}});
     if (auto v = n.get("mesh_friction"))
-        o.friction = v->as_enum<mesh::FrictionModel>({{"schlenk", mesh::FrictionModel::schlenk},
+        f.friction = v->as_enum<mesh::FrictionModel>({{"schlenk", mesh::FrictionModel::schlenk},
                                                       {"iso_6336_20", mesh::FrictionModel::iso_6336_20},
                                                       {"fernandes_mixed", mesh::FrictionModel::fernandes_mixed},
                                                       {"ehl_local", mesh::FrictionModel::ehl_local}});
     if (auto v = n.get("film_thermal_correction"))
-        o.film_correction = v->as_enum<mesh::ThermalFilmCorrection>({{"gupta", mesh::ThermalFilmCorrection::gupta},
+        f.film_correction = v->as_enum<mesh::ThermalFilmCorrection>({{"gupta", mesh::ThermalFilmCorrection::gupta},
                                                                      {"simplified", mesh::ThermalFilmCorrection::simplified},
                                                                      {"none", mesh::ThermalFilmCorrection::none}});
     if (auto v = n.get("lambda_roughness"))
-        o.lambda_roughness = v->as_enum<solver::LambdaRoughness>({{"average_Ra", solver::LambdaRoughness::average_Ra},
-                                                                  {"composite_Rq", solver::LambdaRoughness::composite_Rq}});
+        f.lambda_roughness = v->as_enum<mesh::LambdaRoughness>({{"average_Ra", mesh::LambdaRoughness::average_Ra},
+                                                                {"composite_Rq", mesh::LambdaRoughness::composite_Rq}});
     if (auto gf = n.get("gear_friction")) {
         gf->allow_keys({"mu_bl", "mu_ehl"});
-        if (auto v = gf->get("mu_bl")) o.gear_mu_bl = v->as_number();
-        if (auto v = gf->get("mu_ehl")) o.gear_mu_ehl = v->as_number();
-        if (!(o.gear_mu_bl > 0 && o.gear_mu_bl < 1 && o.gear_mu_ehl >= 0 && o.gear_mu_ehl < o.gear_mu_bl))
-            gf->fail("need 0 <= mu_ehl < mu_bl < 1");
+        auto& mesh = m.mechanisms.at("mesh");
+        double mu_bl = mesh.parameter("mu_bl"), mu_ehl = mesh.parameter("mu_ehl");
+        if (auto v = gf->get("mu_bl")) mu_bl = v->as_number();
+        if (auto v = gf->get("mu_ehl")) mu_ehl = v->as_number();
+        if (!mesh::mixed_friction_pair_valid(mu_bl, mu_ehl)) gf->fail("need 0 <= mu_ehl < mu_bl < 1");
+        mesh.set_parameter("mu_bl", mu_bl);
+        mesh.set_parameter("mu_ehl", mu_ehl);
     }
 }
 

@@ -103,7 +103,7 @@ std::string check_report(const Case& c) {
                              "{:.4f}); H_V from the contact-line sweep\n",
                              g.eps_alpha, g.eps_gamma);
         s += fmt::format("    H_V: Ohlendorf {:.4f}, Buckingham {:.4f}, Wimmer (rigid) {:.4f} [used: {}]; rho_redC = {:.4f}, L_min = {:.3f}\n",
-                         md.H_V_ohlendorf, md.H_V_buckingham, md.H_V_wimmer, mesh::to_string(m.options.loss_factor),
+                         md.H_V_ohlendorf, md.H_V_buckingham, md.H_V_wimmer, mesh::to_string(mesh::mesh_forms(m).loss_factor),
                          g.rho_redC * 1e3, md.L_min * 1e3);
     }
     s += "\nshafts (housing frame, y up, mm) and speeds per input speed\n";
@@ -190,8 +190,8 @@ std::string check_json(const Case& c) {
         j.key("H_V_ohlendorf").value(md.H_V_ohlendorf);
         j.key("H_V_buckingham").value(md.H_V_buckingham);
         j.key("H_V_wimmer").value(md.H_V_wimmer);
-        j.key("H_V_model").value(mesh::to_string(m.options.loss_factor));
-        j.key("H_V").value(md.loss_factor(m.options.loss_factor));
+        j.key("H_V_model").value(mesh::to_string(mesh::mesh_forms(m).loss_factor));
+        j.key("H_V").value(md.loss_factor(mesh::mesh_forms(m).loss_factor));
         j.key("rho_redC_mm").value(g.rho_redC * 1e3);
         j.end_object();
     }

@@ -145,12 +145,18 @@ public:
     double parameter(std::string_view name) const;
     void set_parameter(std::string_view name, double value);  // InputError for an unknown name
     bool parameters_nominal() const;
-    // Alternative forms, selectable by name.
+    // Alternative forms, selectable by name. Each mechanism keeps its own choice (a model
+    // copy carries it with the mechanism set).
     virtual std::vector<FormAxis> forms(const solver::Model&) const { return {}; }
     virtual std::string form(const solver::Model&, std::string_view axis) const;
-    // Selects a form (InputError for an unknown axis or name). A mechanism whose
-    // forms live in the model's options writes them there.
+    // Selects a form (InputError for an unknown axis or name).
     virtual void set_form(solver::Model&, std::string_view axis, std::string_view form);
+
+    // Whether the mechanism is switched on (`options: {losses: {bearings: false}}` switches
+    // one off). A mechanism switched off contributes no loss: its prepare() leaves a point
+    // without any, so the hot path needs no test of its own.
+    bool enabled() const { return enabled_; }
+    void set_enabled(bool on) { enabled_ = on; }
 
     // Issues of the mechanism's settings (parameters outside their bounds by default).
     virtual void validate(const solver::Model&, std::vector<solver::Issue>& out) const;
@@ -165,6 +171,7 @@ public:
 
 private:
     std::vector<double> values_;  // per parameters(), in its order
+    bool enabled_ = true;
 };
 
 }  // namespace gearloss::losses

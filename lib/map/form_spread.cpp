@@ -11,6 +11,7 @@
 #include "io/interrupt.hpp"
 #include "io/json.hpp"
 #include "losses/loss_mechanism.hpp"
+#include "model/validate.hpp"
 
 namespace gearloss::map {
 
@@ -81,19 +82,54 @@ std::string combination_label(const std::vector<SpreadAxis>& axes, size_t i) {
     return s.empty() ? "nominal" : s;
 }
 
-std::vector<PointSpread> run_spread(const solver::Model& m, const io::OperatingGrid& grid,
-                                    const std::vector<SpreadAxis>& axes, const MapOptions& opt) {
+namespace {
+// The first issue of a combination's model that the case's own model does not have, or empty.
+std::string new_issue(const std::vector<solver::Issue>& nominal, const solver::Model& combination) {
+    for (const auto& is : solver::validate(combination))
+        if (std::none_of(nominal.begin(), nominal.end(), [&](const solver::Issue& n) { return n.text() == is.text(); }))
+            return is.message;
+    return {};
+}
+}  // namespace
+
+std::vector<NotApplicable> not_applicable_combinations(const solver::Model& m, const std::vector<SpreadAxis>& axes) {
+    require_spread_size(axes);
+    const auto nominal = solver::validate(m);
+    std::vector<NotApplicable> out;
+    for (size_t c = 0; c < combination_count(axes); ++c)
+        if (auto why = new_issue(nominal, combination_model(m, axes, c)); !why.empty()) out.push_back({c, std::move(why)});
+    return out;
+}
+
+std::string not_applicable_note(const std::vector<SpreadAxis>& axes, const std::vector<NotApplicable>& skipped) {
+    if (skipped.empty()) return {};
+    return fmt::format("{} of {} form combinations do not apply to this case and are not solved (first: {}: {})",
+                       skipped.size(), combination_count(axes), combination_label(axes, skipped.front().combination),
+                       skipped.front().reason);
+}
+
+SpreadResult run_spread(const solver::Model& m, const io::OperatingGrid& grid, const std::vector<SpreadAxis>& axes,
+                        const MapOptions& opt) {
     require_spread_size(axes);
     const size_t combinations = combination_count(axes);
-    std::vector<PointSpread> spread(grid.size());
+    SpreadResult out;
+    out.points.resize(grid.size());
+    // Forms the case rules out (a closed-form H_V outside its contact ratios) give no number to
+    // compare: left out, not counted as combinations that failed to solve.
+    out.not_applicable = not_applicable_combinations(m, axes);
+    auto skipped = out.not_applicable.begin();
     MapOptions one = opt;
     one.detail = false;
     one.progress = nullptr;
     for (size_t c = 0; c < combinations; ++c) {
         if (io::g_interrupted.load()) break;
+        if (skipped != out.not_applicable.end() && skipped->combination == c) {
+            ++skipped;
+            continue;
+        }
         const auto results = run_map(combination_model(m, axes, c), grid, one);
         for (size_t p = 0; p < results.size(); ++p) {
-            auto& s = spread[p];
+            auto& s = out.points[p];
             const auto& r = results[p];
             const double P = r.losses.total();
             if (!solver::has_values(r.status) || !std::isfinite(P)) {
@@ -106,7 +142,7 @@ std::vector<PointSpread> run_spread(const solver::Model& m, const io::OperatingG
         }
         if (opt.progress) opt.progress((c + 1) * grid.size(), combinations * grid.size());
     }
-    return spread;
+    return out;
 }
 
 std::string spread_csv_header() { return "P_total_min_W,P_total_max_W,forms_at_min,forms_at_max,combinations_unsolved"; }
@@ -117,8 +153,9 @@ std::string spread_csv_cells(const std::vector<SpreadAxis>& axes, const PointSpr
                        combination_label(axes, s.at_max), s.unsolved);
 }
 
-void spread_summary_json(io::Json& j, const std::vector<SpreadAxis>& axes, const std::vector<PointSpread>& spreads,
+void spread_summary_json(io::Json& j, const std::vector<SpreadAxis>& axes, const SpreadResult& spread,
                          const std::vector<solver::PointResult>& nominal) {
+    const auto& spreads = spread.points;
     double widest = 0;  // (P_max - P_min) / P_nominal
     size_t at = 0, points_unsolved = 0;
     for (size_t p = 0; p < spreads.size() && p < nominal.size(); ++p) {
@@ -137,6 +174,10 @@ void spread_summary_json(io::Json& j, const std::vector<SpreadAxis>& axes, const
     }
     j.end_array();
     j.key("combinations").value(combination_count(axes));
+    j.key("combinations_not_applicable").value(spread.not_applicable.size());
+    j.key("not_applicable").begin_array();
+    for (const auto& n : spread.not_applicable) j.value(combination_label(axes, n.combination));
+    j.end_array();
     j.key("points_with_unsolved_combinations").value(points_unsolved);
     j.key("widest_relative_spread").value(widest);
     if (widest > 0)

@@ -48,25 +48,44 @@ struct PointSpread {
     size_t unsolved = 0;           // combinations without (no equilibrium, out of range)
 };
 
+// A combination whose forms do not apply to this case: validate() reports an issue of it
+// that the case's own forms do not have (Ohlendorf's H_V on a mesh with eps_alpha >= 2).
+// It is not solved, and counts neither as solved nor as unsolved at any point.
+struct NotApplicable {
+    size_t combination = 0;
+    std::string reason;  // the first such issue's message
+};
+std::vector<NotApplicable> not_applicable_combinations(const solver::Model& m, const std::vector<SpreadAxis>& axes);
+// "72 of 108 form combinations do not apply to this case and are not solved (first:
+// mesh.loss_factor=ohlendorf: ...)", or empty when every combination applies.
+std::string not_applicable_note(const std::vector<SpreadAxis>& axes, const std::vector<NotApplicable>& skipped);
+
+// The spread of every point of the grid, and the combinations left out.
+struct SpreadResult {
+    std::vector<PointSpread> points;           // per grid point
+    std::vector<NotApplicable> not_applicable; // in combination order
+};
+
 // Combinations above this count need `--spread-axes` (the map's cost grows with them);
 // require_spread_size throws the InputError (run_spread calls it too).
 inline constexpr size_t kMaxSpreadCombinations = 512;
 void require_spread_size(const std::vector<SpreadAxis>& axes);
 
-// Solves the grid once per combination (each with its own oil temperature when the case is
-// thermally coupled), keeping only each point's running minimum and maximum, so memory does
-// not grow with the number of combinations. Stops early after SIGINT like run_map.
-std::vector<PointSpread> run_spread(const solver::Model& m, const io::OperatingGrid& grid,
-                                    const std::vector<SpreadAxis>& axes, const MapOptions& opt);
+// Solves the grid once per applicable combination (each with its own oil temperature when the
+// case is thermally coupled), keeping only each point's running minimum and maximum, so memory
+// does not grow with the number of combinations. Stops early after SIGINT like run_map.
+SpreadResult run_spread(const solver::Model& m, const io::OperatingGrid& grid, const std::vector<SpreadAxis>& axes,
+                        const MapOptions& opt);
 
 // The CSV columns the spread adds after the map's ("P_total_min_W,...") and their cells for
 // a point (empty cells when no combination solved it).
 std::string spread_csv_header();
 std::string spread_csv_cells(const std::vector<SpreadAxis>& axes, const PointSpread& s);
 
-// The JSON summary's "spread" member: the axes, the combination count, the points some
-// combination could not solve, and the widest spread relative to the nominal loss.
-void spread_summary_json(io::Json& j, const std::vector<SpreadAxis>& axes, const std::vector<PointSpread>& spreads,
+// The JSON summary's "spread" member: the axes, the combination count, the combinations that
+// do not apply to the case (count and labels), the points some combination could not solve,
+// and the widest spread relative to the nominal loss.
+void spread_summary_json(io::Json& j, const std::vector<SpreadAxis>& axes, const SpreadResult& spread,
                          const std::vector<solver::PointResult>& nominal);
 
 }  // namespace gearloss::map

@@ -24,7 +24,7 @@ public:
     }
     std::unique_ptr<MechanismPoint> make_point() const override { return std::make_unique<AuxiliaryPoint>(); }
     void prepare(const solver::Model&, const PointInput& in, MechanismPoint& out) const override {
-        static_cast<AuxiliaryPoint&>(out).turning = in.omega_in != 0.0;
+        static_cast<AuxiliaryPoint&>(out).turning = enabled() && in.omega_in != 0.0;
     }
     double power(const solver::Model&, const MechanismPoint& pt, Evaluation&, MechanismDetail* d) const override {
         if (d) d->reset(0, 1);

@@ -57,7 +57,7 @@ public:
         for (size_t i = 0; i < n; ++i) {
             const double w = L.bearing_speed_ratio[i] * std::abs(in.omega_in);
             p.omega[i] = w;
-            if (!m.options.bearings) continue;
+            if (!enabled()) continue;  // switched off: no SKF loss and no drag
             const double Fr_gear = T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]);
             const double Fcf = L.bearing_Fcf_per_w2[i] * in.omega_in * in.omega_in;  // planet centrifugal load
             const double Fr = Fcf > 0.0 ? std::hypot(Fr_gear, Fcf) : Fr_gear;
@@ -91,7 +91,7 @@ public:
         // The SKF and Palmgren correlations take nu in cSt (their catalogue unit): its powers are
         // computed here once per temperature, from the ln(nu/cSt) shared by every mechanism.
         const double nu = e.oil.nu_cSt;
-        if (m.options.bearings && !p.skf.empty()) {
+        if (enabled() && !p.skf.empty()) {
             const double lnnu = e.ln_nu_cSt;
             const double nu06 = std::exp(0.6 * lnnu), nu064 = std::exp(0.64 * lnnu), nu14 = std::exp(1.4 * lnnu);
             const double nu1379 = p.any_drag ? std::exp(1.379 * lnnu) : 0.0;

@@ -40,7 +40,7 @@ public:
         const auto& L = m.layout;
         auto& p = static_cast<ChurningPoint&>(out);
         p.gears.assign(gb.gears.size(), ChurningAtSpeed{});
-        if (!m.options.churning) return;
+        if (!enabled()) return;
         for (size_t g = 0; g < gb.gears.size(); ++g) {
             const double h = L.gear_immersion[g];
             if (h <= 0.0) continue;

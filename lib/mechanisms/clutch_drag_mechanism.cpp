@@ -34,6 +34,7 @@ public:
         auto& p = static_cast<ClutchPoint&>(out);
         const auto& gb = m.gearbox;
         p.slip.assign(gb.clutches.size(), 0.0);
+        if (!enabled()) return;  // switched off: no pack slips, no drag
         for (size_t i = 0; i < gb.clutches.size(); ++i) p.slip[i] = m.layout.clutch_slip_ratio[i] * std::abs(in.omega_in);
     }
     std::string point_fault(const solver::Model& m, const losses::MechanismPoint& pt) const override {

@@ -3,9 +3,11 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 
+#include "core/source_index.hpp"
 #include "losses/registry.hpp"
 #include "mesh/ehl_path.hpp"
 #include "model/model.hpp"
@@ -51,7 +53,7 @@ int value_of(const NamedForm (&t)[N], std::string_view axis, std::string_view na
 
 class MeshFriction final : public losses::LossMechanism {
 public:
-    enum : size_t { kFrictionFactor };
+    enum : size_t { kFrictionFactor, kMuBl, kMuEhl };
     std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<MeshFriction>(*this); }
     std::string_view name() const override { return "mesh"; }
     std::string_view label() const override { return "mesh"; }
@@ -64,23 +66,28 @@ public:
         return {{"P_mesh_{}_W", 1.0}, {"mu_{}", 1.0}, {"lambda_{}", 1.0}, {"h_min_{}_um", 1e6}, {"", 1e6}};
     }
     std::vector<losses::Parameter> parameters() const override {
-        return {{"friction_factor", "scales mu_mZ (an error of X_L)", nullptr, "1.1", 1.0, 0.05, 20.0, true}};
+        // The boundary / full-film pair of the mixed-film model (Fernandes et al. 2015):
+        // settings of the physics, not calibration terms; their order is checked in validate().
+        return {{"friction_factor", "scales mu_mZ (an error of X_L)", nullptr, "1.1", 1.0, 0.05, 20.0, true},
+                {"mu_bl", "boundary friction of fernandes_mixed", nullptr, "0.10", 0.10, 0.0, 1.0, false},
+                {"mu_ehl", "full-film friction of fernandes_mixed", nullptr, "0.02", 0.02, 0.0, 1.0, false}};
     }
     std::vector<losses::FormAxis> forms(const solver::Model&) const override {
         return {{"friction", names(kFriction)}, {"loss_factor", names(kLossFactor)}, {"film_correction", names(kFilm)}};
     }
     std::string form(const solver::Model& m, std::string_view axis) const override {
-        if (axis == "friction") return name_of(kFriction, int(m.options.friction));
-        if (axis == "loss_factor") return name_of(kLossFactor, int(m.options.loss_factor));
-        if (axis == "film_correction") return name_of(kFilm, int(m.options.film_correction));
+        if (axis == "friction") return name_of(kFriction, int(forms_.friction));
+        if (axis == "loss_factor") return name_of(kLossFactor, int(forms_.loss_factor));
+        if (axis == "film_correction") return name_of(kFilm, int(forms_.film_correction));
         return LossMechanism::form(m, axis);
     }
     void set_form(solver::Model& m, std::string_view axis, std::string_view f) override {
-        if (axis == "friction") m.options.friction = FrictionModel(value_of(kFriction, axis, f));
-        else if (axis == "loss_factor") m.options.loss_factor = LossFactorModel(value_of(kLossFactor, axis, f));
-        else if (axis == "film_correction") m.options.film_correction = ThermalFilmCorrection(value_of(kFilm, axis, f));
+        if (axis == "friction") forms_.friction = FrictionModel(value_of(kFriction, axis, f));
+        else if (axis == "loss_factor") forms_.loss_factor = LossFactorModel(value_of(kLossFactor, axis, f));
+        else if (axis == "film_correction") forms_.film_correction = ThermalFilmCorrection(value_of(kFilm, axis, f));
         else LossMechanism::set_form(m, axis, f);
     }
+    void validate(const solver::Model& m, std::vector<solver::Issue>& out) const override;
 
     std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<MeshFrictionPoint>(); }
     void prepare(const solver::Model& m, const losses::PointInput& in, losses::MechanismPoint& out) const override;
@@ -91,12 +98,49 @@ public:
                            const losses::MechanismDetail& d) const override;
     std::string report(const solver::Model& m, const losses::PointInput& in, const losses::MechanismPoint& pt,
                        const losses::MechanismDetail& d) const override;
+
+    MeshForms forms_;  // read by the hot path as enums (mesh_forms() gives typed access)
 };
+
+// An issue of a setting, at the key the case chose it with: its `mechanisms: {mesh: ...}`
+// spelling when the case wrote that one (read after `options:`, it wins), else the `options:`
+// key (also for a model built in code or a form set by map --spread).
+solver::Issue setting_issue(const solver::Model& m, std::initializer_list<const char*> mechanism_keys,
+                            const char* options_key, std::string message) {
+    for (const char* k : mechanism_keys)
+        if (m.source && m.source->has(std::string("mechanisms.mesh.") + k))
+            return {"mechanisms", "", std::string("mesh.") + k, std::move(message)};
+    return {"options", "", options_key, std::move(message)};
+}
+
+void MeshFriction::validate(const solver::Model& m, std::vector<solver::Issue>& out) const {
+    LossMechanism::validate(m, out);  // each parameter within its bounds
+    // The order of the mixed-film pair (a value outside its bounds is reported above, once).
+    const double bl = param(kMuBl), ehl = param(kMuEhl);
+    if (bl >= 0 && bl <= 1 && ehl >= 0 && ehl <= 1 && !mixed_friction_pair_valid(bl, ehl))
+        out.push_back(setting_issue(m, {"mu_bl", "mu_ehl"}, "gear_friction", "need 0 <= mu_ehl < mu_bl < 1"));
+    // Ohlendorf's (1958) closed form and the single-pair average (Buckingham) assume
+    // 1 <= eps_alpha < 2: one or two pairs in contact, alternating. Wimmer's (2006) sweep of the
+    // contact lines holds for any contact ratio. The layout exists once the model is finalised.
+    const auto& L = m.layout;
+    if (forms_.loss_factor == LossFactorModel::wimmer || L.meshes.size() != m.gearbox.meshes.size()) return;
+    for (size_t i = 0; i < L.meshes.size(); ++i) {
+        const double eps = L.meshes[i].geom.eps_alpha;
+        if (eps < 1.0 || eps >= 2.0) {
+            out.push_back(setting_issue(
+                m, {"loss_factor"}, "gear_loss_factor",
+                fmt::format("mesh '{}' has eps_alpha = {:.3f}, outside the 1..2 that this closed form assumes; use "
+                            "'wimmer' (rigid load sharing over the contact lines)",
+                            m.gearbox.meshes[i].name, eps)));
+            return;  // one issue for the setting, naming the first mesh
+        }
+    }
+}
 
 void MeshFriction::prepare(const solver::Model& m, const losses::PointInput& in, losses::MechanismPoint& out) const {
     const auto& gb = m.gearbox;
     const auto& L = m.layout;
-    const auto& opt = m.options;
+    const auto& opt = forms_;
     auto& meshes = static_cast<MeshFrictionPoint&>(out).meshes;
     meshes.resize(gb.meshes.size());
     for (size_t i = 0; i < gb.meshes.size(); ++i) {
@@ -108,7 +152,7 @@ void MeshFriction::prepare(const solver::Model& m, const losses::PointInput& in,
         const auto& g0 = gb.gears[gb.meshes[i].gear[0]].spec;
         const auto& g1 = gb.gears[gb.meshes[i].gear[1]].spec;
         ms.H_V = md.loss_factor(opt.loss_factor);
-        if (opt.lambda_roughness == solver::LambdaRoughness::average_Ra) {
+        if (opt.lambda_roughness == LambdaRoughness::average_Ra) {
             ms.sigma = 0.5 * (g0.Ra + g1.Ra);
         } else {
             const double q0 = g0.Rq ? *g0.Rq : 1.25 * g0.Ra, q1 = g1.Rq ? *g1.Rq : 1.25 * g1.Ra;
@@ -122,7 +166,7 @@ void MeshFriction::prepare(const solver::Model& m, const losses::PointInput& in,
         ms.contact.R = md.geom.rho_redC;
         ms.contact.E_prime = m.mesh_E_prime[i];
         ms.contact.SRR = 0.0;  // pitch point
-        if (!md.loaded || !opt.mesh || in.torque_in == 0.0 || w0 == 0.0) continue;
+        if (!md.loaded || !enabled() || in.torque_in == 0.0 || w0 == 0.0) continue;
         // Mesh loss on the rolling power (relative to the carrier): P_VZP = mu H_V |P_roll|.
         ms.power = std::abs(in.power_in) * md.rolling_per_W;
         // Line load of one mesh (load shared by the planets of a set).
@@ -166,7 +210,7 @@ std::string MeshFriction::point_fault(const solver::Model& m, const losses::Mech
 
 double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint& pt, losses::Evaluation& e,
                            losses::MechanismDetail* d) const {
-    const auto& opt = m.options;
+    const auto& opt = forms_;
     const auto& s = e.oil;
     const auto& meshes = static_cast<const MeshFrictionPoint&>(pt).meshes;
     const double factor = param(kFrictionFactor);
@@ -183,7 +227,7 @@ double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint&
             const double lambda = f.h_c / ms.sigma;
             if (opt.friction == FrictionModel::fernandes_mixed) {
                 const double xi = boundary_share_doleschel(lambda);
-                mu = (xi * opt.gear_mu_bl + (1.0 - xi) * opt.gear_mu_ehl) * factor;
+                mu = (xi * param(kMuBl) + (1.0 - xi) * param(kMuEhl)) * factor;
             }
             e.add_lambda(lambda);
             if (d) {
@@ -231,7 +275,7 @@ std::string MeshFriction::report(const solver::Model& m, const losses::PointInpu
     std::string s = "meshes                 H_V     mu_mZ   P [W]     Lambda   h_c [um]  h_min [um]\n";
     for (size_t i = 0; i < gb.meshes.size(); ++i) {
         const auto& md = m.layout.meshes[i];
-        const double H = md.loss_factor(m.options.loss_factor);
+        const double H = md.loss_factor(forms_.loss_factor);
         if (d.at(i, kMeshPower) > 0)
             s += fmt::format("  {:<18} {:7.4f} {:7.4f} {:9.2f} {:8.3f} {:9.3f} {:11.3f}\n", gb.meshes[i].name, H,
                              d.at(i, kMeshMu), d.at(i, kMeshPower), d.at(i, kMeshLambda), d.at(i, kMeshHc) * 1e6,
@@ -243,6 +287,13 @@ std::string MeshFriction::report(const solver::Model& m, const losses::PointInpu
 }
 
 }  // namespace
+
+const MeshForms& mesh_forms(const solver::Model& m) {
+    return dynamic_cast<const MeshFriction&>(m.mechanisms.at("mesh")).forms_;
+}
+MeshForms& mesh_forms(solver::Model& m) { return dynamic_cast<MeshFriction&>(m.mechanisms.at("mesh")).forms_; }
+
+bool mixed_friction_pair_valid(double mu_bl, double mu_ehl) { return mu_ehl >= 0 && mu_ehl < mu_bl && mu_bl < 1; }
 
 const MeshFrictionPoint& mesh_friction_point(const solver::Model& m,
                                              const std::vector<std::unique_ptr<losses::MechanismPoint>>& data) {

@@ -7,8 +7,38 @@
 
 #include "losses/loss_mechanism.hpp"
 #include "mesh/friction.hpp"
+#include "mesh/loss_factor.hpp"
 
 namespace gearloss::mesh {
+
+// The roughness sigma of the specific film thickness Lambda = h_c / sigma: the mean of the
+// two flanks' Ra (Doleschel 2003, the ISO gear practice) or the composite sqrt(Rq1^2 + Rq2^2)
+// (Rq = 1.25 Ra when not given, the Gaussian ratio).
+enum class LambdaRoughness { average_Ra, composite_Rq };
+
+// The model choices the mesh mechanism owns (set by the case's `options:` keys or its
+// `mechanisms: {mesh: ...}` block). friction, loss_factor and film_correction are its form
+// axes (`check`, `map --spread`). The roughness of Lambda is a setting outside the spread:
+// only fernandes_mixed and ehl_local read Lambda, so as an axis it would double the
+// combinations (108 to 216 on every shipped case) while half of the added ones repeat a total.
+struct MeshForms {
+    FrictionModel friction = FrictionModel::schlenk;
+    // Rigid load sharing over the contact lines (Wimmer 2006 H_VL): for spur pairs it equals
+    // Ohlendorf (1958) within 0.2 %; for helical pairs Ohlendorf's closed form, which only
+    // divides the spur form by cos beta_b, is 12-16 % low.
+    LossFactorModel loss_factor = LossFactorModel::wimmer;
+    ThermalFilmCorrection film_correction = ThermalFilmCorrection::gupta;
+    LambdaRoughness lambda_roughness = LambdaRoughness::average_Ra;
+};
+
+// The choices of the model's mesh mechanism, by type (for code that names them: the case
+// loader's `options:` keys, the reports, tests); generic code goes through form()/set_form().
+const MeshForms& mesh_forms(const solver::Model& m);
+MeshForms& mesh_forms(solver::Model& m);
+
+// The boundary / full-film friction pair of the mixed-film model (Fernandes et al. 2015, the
+// mesh mechanism's settings mu_bl and mu_ehl) holds 0 <= mu_ehl < mu_bl < 1.
+bool mixed_friction_pair_valid(double mu_bl, double mu_ehl);
 
 // Oil-independent terms of one mesh at an operating point.
 struct MeshState {

@@ -36,7 +36,7 @@ public:
         const auto& gb = m.gearbox;
         p.power.assign(gb.seals.size(), 0.0);
         p.total = 0.0;
-        if (!m.options.seals) return;
+        if (!enabled()) return;
         for (size_t i = 0; i < gb.seals.size(); ++i) {
             p.power[i] = param(kFactor) * radial_seal_power(gb.seals[i].diameter, m.layout.seal_speed_ratio[i] * in.omega_in);
             p.total += p.power[i];

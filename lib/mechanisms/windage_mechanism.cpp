@@ -87,6 +87,8 @@ public:
         const auto& L = m.layout;
         auto& p = static_cast<WindagePoint&>(out);
         p.omega.assign(m.gearbox.gears.size(), 0.0);
+        p.box = 0.0;
+        if (!enabled()) return;  // switched off: every gear's drag and the box's are zero
         for (size_t g = 0; g < p.omega.size(); ++g) p.omega[g] = L.body_speed_ratio[L.body_of_gear[g]] * in.omega_in;
         const double C = param(kEmpirical);  // 0 unless calibrated: no pow per point then
         p.box = C == 0.0 ? 0.0 : C * std::pow(std::abs(in.omega_in) * 30.0 / std::numbers::pi / 1000.0, 2.9);

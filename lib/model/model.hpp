@@ -1,6 +1,7 @@
 #pragma once
 // The complete description of one gearbox case: topology and its derived
-// layout, the oil, the selected loss models and the thermal settings.
+// layout, the oil, the loss mechanisms (with their forms, settings and on/off state) and the
+// thermal settings.
 #include <memory>
 #include <string>
 #include <string_view>
@@ -10,27 +11,11 @@
 #include "gearbox/gearbox.hpp"
 #include "losses/mechanism_set.hpp"
 #include "lubricant/oil.hpp"
-#include "mesh/friction.hpp"
-#include "mesh/loss_factor.hpp"
 #include "thermal/equilibrium.hpp"
 #include "thermal/heat_rejection.hpp"
 #include "thermal/network.hpp"
 
 namespace gearloss::solver {
-
-enum class LambdaRoughness { average_Ra, composite_Rq };
-
-struct LossOptions {
-    bool mesh = true, churning = true, bearings = true, seals = true;
-    // Rigid load sharing over the contact lines (Wimmer 2006 H_VL): for spur pairs it equals
-    // Ohlendorf (1958) within 0.2 %; for helical pairs Ohlendorf's closed form, which only
-    // divides the spur form by cos beta_b, is 12-16 % low.
-    mesh::LossFactorModel loss_factor = mesh::LossFactorModel::wimmer;
-    mesh::FrictionModel friction = mesh::FrictionModel::schlenk;
-    mesh::ThermalFilmCorrection film_correction = mesh::ThermalFilmCorrection::gupta;
-    LambdaRoughness lambda_roughness = LambdaRoughness::average_Ra;
-    double gear_mu_bl = 0.10, gear_mu_ehl = 0.02;  // boundary / full-film pair of the mixed model
-};
 
 // Terms of a calibration (`gearloss diagnose`) outside the loss mechanisms: the oil and
 // the heat path. (A mechanism's own calibration terms are its parameters:
@@ -60,7 +45,6 @@ struct Model {
     gearbox::Gearbox gearbox;
     gearbox::Layout layout;
     lubricant::Oil oil;
-    LossOptions options;
     ThermalSettings thermal;
     Calibration calibration;
     // The loss mechanisms (registry order), with their parameters and forms.

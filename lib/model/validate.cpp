@@ -244,11 +244,22 @@ void validate_gearbox(const Model& m, std::vector<Issue>& out) {
     }
 }
 
+// The H_V model the mesh mechanism selects. (mechanisms/, which holds its typed accessor, sits
+// above this folder: asked by the form's name, which is mesh::to_string's.)
+mesh::LossFactorModel selected_loss_factor(const Model& m) {
+    const auto* mech = m.mechanisms.find("mesh");
+    const std::string name = mech ? mech->form(m, "loss_factor") : "";
+    for (auto f : {mesh::LossFactorModel::ohlendorf, mesh::LossFactorModel::buckingham})
+        if (name == mesh::to_string(f)) return f;
+    return mesh::LossFactorModel::wimmer;
+}
+
 // The derived layout (after finalise()): what the loss models multiply must be finite.
 void validate_layout(const Model& m, std::vector<Issue>& out) {
     const auto& gb = m.gearbox;
     const auto& L = m.layout;
     if (L.meshes.size() != gb.meshes.size() || L.body_speed_ratio.empty()) return;  // not finalised
+    const auto loss_factor = selected_loss_factor(m);
     {
         Collector c{out, "gearbox", ""};
         if (!finite(L.ratio) || L.ratio == 0.0) c.add("", "the ratio of the train is " + show(L.ratio));
@@ -258,7 +269,7 @@ void validate_layout(const Model& m, std::vector<Issue>& out) {
         const auto& md = L.meshes[i];
         Collector c{out, "meshes", gb.meshes[i].name};
         const double vals[] = {md.geom.a_w, md.geom.alpha_wt, md.geom.rho_redC, md.geom.b_eff, md.L_min, md.L_mean,
-                               md.loss_factor(m.options.loss_factor), md.force_per_Nm, md.rolling_per_W, md.relative_speed};
+                               md.loss_factor(loss_factor), md.force_per_Nm, md.rolling_per_W, md.relative_speed};
         for (double v : vals)
             if (!finite(v)) {
                 c.add("", "its geometry or load is not a finite number (check the gears' data)");
@@ -358,18 +369,14 @@ std::vector<Issue> validate(const Model& m) {
     validate_oil(m.oil, out);
     validate_thermal(m, out);
     validate_calibration(m.calibration, out);
-    for (size_t i = 0; i < m.mechanisms.size(); ++i) m.mechanisms[i].validate(m, out);
-    {
-        Collector c{out, "options", ""};
-        if (!(m.options.gear_mu_bl > 0 && m.options.gear_mu_bl < 1 && m.options.gear_mu_ehl >= 0 &&
-              m.options.gear_mu_ehl < m.options.gear_mu_bl))
-            c.add("gear_friction", "need 0 <= mu_ehl < mu_bl < 1");
-    }
     validate_gearbox(m, out);
     // The layout is meaningful only when the description's indices are.
     bool indices_ok = true;
     for (const auto& is : out) indices_ok = indices_ok && !is.structural;
     if (indices_ok) validate_layout(m, out);
+    // The mechanisms' own settings last: their checks may read the layout (the contact ratio a
+    // closed-form H_V assumes), which the checks above vouch for.
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) m.mechanisms[i].validate(m, out);
     return out;
 }
 
