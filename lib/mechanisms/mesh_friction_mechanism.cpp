@@ -199,11 +199,13 @@ std::string MeshFriction::point_fault(const solver::Model& m, const losses::Mech
     auto finite = [](double v) { return std::isfinite(v); };
     for (size_t i = 0; i < meshes.size(); ++i) {
         const auto& ms = meshes[i];
-        const std::string name = "mesh " + m.gearbox.meshes[i].name;
-        if (!finite(ms.power) || !finite(ms.F_bn) || !finite(ms.contact.w_line)) return name + " load";
-        if (!finite(ms.contact.u_e) || !finite(ms.omega_rel)) return name + " speed";
-        if (!finite(ms.mu_prefactor)) return name + " friction coefficient";
-        if (!finite(ms.H_V) || !finite(ms.sigma)) return name + " loss factor";
+        // Once per point: the message is built only for a fault.
+        const char* f = nullptr;
+        if (!finite(ms.power) || !finite(ms.F_bn) || !finite(ms.contact.w_line)) f = "load";
+        else if (!finite(ms.contact.u_e) || !finite(ms.omega_rel)) f = "speed";
+        else if (!finite(ms.mu_prefactor)) f = "friction coefficient";
+        else if (!finite(ms.H_V) || !finite(ms.sigma)) f = "loss factor";
+        if (f) return "mesh " + m.gearbox.meshes[i].name + " " + f;
     }
     return {};
 }
