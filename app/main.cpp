@@ -9,7 +9,7 @@
 
 #include "commands/command.hpp"
 #include "commands/common.hpp"
-#include "io/interrupt.hpp"
+#include "gearloss/io/interrupt.hpp"
 
 namespace app = gearloss::app;
 

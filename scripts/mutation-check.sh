@@ -59,69 +59,69 @@ TEST_TIMEOUT=${TEST_TIMEOUT:-600}   # s per ctest entry (a mutant that hangs is 
 IDS=() FOLDERS=() FILES=() DESCS=() ORIGS=() REPLS=()
 mut() { IDS+=("$1"); FOLDERS+=("$2"); FILES+=("$3"); DESCS+=("$4"); ORIGS+=("$5"); REPLS+=("$6"); }
 
-mut U1 units lib/units/units.cpp "rpm as pi/60 rad/s per rpm (rev/rad slip, factor 1/2)" \
+mut U1 units lib/gearloss/units/units.cpp "rpm as pi/60 rad/s per rpm (rev/rad slip, factor 1/2)" \
     '{"rpm", {2.0 * pi / 60.0, angular_speed, true}}' '{"rpm", {pi / 60.0, angular_speed, true}}'
-mut L1 lubricant lib/lubricant/oil.cpp "density reference at 20 degC instead of 15 degC" \
+mut L1 lubricant lib/gearloss/lubricant/oil.cpp "density reference at 20 degC instead of 15 degC" \
     'rho15 * (1.0 - expansion * (T_K - 288.15))' 'rho15 * (1.0 - expansion * (T_K - 293.15))'
-mut L2 lubricant lib/lubricant/oil.cpp "Cragoe conductivity 0.1172 -> 0.1127 (digits swapped, -3.8 %)" \
+mut L2 lubricant lib/gearloss/lubricant/oil.cpp "Cragoe conductivity 0.1172 -> 0.1127 (digits swapped, -3.8 %)" \
     '(0.1172 / SG15)' '(0.1127 / SG15)'
-mut G1 geometry lib/geometry/gear_geometry.cpp "rho_redC: transverse instead of normal radius (no 1/cos beta_b)" \
+mut G1 geometry lib/gearloss/geometry/gear_geometry.cpp "rho_redC: transverse instead of normal radius (no 1/cos beta_b)" \
     'us / ((1.0 + us) * (1.0 + us) * cos(p.beta_b))' 'us / ((1.0 + us) * (1.0 + us))'
-mut G2 geometry lib/geometry/gear_geometry.cpp "beta_b with the transverse instead of the normal pressure angle" \
+mut G2 geometry lib/gearloss/geometry/gear_geometry.cpp "beta_b with the transverse instead of the normal pressure angle" \
     'p.beta_b = std::asin(sin(beta) * cos(an))' 'p.beta_b = std::asin(sin(beta) * cos(p.alpha_t))'
-mut M1 mesh lib/mesh/friction.cpp "Schlenk constant 0.048 -> 0.050 (+4 %)" \
+mut M1 mesh lib/gearloss/mesh/friction.cpp "Schlenk constant 0.048 -> 0.050 (+4 %)" \
     'return 0.048 * std::pow' 'return 0.050 * std::pow'
-mut M2 mesh lib/mesh/friction.cpp "ISO/TS 6336-20 constant 0.060 -> 0.063 (+5 %)" \
+mut M2 mesh lib/gearloss/mesh/friction.cpp "ISO/TS 6336-20 constant 0.060 -> 0.063 (+5 %)" \
     'return 0.060 * std::pow' 'return 0.063 * std::pow'
-mut M3 mesh lib/mesh/friction.cpp "Ertel-Grubin constant 1.95 -> 1.99 (+2 %)" \
+mut M3 mesh lib/gearloss/mesh/friction.cpp "Ertel-Grubin constant 1.95 -> 1.99 (+2 %)" \
     '1.95 * std::pow(G * U' '1.99 * std::pow(G * U'
-mut M4 mesh lib/mesh/friction.cpp "Dowson-Higginson constant 2.65 -> 2.76 (+4 %)" \
+mut M4 mesh lib/gearloss/mesh/friction.cpp "Dowson-Higginson constant 2.65 -> 2.76 (+4 %)" \
     '2.65 * std::pow(U, 0.70)' '2.76 * std::pow(U, 0.70)'
-mut M5 mesh lib/mesh/friction.cpp "Gupta thermal reduction 0.213 -> 0.231 (digits swapped)" \
+mut M5 mesh lib/gearloss/mesh/friction.cpp "Gupta thermal reduction 0.213 -> 0.231 (digits swapped)" \
     '0.213 * (1.0 + 2.23 *' '0.231 * (1.0 + 2.23 *'
-mut M6 mesh lib/mesh/loss_factor.cpp "Ohlendorf bracket eps2^2 -> eps2 eps1" \
+mut M6 mesh lib/gearloss/mesh/loss_factor.cpp "Ohlendorf bracket eps2^2 -> eps2 eps1" \
     '1.0 - g.eps_alpha + g.eps1 * g.eps1 + g.eps2 * g.eps2' '1.0 - g.eps_alpha + g.eps1 * g.eps1 + g.eps2 * g.eps1'
-mut M7 mesh lib/mesh/loss_factor.cpp "Wimmer sweep normalised by the working instead of the base radius" \
+mut M7 mesh lib/gearloss/mesh/loss_factor.cpp "Wimmer sweep normalised by the working instead of the base radius" \
     '/ (cb * 0.5 * g.db[0])' '/ (cb * 0.5 * g.dw[0])'
-mut M8 mesh lib/mesh/ehl_contact.cpp "Jaeger mean flash constant 1.064 -> 1.11 (Blok's maximum constant)" \
+mut M8 mesh lib/gearloss/mesh/ehl_contact.cpp "Jaeger mean flash constant 1.064 -> 1.11 (Blok's maximum constant)" \
     'if (std::abs(in.u1) > 0) dT1 = 1.064 * q1' 'if (std::abs(in.u1) > 0) dT1 = 1.11 * q1'
-mut M9 mesh lib/mesh/ehl_contact.cpp "3-pressure Hertz shortcut: outer Gauss weight not doubled" \
+mut M9 mesh lib/gearloss/mesh/ehl_contact.cpp "3-pressure Hertz shortcut: outer Gauss weight not doubled" \
     '2 * 0.2369268850561891' '0.2369268850561891'
-mut S1 mesh lib/mechanisms/mesh_friction_mechanism.cpp "mean roughness (Ra1+Ra2)/2 -> sum Ra1+Ra2 (issue 12)" \
+mut S1 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "mean roughness (Ra1+Ra2)/2 -> sum Ra1+Ra2 (issue 12)" \
     'const double Ra_um = 0.5 * (g0.Ra + g1.Ra) * 1e6;' 'const double Ra_um = (g0.Ra + g1.Ra) * 1e6;'
-mut S2 churning lib/mechanisms/churning_mechanism.cpp "nu^0.21 of the churning fast path -> nu^0.20" \
+mut S2 churning lib/gearloss/mechanisms/churning_mechanism.cpp "nu^0.21 of the churning fast path -> nu^0.20" \
     'std::exp(0.21 * std::log(e.oil.nu))' 'std::exp(0.20 * std::log(e.oil.nu))'
-mut S3 bearings lib/mechanisms/bearing_mechanism.cpp "nu^0.64 of the bearing fast path -> nu^0.6" \
+mut S3 bearings lib/gearloss/mechanisms/bearing_mechanism.cpp "nu^0.64 of the bearing fast path -> nu^0.6" \
     'nu064 = std::exp(0.64 * lnnu)' 'nu064 = std::exp(0.6 * lnnu)'
-mut S4 mesh lib/mechanisms/mesh_friction_mechanism.cpp "mu ~ eta^-0.05 of the mesh fast path -> eta^-0.04" \
+mut S4 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "mu ~ eta^-0.05 of the mesh fast path -> eta^-0.04" \
     'std::exp(-0.05 * std::log(s.eta * 1e3))' 'std::exp(-0.04 * std::log(s.eta * 1e3))'
-mut S5 clutch lib/mechanisms/clutch_drag_mechanism.cpp "clutch drag heats the oil instead of the clutch-pack node" \
+mut S5 clutch lib/gearloss/mechanisms/clutch_drag_mechanism.cpp "clutch drag heats the oil instead of the clutch-pack node" \
     'bool heats_oil() const override { return false; }' 'bool heats_oil() const override { return true; }'
-mut C1 churning lib/churning/changenet_velex.cpp "Changenet-Velex 1.366 -> 1.40 (+2.5 %)" \
+mut C1 churning lib/gearloss/churning/changenet_velex.cpp "Changenet-Velex 1.366 -> 1.40 (+2.5 %)" \
     'pre * 1.366 *' 'pre * 1.40 *'
-mut C2 churning lib/churning/changenet_velex.cpp "high-Re exponent of V0/D^3 -0.35 -> -0.33" \
+mut C2 churning lib/gearloss/churning/changenet_velex.cpp "high-Re exponent of V0/D^3 -0.35 -> -0.33" \
     'std::pow(VD, -0.35)' 'std::pow(VD, -0.33)'
-mut B1 bearings lib/bearings/skf_model.cpp "SKF inlet shear constant 1.84e-9 -> 1.93e-9 (+5 %)" \
+mut B1 bearings lib/gearloss/bearings/skf_model.cpp "SKF inlet shear constant 1.84e-9 -> 1.93e-9 (+5 %)" \
     'p.a_ish = 1.84e-9' 'p.a_ish = 1.93e-9'
-mut B2 bearings lib/bearings/skf_model.cpp "SKF roller drag factor 4 -> 0.4 (the ball factor)" \
+mut B2 bearings lib/gearloss/bearings/skf_model.cpp "SKF roller drag factor 4 -> 0.4 (the ball factor)" \
     'first = 4.0 * b.bath_VM * K_roll' 'first = 0.4 * b.bath_VM * K_roll'
-mut E1 seals lib/seals/radial_lip_seal.hpp "ISO/TR 14179-2 seal constant 7.69e-6 -> 7.96e-6 (digits swapped)" \
+mut E1 seals lib/gearloss/seals/radial_lip_seal.hpp "ISO/TR 14179-2 seal constant 7.69e-6 -> 7.96e-6 (digits swapped)" \
     'return 7.69e-6 * d_mm' 'return 7.96e-6 * d_mm'
-mut T1 thermal lib/thermal/heat_rejection.cpp "free convection 0.59 -> 0.62 (+5 %)" \
+mut T1 thermal lib/gearloss/thermal/heat_rejection.cpp "free convection 0.59 -> 0.62 (+5 %)" \
     '0.59 * std::pow(Ra, 0.25)' '0.62 * std::pow(Ra, 0.25)'
-mut T2 thermal lib/thermal/heat_rejection.cpp "forced convection (flat plate) 0.664 -> 0.697 (+5 %)" \
+mut T2 thermal lib/gearloss/thermal/heat_rejection.cpp "forced convection (flat plate) 0.664 -> 0.697 (+5 %)" \
     '0.664 * std::sqrt(Re)' '0.697 * std::sqrt(Re)'
-mut T3 thermal lib/thermal/heat_rejection.cpp "Stefan-Boltzmann constant 5.670e-8 -> 5.760e-8" \
+mut T3 thermal lib/gearloss/thermal/heat_rejection.cpp "Stefan-Boltzmann constant 5.670e-8 -> 5.760e-8" \
     'constexpr double sigma_SB = 5.670374419e-8;' 'constexpr double sigma_SB = 5.760374419e-8;'
-mut T4 thermal lib/thermal/network.cpp "stored heat forgets the clutch node" \
+mut T4 thermal lib/gearloss/thermal/network.cpp "stored heat forgets the clutch node" \
     'if (n.has_clutch()) E += n.C_clutch * (T[2] - T_ref);' ''
-mut X1 gearbox lib/gearbox/gearbox.cpp "axial force tan(beta_b) without 1/cos(alpha_wt)" \
+mut X1 gearbox lib/gearloss/gearbox/gearbox.cpp "axial force tan(beta_b) without 1/cos(alpha_wt)" \
     'const double ax = std::tan(md.geom.beta_b) / std::cos(md.geom.alpha_wt);' 'const double ax = std::tan(md.geom.beta_b);'
-mut K1 clutch lib/clutch/wet_clutch.cpp "Patir-Cheng exponent 2.31 -> 2.13 (digits swapped)" \
+mut K1 clutch lib/gearloss/clutch/wet_clutch.cpp "Patir-Cheng exponent 2.31 -> 2.13 (digits swapped)" \
     '11.1 * std::pow(H, 2.31)' '11.1 * std::pow(H, 2.13)'
-mut Q1 torque_converter lib/torque_converter/torque_converter.cpp "HI 9.6.7 C_eta constant 0.0547 -> 0.0574" \
+mut Q1 torque_converter lib/gearloss/torque_converter/torque_converter.cpp "HI 9.6.7 C_eta constant 0.0547 -> 0.0574" \
     'std::exp(-0.0547 * std::exp' 'std::exp(-0.0574 * std::exp'
-mut V1 vehicle lib/vehicle/vehicle.cpp "rotating-mass factor subtracted instead of added" \
+mut V1 vehicle lib/gearloss/vehicle/vehicle.cpp "rotating-mass factor subtracted instead of added" \
     'mass * (1.0 + rotating_mass_factor) * a' 'mass * (1.0 - rotating_mass_factor) * a'
 
 # ---------------------------------------------------------------------------------

@@ -6,9 +6,9 @@
 #include <string>
 #include <string_view>
 
-#include "losses/registry.hpp"
-#include "mechanisms/mesh_friction_mechanism.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/losses/registry.hpp"
+#include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
+#include "gearloss/solver/operating_point.hpp"
 
 namespace gearloss::test {
 

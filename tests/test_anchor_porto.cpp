@@ -60,9 +60,9 @@
 #include <string>
 #include <utility>
 
-#include "geometry/gear_geometry.hpp"
-#include "mesh/friction.hpp"
-#include "mesh/loss_factor.hpp"
+#include "gearloss/geometry/gear_geometry.hpp"
+#include "gearloss/mesh/friction.hpp"
+#include "gearloss/mesh/loss_factor.hpp"
 
 using namespace gearloss;
 

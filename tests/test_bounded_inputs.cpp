@@ -15,15 +15,15 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "core/errors.hpp"
-#include "diagnosis/recordings.hpp"
-#include "io/config.hpp"
-#include "io/csv_read.hpp"
-#include "io/drive_cycle_csv.hpp"
-#include "io/reports.hpp"
-#include "io/yaml_reader.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/diagnosis/recordings.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/io/csv_read.hpp"
+#include "gearloss/io/drive_cycle_csv.hpp"
+#include "gearloss/io/reports.hpp"
+#include "gearloss/io/yaml_reader.hpp"
 #include "test_support.hpp"
-#include "units/units.hpp"
+#include "gearloss/units/units.hpp"
 
 using namespace gearloss;
 
@@ -429,7 +429,7 @@ TEST_CASE("recordings: bad cells are errors with line and column", "[bounded][re
     CHECK(kw.line == 2);
     CHECK(kw.column == 3);
     CHECK_THAT(kw.message, Catch::Contains("out of range"));
-    // Speeds, torques and losses beyond the ranges the model states (model/validate.hpp) are
+    // Speeds, torques and losses beyond the ranges the model states (gearloss/model/validate.hpp) are
     // errors at their cell: a loss of 1e155 W made a residual statistic of the diagnosis
     // overflow (an internal error) before.
     const auto pw = input_error([] {

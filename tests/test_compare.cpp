@@ -1,9 +1,9 @@
 #include <catch2/catch.hpp>
 #include <sstream>
 
-#include "io/config.hpp"
-#include "map/compare.hpp"
-#include "map/map_runner.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/map/compare.hpp"
+#include "gearloss/map/map_runner.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -2,9 +2,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "bearings/skf_model.hpp"
-#include "churning/changenet_velex.hpp"
-#include "seals/radial_lip_seal.hpp"
+#include "gearloss/bearings/skf_model.hpp"
+#include "gearloss/churning/changenet_velex.hpp"
+#include "gearloss/seals/radial_lip_seal.hpp"
 
 using namespace gearloss;
 using Approx = Catch::Detail::Approx;

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "core/errors.hpp"
-#include "io/config.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/config.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

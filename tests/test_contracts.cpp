@@ -25,19 +25,19 @@
 #include <string>
 #include <vector>
 
-#include "bearings/skf_model.hpp"
-#include "churning/changenet_velex.hpp"
-#include "clutch/wet_clutch.hpp"
-#include "cycle/simulate.hpp"
-#include "io/config.hpp"
-#include "io/cycle_report.hpp"
-#include "mesh/ehl_contact.hpp"
-#include "mesh/ehl_path.hpp"
-#include "mesh/friction.hpp"
-#include "seals/radial_lip_seal.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/bearings/skf_model.hpp"
+#include "gearloss/churning/changenet_velex.hpp"
+#include "gearloss/clutch/wet_clutch.hpp"
+#include "gearloss/cycle/simulate.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/io/cycle_report.hpp"
+#include "gearloss/mesh/ehl_contact.hpp"
+#include "gearloss/mesh/ehl_path.hpp"
+#include "gearloss/mesh/friction.hpp"
+#include "gearloss/seals/radial_lip_seal.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
-#include "torque_converter/torque_converter.hpp"
+#include "gearloss/torque_converter/torque_converter.hpp"
 
 using namespace gearloss;
 using Approx = Catch::Detail::Approx;

@@ -2,15 +2,15 @@
 #include <cmath>
 #include <numbers>
 
-#include "clutch/wet_clutch.hpp"
-#include "cycle/drive_cycle.hpp"
-#include "cycle/simulate.hpp"
-#include "io/config.hpp"
-#include "io/cycle_report.hpp"
-#include "io/drive_cycle_csv.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/clutch/wet_clutch.hpp"
+#include "gearloss/cycle/drive_cycle.hpp"
+#include "gearloss/cycle/simulate.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/io/cycle_report.hpp"
+#include "gearloss/io/drive_cycle_csv.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
-#include "torque_converter/torque_converter.hpp"
+#include "gearloss/torque_converter/torque_converter.hpp"
 
 using namespace gearloss;
 using Approx = Catch::Detail::Approx;

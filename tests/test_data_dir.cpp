@@ -1,4 +1,4 @@
-// The folder of the shipped data (lib/io/data_dir.hpp), found from the environment or from the
+// The folder of the shipped data (lib/gearloss/io/data_dir.hpp), found from the environment or from the
 // executable's place, in a private mkdtemp folder laid out as an installation and as a source
 // tree with a build folder (tests/cli_install.sh runs a real installation).
 #include <catch2/catch.hpp>
@@ -8,7 +8,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "io/data_dir.hpp"
+#include "gearloss/io/data_dir.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

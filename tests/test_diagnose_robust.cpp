@@ -9,16 +9,16 @@
 #include <string>
 #include <thread>
 
-#include "core/errors.hpp"
-#include "cycle/simulate.hpp"
-#include "diagnosis/diagnose.hpp"
-#include "diagnosis/effects.hpp"
-#include "diagnosis/recordings.hpp"
-#include "diagnosis/synth.hpp"
-#include "io/config.hpp"
-#include "io/cycle_report.hpp"
-#include "io/drive_cycle_csv.hpp"
-#include "io/interrupt.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/cycle/simulate.hpp"
+#include "gearloss/diagnosis/diagnose.hpp"
+#include "gearloss/diagnosis/effects.hpp"
+#include "gearloss/diagnosis/recordings.hpp"
+#include "gearloss/diagnosis/synth.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/io/cycle_report.hpp"
+#include "gearloss/io/drive_cycle_csv.hpp"
+#include "gearloss/io/interrupt.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

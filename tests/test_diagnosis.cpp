@@ -5,12 +5,12 @@
 #include <fstream>
 #include <numbers>
 
-#include "core/errors.hpp"
-#include "diagnosis/diagnose.hpp"
-#include "diagnosis/recordings.hpp"
-#include "diagnosis/synth.hpp"
-#include "io/config.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/diagnosis/diagnose.hpp"
+#include "gearloss/diagnosis/recordings.hpp"
+#include "gearloss/diagnosis/synth.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

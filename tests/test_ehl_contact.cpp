@@ -2,11 +2,11 @@
 #include <cmath>
 #include <numbers>
 
-#include "io/config.hpp"
-#include "geometry/gear_geometry.hpp"
-#include "mesh/ehl_contact.hpp"
-#include "mesh/ehl_path.hpp"
-#include "mesh/loss_factor.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/geometry/gear_geometry.hpp"
+#include "gearloss/mesh/ehl_contact.hpp"
+#include "gearloss/mesh/ehl_path.hpp"
+#include "gearloss/mesh/loss_factor.hpp"
 #include <vector>
 #include "test_support.hpp"
 

@@ -7,12 +7,12 @@
 #include <map>
 #include <set>
 
-#include "core/errors.hpp"
-#include "io/config.hpp"
-#include "io/json.hpp"
-#include "map/form_spread.hpp"
-#include "model/validate.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/io/json.hpp"
+#include "gearloss/map/form_spread.hpp"
+#include "gearloss/model/validate.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "io/config.hpp"
-#include "map/map_runner.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/map/map_runner.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

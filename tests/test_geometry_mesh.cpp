@@ -2,9 +2,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "geometry/gear_geometry.hpp"
-#include "mesh/friction.hpp"
-#include "mesh/loss_factor.hpp"
+#include "gearloss/geometry/gear_geometry.hpp"
+#include "gearloss/mesh/friction.hpp"
+#include "gearloss/mesh/loss_factor.hpp"
 
 using namespace gearloss;
 using Approx = Catch::Detail::Approx;

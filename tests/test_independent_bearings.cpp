@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 #include <numbers>
 
-#include "bearings/skf_model.hpp"
+#include "gearloss/bearings/skf_model.hpp"
 
 using namespace gearloss;
 using Approx = Catch::Detail::Approx;

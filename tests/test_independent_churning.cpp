@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 #include <numbers>
 
-#include "churning/changenet_velex.hpp"
+#include "gearloss/churning/changenet_velex.hpp"
 
 using namespace gearloss;
 using Approx = Catch::Detail::Approx;

@@ -8,12 +8,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "geometry/gear_geometry.hpp"
-#include "io/config.hpp"
-#include "mechanisms/mesh_friction_mechanism.hpp"
-#include "mesh/ehl_contact.hpp"
-#include "mesh/friction.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/geometry/gear_geometry.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
+#include "gearloss/mesh/ehl_contact.hpp"
+#include "gearloss/mesh/friction.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

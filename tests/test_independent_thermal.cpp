@@ -5,8 +5,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "lubricant/oil.hpp"
-#include "thermal/heat_rejection.hpp"
+#include "gearloss/lubricant/oil.hpp"
+#include "gearloss/thermal/heat_rejection.hpp"
 
 using namespace gearloss;
 using Approx = Catch::Detail::Approx;

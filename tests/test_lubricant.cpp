@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "io/config.hpp"
-#include "lubricant/oil.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/lubricant/oil.hpp"
 
 using namespace gearloss;
 using Approx = Catch::Detail::Approx;

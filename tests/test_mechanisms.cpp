@@ -5,14 +5,14 @@
 #include <numbers>
 #include <set>
 
-#include "core/errors.hpp"
-#include "io/config.hpp"
-#include "losses/loss_mechanism.hpp"
-#include "losses/registry.hpp"
-#include "map/map_runner.hpp"
-#include "mechanisms/mesh_friction_mechanism.hpp"
-#include "model/validate.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/losses/loss_mechanism.hpp"
+#include "gearloss/losses/registry.hpp"
+#include "gearloss/map/map_runner.hpp"
+#include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
+#include "gearloss/model/validate.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "io/config.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "io/case_plausibility.hpp"
-#include "io/config.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/case_plausibility.hpp"
+#include "gearloss/io/config.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -1,12 +1,12 @@
-// A thread keeps its operating-point storage from one point to the next (solver/operating_point.cpp)
+// A thread keeps its operating-point storage from one point to the next (gearloss/solver/operating_point.cpp)
 // and the bearings keep the powers of their dimensions in it. A model changed between two
 // solves on one thread, as a sweep or a test does, must give what a fresh thread gives.
 #include <catch2/catch.hpp>
 #include <numbers>
 #include <thread>
 
-#include "io/config.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -6,10 +6,10 @@
 #include <numbers>
 #include <string>
 
-#include "core/errors.hpp"
-#include "io/config.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/config.hpp"
 #include "loss_parts.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -16,20 +16,20 @@
 #include <numbers>
 #include <thread>
 
-#include "core/errors.hpp"
-#include "cycle/simulate.hpp"
-#include "diagnosis/diagnose.hpp"
-#include "diagnosis/synth.hpp"
-#include "io/config.hpp"
-#include "io/cycle_report.hpp"
-#include "map/compare.hpp"
-#include "map/map_runner.hpp"
-#include "mechanisms/mesh_friction_mechanism.hpp"
-#include "mesh/ehl_contact.hpp"
-#include "model/validate.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/cycle/simulate.hpp"
+#include "gearloss/diagnosis/diagnose.hpp"
+#include "gearloss/diagnosis/synth.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/io/cycle_report.hpp"
+#include "gearloss/map/compare.hpp"
+#include "gearloss/map/map_runner.hpp"
+#include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
+#include "gearloss/mesh/ehl_contact.hpp"
+#include "gearloss/model/validate.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
-#include "thermal/equilibrium.hpp"
+#include "gearloss/thermal/equilibrium.hpp"
 
 using namespace gearloss;
 using test_support::TempConfig;

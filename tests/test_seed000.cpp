@@ -3,10 +3,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "io/config.hpp"
-#include "mechanisms/mesh_friction_mechanism.hpp"
-#include "mesh/ehl_path.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
+#include "gearloss/mesh/ehl_path.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

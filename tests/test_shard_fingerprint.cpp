@@ -5,10 +5,10 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "core/errors.hpp"
-#include "io/config.hpp"
-#include "map/fingerprint.hpp"
-#include "map/job.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/map/fingerprint.hpp"
+#include "gearloss/map/job.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -11,10 +11,10 @@
 #include <cmath>
 #include <string>
 
-#include "core/errors.hpp"
-#include "io/config.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/config.hpp"
 #include "test_support.hpp"
-#include "units/units.hpp"
+#include "gearloss/units/units.hpp"
 
 using namespace gearloss;
 using test_support::TempConfig;

@@ -2,9 +2,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/errors.hpp"
-#include "io/sweep.hpp"
-#include "map/job.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/sweep.hpp"
+#include "gearloss/map/job.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

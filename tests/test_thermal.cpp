@@ -1,11 +1,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "io/config.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
-#include "thermal/equilibrium.hpp"
-#include "thermal/heat_rejection.hpp"
+#include "gearloss/thermal/equilibrium.hpp"
+#include "gearloss/thermal/heat_rejection.hpp"
 
 using namespace gearloss;
 using Approx = Catch::Detail::Approx;

@@ -22,11 +22,11 @@
 #include <optional>
 #include <string>
 
-#include "core/errors.hpp"
-#include "geometry/gear_geometry.hpp"
-#include "io/config.hpp"
-#include "mechanisms/mesh_friction_mechanism.hpp"
-#include "mesh/loss_factor.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/geometry/gear_geometry.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
+#include "gearloss/mesh/loss_factor.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 #include <numbers>
 
-#include "units/units.hpp"
+#include "gearloss/units/units.hpp"
 
 using namespace gearloss::units;
 using Approx = Catch::Detail::Approx;

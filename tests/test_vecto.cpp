@@ -2,8 +2,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "io/config.hpp"
-#include "map/vecto.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/map/vecto.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

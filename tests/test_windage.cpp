@@ -1,15 +1,15 @@
-// Gear windage (lib/windage/gear_windage.cpp and its mechanism, lib/mechanisms/windage_mechanism.cpp)
+// Gear windage (lib/gearloss/windage/gear_windage.cpp and its mechanism, lib/gearloss/mechanisms/windage_mechanism.cpp)
 // against published values and hand calculations.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 
-#include "io/config.hpp"
-#include "map/map_runner.hpp"
-#include "solver/operating_point.hpp"
-#include "thermal/air.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/map/map_runner.hpp"
+#include "gearloss/solver/operating_point.hpp"
+#include "gearloss/thermal/air.hpp"
 #include "test_support.hpp"
-#include "windage/gear_windage.hpp"
+#include "gearloss/windage/gear_windage.hpp"
 
 using namespace gearloss;
 namespace {

@@ -5,10 +5,10 @@
 
 #include "commands/command.hpp"
 #include "commands/common.hpp"
-#include "core/message_text.hpp"
-#include "io/atomic_file.hpp"
-#include "io/json.hpp"
-#include "io/reports.hpp"
+#include "gearloss/core/message_text.hpp"
+#include "gearloss/io/atomic_file.hpp"
+#include "gearloss/io/json.hpp"
+#include "gearloss/io/reports.hpp"
 
 namespace gearloss::app {
 namespace {

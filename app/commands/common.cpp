@@ -6,12 +6,12 @@
 #include <optional>
 #include <unistd.h>
 
-#include "core/errors.hpp"
-#include "io/atomic_file.hpp"
-#include "io/case_plausibility.hpp"
-#include "io/csv_read.hpp"
-#include "io/interrupt.hpp"
-#include "map/map_runner.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/atomic_file.hpp"
+#include "gearloss/io/case_plausibility.hpp"
+#include "gearloss/io/csv_read.hpp"
+#include "gearloss/io/interrupt.hpp"
+#include "gearloss/map/map_runner.hpp"
 
 namespace gearloss::app {
 
@@ -36,7 +36,7 @@ void apply_case_options(io::Case& k, const CommonOptions& c) {
         k.model.thermal.mode = solver::ThermalMode::fixed;
         k.model.thermal.oil_temperature = q.value;
     }
-    map::validate_case(k, {.oil_temp = c.oil_temp, .oil = c.oil, .grid = false});  // model/validate.hpp
+    map::validate_case(k, {.oil_temp = c.oil_temp, .oil = c.oil, .grid = false});  // gearloss/model/validate.hpp
 }
 
 io::Case load_with_options(const CommonOptions& c, bool warn_on_stderr) {

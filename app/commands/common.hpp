@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "io/config.hpp"
-#include "units/units.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/units/units.hpp"
 
 namespace gearloss::app {
 
@@ -20,7 +20,7 @@ enum Exit : int {
     kUsage = 1,
     kInput = 2,
     kOutput = 3,
-    kInternal = 4,  // 130 / 143 on SIGINT / SIGTERM: io::interrupt_exit_code() (io/interrupt.hpp)
+    kInternal = 4,  // 130 / 143 on SIGINT / SIGTERM: io::interrupt_exit_code() (gearloss/io/interrupt.hpp)
 };
 
 // The case and the options every case command takes (add_common_options): config, --ratio,

@@ -2,12 +2,12 @@
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "commands/grid_overrides.hpp"
-#include "core/errors.hpp"
-#include "io/atomic_file.hpp"
-#include "io/interrupt.hpp"
-#include "io/output_paths.hpp"
-#include "map/compare.hpp"
-#include "map/map_runner.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/atomic_file.hpp"
+#include "gearloss/io/interrupt.hpp"
+#include "gearloss/io/output_paths.hpp"
+#include "gearloss/map/compare.hpp"
+#include "gearloss/map/map_runner.hpp"
 
 namespace gearloss::app {
 namespace {
@@ -38,7 +38,7 @@ public:
         io::Case a = base, b = base;
         io::replace_oil(a, io::load_oil_file(oils_[0]));
         io::replace_oil(b, io::load_oil_file(oils_[1]));
-        for (int i : {0, 1}) {  // each oil with the grid (model/validate.hpp)
+        for (int i : {0, 1}) {  // each oil with the grid (gearloss/model/validate.hpp)
             map::CaseOverrides o = grid_.case_overrides();
             o.oil_temp = common_.oil_temp;
             o.oil = oils_[i];

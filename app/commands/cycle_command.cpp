@@ -6,13 +6,13 @@
 
 #include "commands/command.hpp"
 #include "commands/common.hpp"
-#include "io/atomic_file.hpp"
-#include "io/cycle_report.hpp"
-#include "io/data_dir.hpp"
-#include "io/drive_cycle_csv.hpp"
-#include "io/interrupt.hpp"
-#include "io/output_paths.hpp"
-#include "map/map_runner.hpp"
+#include "gearloss/io/atomic_file.hpp"
+#include "gearloss/io/cycle_report.hpp"
+#include "gearloss/io/data_dir.hpp"
+#include "gearloss/io/drive_cycle_csv.hpp"
+#include "gearloss/io/interrupt.hpp"
+#include "gearloss/io/output_paths.hpp"
+#include "gearloss/map/map_runner.hpp"
 
 namespace gearloss::app {
 namespace {
@@ -50,7 +50,7 @@ public:
         map::validate_case(k, no_grid);
         const auto pt = io::load_powertrain(k, oil_.empty() ? std::nullopt : std::optional<std::string>(oil_));
         // A named cycle: the case's own cycles/ folder first, then the cycles gearloss ships,
-        // looked up where the program runs (io/data_dir.hpp) and only when needed.
+        // looked up where the program runs (gearloss/io/data_dir.hpp) and only when needed.
         const auto dc = io::resolve_cycle(cycle_, {(std::filesystem::path(config_).parent_path() / "cycles").string()}, [&] {
             return (io::data_dir("--cycle", "'" + cycle_ + "' is a shipped cycle") / "cycles").string();
         });

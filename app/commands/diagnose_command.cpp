@@ -4,10 +4,10 @@
 
 #include "commands/command.hpp"
 #include "commands/common.hpp"
-#include "core/errors.hpp"
-#include "diagnosis/diagnose.hpp"
-#include "io/atomic_file.hpp"
-#include "io/output_paths.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/diagnosis/diagnose.hpp"
+#include "gearloss/io/atomic_file.hpp"
+#include "gearloss/io/output_paths.hpp"
 
 namespace gearloss::app {
 namespace {

@@ -1,7 +1,7 @@
 #include "commands/grid_overrides.hpp"
 
 #include "commands/common.hpp"
-#include "units/units.hpp"
+#include "gearloss/units/units.hpp"
 
 namespace gearloss::app {
 

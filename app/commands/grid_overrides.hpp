@@ -5,8 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "io/config.hpp"
-#include "map/map_runner.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/map/map_runner.hpp"
 
 namespace gearloss::app {
 

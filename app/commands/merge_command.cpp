@@ -1,8 +1,8 @@
 // gearloss merge: the shards of `map --shard K/N` joined into the file a single run writes.
 #include "commands/command.hpp"
 #include "commands/common.hpp"
-#include "io/output_paths.hpp"
-#include "map/job.hpp"
+#include "gearloss/io/output_paths.hpp"
+#include "gearloss/map/job.hpp"
 
 namespace gearloss::app {
 namespace {

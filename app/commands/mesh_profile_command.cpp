@@ -2,9 +2,9 @@
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "commands/grid_overrides.hpp"
-#include "core/errors.hpp"
-#include "io/output_paths.hpp"
-#include "io/reports.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/output_paths.hpp"
+#include "gearloss/io/reports.hpp"
 
 namespace gearloss::app {
 namespace {

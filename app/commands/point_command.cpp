@@ -2,9 +2,9 @@
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "commands/grid_overrides.hpp"
-#include "io/atomic_file.hpp"
-#include "io/reports.hpp"
-#include "map/map_runner.hpp"
+#include "gearloss/io/atomic_file.hpp"
+#include "gearloss/io/reports.hpp"
+#include "gearloss/map/map_runner.hpp"
 
 namespace gearloss::app {
 namespace {

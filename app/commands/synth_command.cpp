@@ -2,8 +2,8 @@
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "commands/grid_overrides.hpp"
-#include "diagnosis/synth.hpp"
-#include "io/output_paths.hpp"
+#include "gearloss/diagnosis/synth.hpp"
+#include "gearloss/io/output_paths.hpp"
 
 namespace gearloss::app {
 namespace {

@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.hpp"
-#include "cycle/simulate.hpp"
-#include "diagnosis/recordings.hpp"
-#include "io/config.hpp"
-#include "io/reports.hpp"
-#include "map/map_runner.hpp"
-#include "solver/operating_point.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/cycle/simulate.hpp"
+#include "gearloss/diagnosis/recordings.hpp"
+#include "gearloss/io/config.hpp"
+#include "gearloss/io/reports.hpp"
+#include "gearloss/map/map_runner.hpp"
+#include "gearloss/solver/operating_point.hpp"
 
 namespace fuzz {
 

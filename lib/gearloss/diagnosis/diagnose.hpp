@@ -1,0 +1,101 @@
+#pragma once
+// Where do simulation and recordings disagree, which physics was left out,
+// and how much better does the model fit with it?
+//
+// Two observation channels per recorded point: the loss, compared with the
+// model at the measured oil temperature (so a heat-path error cannot pose as
+// a loss error), and the oil temperature, compared with the coupled solve (a
+// real extra loss heats the oil; a sensor artefact does not). Candidates from
+// the effect library are fitted one parameter at a time inside the coupled
+// model; selection needs all three of: BIC gain (per-channel variances
+// profiled out), leave-one-out cross-validated gain, and stability across
+// bootstrap resamples.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gearloss/diagnosis/effects.hpp"
+#include "gearloss/diagnosis/recordings.hpp"
+#include "gearloss/model/model.hpp"
+
+namespace gearloss::diagnosis {
+
+struct DiagnoseOptions {
+    int bootstrap = 24;            // resamples for the stability check
+    unsigned seed = 20261121;      // resampling seed (results are reproducible)
+    double bic_threshold = 10.0;   // "very strong" evidence (Kass & Raftery 1995)
+    double cv_margin = 2.0;        // required cross-validated log-likelihood gain [nats]
+    double stability_min = 0.6;    // share of resamples in which the effect wins
+    double ambiguity_bic = 2.0;    // candidates this close in BIC are indistinguishable
+    int max_findings = 2;
+    int threads = 0;
+    // Candidate scans stay where the model is physical at every recorded point (effects.hpp
+    // valid_range: heat flow to ambient positive). false scans each parameter's full bounds;
+    // a candidate that then cannot be evaluated somewhere is rejected with the reason (tests).
+    bool physical_scan_range = true;
+    // Ceres-style check of the options (diagnose calls it): throws InputError naming the option.
+    void validate() const;
+};
+
+struct Estimate {
+    std::string name, unit;
+    double value = 0, uncertainty = 0;
+};
+
+struct Finding {
+    std::string effect, description;
+    Estimate parameter;
+    std::vector<int> rows;          // unstabilised_test: the flagged rows
+    double delta_bic = 0, stability = 0, cv_gain = 0;
+    double rmse_before = 0, rmse_after = 0, cv_rmse_before = 0, cv_rmse_after = 0;  // loss, W
+    double temp_rmse_before = 0, temp_rmse_after = 0;                              // K (0 without temperatures)
+    std::vector<std::string> equivalent;  // candidates that explain the data equally well
+    std::string separating_measurement;
+};
+
+struct Candidate {
+    std::string effect;
+    double value = 0, delta_bic = 0;
+    std::string rejected;  // why the candidate could not be evaluated (empty: it was)
+};
+
+struct Outlier {
+    int row;
+    std::string reason;
+};
+
+struct PointResidual {
+    int row;
+    double speed_rpm, torque, loss, loss_before, loss_after;
+    std::optional<double> temp, temp_before, temp_after;  // degC
+};
+
+struct Diagnosis {
+    std::string verdict;            // missing_physics | no_significant_mismatch | unexplained_mismatch
+    std::string summary;            // one paragraph in the expected voice
+    std::string location;           // where the baseline mismatch lives
+    std::string remaining;          // where an unexplained residual remains (if any)
+    std::vector<Finding> findings;
+    std::vector<Candidate> candidates;  // every effect, best first
+    std::vector<Outlier> outliers;  // also the rows not used (recorded values the model cannot evaluate)
+    std::vector<PointResidual> residuals;
+    std::vector<std::string> warnings;
+    double rmse_before = 0, rmse_after = 0, cv_rmse_after = 0, temp_rmse_before = 0, temp_rmse_after = 0;
+    bool has_temperature = false;
+    Hypothesis calibrated;          // the accepted hypothesis
+    int points = 0;
+};
+
+Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const DiagnoseOptions& opt = {});
+
+// A parameter value with its unit for reports: "1.234 W", "0.95".
+std::string fmt_value(double v, const std::string& unit);
+std::string diagnosis_text(const Diagnosis& d);
+std::string diagnosis_json(const Diagnosis& d);
+std::string residuals_csv(const Diagnosis& d);
+
+// Writes the case file `config_in` with a `calibration:` block holding the
+// accepted physics to `config_out` (artefacts are reported, not written).
+void write_calibrated_config(const std::string& config_in, const std::string& config_out, const Diagnosis& d);
+
+}  // namespace gearloss::diagnosis

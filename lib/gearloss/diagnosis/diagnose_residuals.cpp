@@ -1,0 +1,222 @@
+// diagnose: residual analysis: channel RMSE, structure left for a generic fit, where the mismatch lives.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numeric>
+
+#include "gearloss/diagnosis/diagnose_internal.hpp"
+#include "gearloss/model/validate.hpp"
+
+namespace gearloss::diagnosis::detail {
+
+ChannelStats channel_rmse(const Engine& E, const Pred& p, const Hypothesis& h) {
+    ChannelStats s;
+    int nT = 0;
+    for (int i : E.all()) {
+        const auto& o = E.obs()[i];
+        s.rmse_loss += std::pow(o.loss - p.loss[i], 2);
+        if (o.T_evidence && (h.unstabilised.empty() || !h.unstabilised[i])) {
+            s.rmse_temp += std::pow(o.T_oil - p.temp[i], 2);
+            ++nT;
+        }
+    }
+    s.rmse_loss = std::sqrt(s.rmse_loss / E.obs().size());
+    s.rmse_temp = nT ? std::sqrt(s.rmse_temp / nT) : 0.0;
+    return s;
+}
+
+// Is there structure a generic smooth model of the operating point explains?
+// Residuals regressed on [1, ln n, torque, oil temperature] per channel (OLS, Eigen).
+double structure_delta_bic(const Engine& E, const Pred& p, const Hypothesis& h) {
+    const auto& obs = E.obs();
+    const int n = static_cast<int>(obs.size());
+    auto design = [&](bool temp_only) {
+        std::vector<int> rows;
+        for (int i = 0; i < n; ++i)
+            if (!temp_only || (obs[i].T_evidence && (h.unstabilised.empty() || !h.unstabilised[i]))) rows.push_back(i);
+        Eigen::MatrixXd X(rows.size(), 4);
+        double mT = 0, mQ = 0, mO = 0;
+        for (int i : rows) {
+            mT += std::log(std::max(obs[i].w, 1e-3)) / rows.size();
+            mQ += obs[i].torque / rows.size();
+            mO += (obs[i].has_T ? obs[i].T_oil : p.temp[i]) / rows.size();
+        }
+        for (size_t r = 0; r < rows.size(); ++r) {
+            const auto& o = obs[rows[r]];
+            X(r, 0) = 1;
+            X(r, 1) = std::log(std::max(o.w, 1e-3)) - mT;
+            X(r, 2) = (o.torque - mQ) / 100.0;
+            X(r, 3) = ((o.has_T ? o.T_oil : p.temp[rows[r]]) - mO) / 10.0;
+        }
+        return std::make_pair(rows, X);
+    };
+    double dnll = 0;
+    int k = 0;
+    size_t nobs = 0;
+    {
+        auto [rows, X] = design(false);
+        Eigen::VectorXd y(rows.size());
+        for (size_t r = 0; r < rows.size(); ++r) y(r) = (obs[rows[r]].loss - p.loss[rows[r]]) / obs[rows[r]].scale;
+        if (rows.size() > 6) {
+            const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(y);
+            const double rss0 = y.squaredNorm(), rss1 = (y - X * beta).squaredNorm();
+            const int m = static_cast<int>(rows.size());
+            dnll += profiled(rss0, m, kFloorLoss) - profiled(rss1, m, kFloorLoss);
+            k += 4;
+            nobs += rows.size();
+        }
+    }
+    if (E.has_temperature()) {
+        auto [rows, X] = design(true);
+        Eigen::VectorXd y(rows.size());
+        for (size_t r = 0; r < rows.size(); ++r) y(r) = obs[rows[r]].T_oil - p.temp[rows[r]];
+        if (rows.size() > 6) {
+            const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(y);
+            const double rss0 = y.squaredNorm(), rss1 = (y - X * beta).squaredNorm();
+            const int m = static_cast<int>(rows.size());
+            dnll += profiled(rss0, m, kFloorTemp) - profiled(rss1, m, kFloorTemp);
+            k += 4;
+            nobs += rows.size();
+        }
+    }
+    return 2.0 * dnll - k * std::log(static_cast<double>(std::max<size_t>(nobs, 2)));
+}
+
+namespace {
+
+double pearson(const std::vector<double>& x, const std::vector<double>& y) {
+    const size_t n = x.size();
+    if (n < 3) return 0;
+    const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n, my = std::accumulate(y.begin(), y.end(), 0.0) / n;
+    double sxy = 0, sxx = 0, syy = 0;
+    for (size_t i = 0; i < n; ++i) {
+        sxy += (x[i] - mx) * (y[i] - my);
+        sxx += (x[i] - mx) * (x[i] - mx);
+        syy += (y[i] - my) * (y[i] - my);
+    }
+    return sxx > 0 && syy > 0 ? sxy / std::sqrt(sxx * syy) : 0.0;
+}
+
+}  // namespace
+
+Location locate(const Engine& E, const Pred& p, const Hypothesis& h, const solver::Model& model) {
+    const auto& obs = E.obs();
+    std::vector<double> lnn, tq, visc, dL, dT, lnnT, tqT, viscT;
+    for (size_t i = 0; i < obs.size(); ++i) {
+        const auto& o = obs[i];
+        const double T = o.has_T ? o.T_oil : p.temp[i];
+        lnn.push_back(std::log(std::max(o.w * to_rpm, 1e-3)));
+        tq.push_back(o.torque);
+        visc.push_back(std::log(model.oil.nu_mm2s(T)));
+        dL.push_back(o.loss - p.loss[i]);
+        if (o.T_evidence && (h.unstabilised.empty() || !h.unstabilised[i])) {
+            dT.push_back(o.T_oil - p.temp[i]);
+            lnnT.push_back(lnn.back());
+            tqT.push_back(tq.back());
+            viscT.push_back(visc.back());
+        }
+    }
+    Location L;
+    auto describe = [&](const char* what, const char* unit, const std::vector<double>& d, const std::vector<double>& ln,
+                        const std::vector<double>& t, const std::vector<double>& v, double rel_scale,
+                        std::string* clause) {
+        const size_t n = d.size();
+        if (n == 0) return std::string();
+        const double mean = std::accumulate(d.begin(), d.end(), 0.0) / n;
+        double ss = 0;
+        for (double x : d) ss += x * x;
+        const double rmse = std::sqrt(ss / n);
+        // Torque and viscosity as partial correlations given speed: hotter, thinner
+        // oil goes with higher speed, so a raw correlation would blame viscosity
+        // for what speed does.
+        const double r_n = pearson(ln, d);
+        auto partial = [&](const std::vector<double>& x) {
+            const double r_xd = pearson(x, d), r_xn = pearson(x, ln);
+            const double den = std::sqrt(std::max((1 - r_n * r_n) * (1 - r_xn * r_xn), 1e-12));
+            return std::clamp((r_xd - r_n * r_xn) / den, -1.0, 1.0);
+        };
+        const double r_t = partial(t), r_v = partial(v);
+        std::string s = fmt::format("{} residual (recorded - model): mean {:+.3g} {}", what, mean, unit);
+        if (rel_scale > 0) s += fmt::format(" ({:+.1f} %)", 100 * mean / rel_scale);
+        s += fmt::format(", RMSE {:.3g} {}", rmse, unit);
+        // Power law in speed when the residual is one-signed.
+        size_t pos = 0;
+        for (double x : d) pos += x > 0;
+        const bool one_sign = pos >= 0.85 * n || pos <= 0.15 * n;
+        double expo = std::nan("");
+        if (one_sign && std::abs(mean) > 0) {
+            std::vector<double> ld;
+            for (double x : d) ld.push_back(std::log(std::max(std::abs(x), 1e-9)));
+            const double mx = std::accumulate(ln.begin(), ln.end(), 0.0) / n;
+            const double my = std::accumulate(ld.begin(), ld.end(), 0.0) / n;
+            double sxy = 0, sxx = 0;
+            for (size_t i = 0; i < n; ++i) {
+                sxy += (ln[i] - mx) * (ld[i] - my);
+                sxx += (ln[i] - mx) * (ln[i] - mx);
+            }
+            if (sxx > 0) expo = sxy / sxx;
+        }
+        auto trend = [](double r) {
+            return std::abs(r) >= 0.7 ? (r > 0 ? "grows with" : "falls with")
+                   : std::abs(r) >= 0.4 ? (r > 0 ? "rises somewhat with" : "falls somewhat with")
+                                        : "independent of";
+        };
+        s += fmt::format("; {} speed (r = {:+.2f}", trend(r_n), r_n);
+        if (std::isfinite(expo) && std::abs(r_n) >= 0.4) s += fmt::format(", ~ n^{:.1f}", expo);
+        s += fmt::format("), {} torque (partial r = {:+.2f}), {} oil viscosity (partial r = {:+.2f})", trend(r_t), r_t,
+                         trend(r_v), r_v);
+        size_t big = 0;
+        for (size_t i = 1; i < n; ++i)
+            if (std::abs(d[i]) > std::abs(d[big])) big = i;
+        s += fmt::format("; largest {:+.3g} {} at {:.0f} rpm / {:.0f} N*m", d[big], unit, std::exp(ln[big]), t[big]);
+        if (clause) {
+            // "<what> residual grows with speed^2.8, independent of torque and viscosity"
+            std::vector<std::string> dep, indep;
+            if (std::abs(r_n) >= 0.4)
+                dep.push_back(std::isfinite(expo) ? fmt::format("{} speed (~ n^{:.1f})", r_n > 0 ? "grows with" : "falls with", expo)
+                                                  : fmt::format("{} speed", trend(r_n)));
+            else
+                indep.push_back("speed");
+            if (std::abs(r_t) >= 0.4) dep.push_back(fmt::format("{} torque", trend(r_t)));
+            else indep.push_back("torque");
+            if (std::abs(r_v) >= 0.4) dep.push_back(fmt::format("{} viscosity", trend(r_v)));
+            else indep.push_back("viscosity");
+            std::string c = fmt::format("{} residual ", what);
+            if (dep.empty()) c += fmt::format("{:+.3g} {} on average, ", mean, unit);
+            for (size_t i = 0; i < dep.size(); ++i) c += (i ? ", " : "") + dep[i];
+            if (!indep.empty()) {
+                c += dep.empty() ? "independent of " : ", independent of ";
+                for (size_t i = 0; i < indep.size(); ++i)
+                    c += (i == 0 ? "" : i + 1 == indep.size() ? " and " : ", ") + indep[i];
+            }
+            *clause = c;
+        }
+        return s;
+    };
+    double mean_loss = 0;
+    for (const auto& o : obs) mean_loss += o.loss / obs.size();
+    std::string cl, ct;
+    L.text = describe("loss", "W", dL, lnn, tq, visc, mean_loss, &cl);
+    if (!dT.empty()) L.text += "\n" + describe("oil temperature", "K", dT, lnnT, tqT, viscT, 0, &ct);
+    L.clause = cl;
+    if (!ct.empty()) L.clause += "; " + ct;
+    return L;
+}
+
+// Why a recorded point cannot be compared with the model (empty: it can): a value that is
+// not finite or outside the stated ranges, an oil or ambient temperature outside the oil's
+// validity (a recorded oil_temp_C of 9999).
+std::string recorded_fault(const solver::Model& model, const Obs& o) {
+    if (!std::isfinite(o.loss)) return "the recorded loss is not a finite number";
+    if (auto f = solver::speed_fault(o.w)) return "recorded " + *f;
+    if (auto f = solver::torque_fault(o.torque)) return "recorded " + *f;
+    if (auto f = solver::ambient_fault(o.ambient)) return *f;
+    if (model.thermal.mode == solver::ThermalMode::stabilised)
+        if (auto f = solver::oil_temperature_fault(model.oil, o.ambient)) return "ambient temperature " + *f;
+    if (o.has_T)
+        if (auto f = solver::oil_temperature_fault(model.oil, o.T_oil)) return "recorded oil temperature " + *f;
+    return {};
+}
+
+}  // namespace gearloss::diagnosis::detail

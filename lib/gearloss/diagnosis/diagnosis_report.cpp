@@ -1,0 +1,185 @@
+#include "gearloss/diagnosis/diagnose.hpp"
+#include "gearloss/io/mechanism_config.hpp"
+
+// The diagnosis as text, JSON and a residuals table, and the calibrated case file.
+#include <filesystem>
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "gearloss/io/atomic_file.hpp"
+#include "gearloss/io/csv_read.hpp"
+#include "gearloss/io/json.hpp"
+
+namespace gearloss::diagnosis {
+
+std::string diagnosis_text(const Diagnosis& d) {
+    std::string s = fmt::format("verdict: {}\n\n{}\n\nwhere the model and the recordings differ ({} points):\n{}\n", d.verdict,
+                                d.summary, d.points, d.location);
+    for (const auto& f : d.findings) {
+        s += fmt::format("\nfinding: {} — {}\n", f.effect, f.description);
+        if (f.effect == "unstabilised_test") {
+            std::string rows;
+            for (int r : f.rows) rows += (rows.empty() ? "" : ", ") + std::to_string(r);
+            s += fmt::format("  rows still warming: {}\n", rows);
+        } else {
+            s += fmt::format("  {} = {} +/- {}\n", f.parameter.name, fmt_value(f.parameter.value, f.parameter.unit),
+                             fmt_value(f.parameter.uncertainty, f.parameter.unit));
+        }
+        s += fmt::format("  evidence: delta BIC {:.1f}, cross-validated log-likelihood gain {:.1f}, chosen in {:.0f} % of {} "
+                         "bootstrap resamples\n",
+                         f.delta_bic, f.cv_gain, 100 * f.stability, 24);
+        s += fmt::format("  loss RMSE {:.3g} -> {:.3g} W, cross-validated {:.3g} -> {:.3g} W\n", f.rmse_before, f.rmse_after,
+                         f.cv_rmse_before, f.cv_rmse_after);
+        if (d.has_temperature)
+            s += fmt::format("  oil temperature RMSE {:.2f} -> {:.2f} K\n", f.temp_rmse_before, f.temp_rmse_after);
+        for (const auto& e : f.equivalent)
+            s += fmt::format("  equally good: {} — to separate them: {}\n", e, f.separating_measurement);
+    }
+    if (!d.remaining.empty() && d.verdict == "missing_physics") s += "\n" + d.remaining + "\n";
+    s += "\ncandidates (delta BIC, > 10 is very strong evidence):\n";
+    for (const auto& c : d.candidates) {
+        if (c.rejected.empty()) s += fmt::format("  {:<24} {:8.1f}   fitted {:.4g}\n", c.effect, c.delta_bic, c.value);
+        else s += fmt::format("  {:<24} rejected: {}\n", c.effect, c.rejected);
+    }
+    if (!d.outliers.empty()) {
+        s += "\noutliers:\n";
+        for (const auto& o : d.outliers) s += fmt::format("  row {}: {}\n", o.row, o.reason);
+    }
+    for (const auto& w : d.warnings) s += "warning: " + w + "\n";
+    return s;
+}
+
+std::string diagnosis_json(const Diagnosis& d) {
+    io::Json j;
+    j.begin_object();
+    j.key("verdict").value(d.verdict);
+    j.key("summary").value(d.summary);
+    j.key("location").value(d.location);
+    j.key("remaining").value(d.remaining);
+    j.key("points").value(d.points);
+    j.key("rmse_before").value(d.rmse_before);
+    j.key("rmse_after").value(d.rmse_after);
+    j.key("cv_rmse_after").value(d.cv_rmse_after);
+    if (d.has_temperature) {
+        j.key("temp_rmse_before").value(d.temp_rmse_before);
+        j.key("temp_rmse_after").value(d.temp_rmse_after);
+    }
+    j.key("findings").begin_array();
+    for (const auto& f : d.findings) {
+        j.begin_object();
+        j.key("effect").value(f.effect);
+        j.key("description").value(f.description);
+        j.key("parameters").begin_object();
+        j.key(f.parameter.name).begin_object();
+        j.key("value").value(f.parameter.value);
+        j.key("uncertainty").value(f.parameter.uncertainty);
+        j.key("unit").value(f.parameter.unit);
+        j.end_object();
+        j.end_object();
+        if (!f.rows.empty()) {
+            j.key("rows").begin_array();
+            for (int r : f.rows) j.value(r);
+            j.end_array();
+        }
+        j.key("rmse_before").value(f.rmse_before);
+        j.key("rmse_after").value(f.rmse_after);
+        j.key("cv_rmse_before").value(f.cv_rmse_before);
+        j.key("cv_rmse_after").value(f.cv_rmse_after);
+        if (d.has_temperature) {
+            j.key("temp_rmse_before").value(f.temp_rmse_before);
+            j.key("temp_rmse_after").value(f.temp_rmse_after);
+        }
+        j.key("delta_bic").value(f.delta_bic);
+        j.key("cv_loglik_gain").value(f.cv_gain);
+        j.key("stability").value(f.stability);
+        j.key("equivalent").begin_array();
+        for (const auto& e : f.equivalent) j.value(e);
+        j.end_array();
+        j.key("separating_measurement").value(f.separating_measurement);
+        j.end_object();
+    }
+    j.end_array();
+    j.key("outliers").begin_array();
+    for (const auto& o : d.outliers) {
+        j.begin_object();
+        j.key("row").value(o.row);
+        j.key("reason").value(o.reason);
+        j.end_object();
+    }
+    j.end_array();
+    j.key("candidates").begin_array();
+    for (const auto& c : d.candidates) {
+        j.begin_object();
+        j.key("effect").value(c.effect);
+        if (c.rejected.empty()) {
+            j.key("delta_bic").value(c.delta_bic);
+            j.key("fitted").value(c.value);
+        } else {
+            j.key("delta_bic").null();
+            j.key("fitted").null();
+            j.key("rejected").value(c.rejected);
+        }
+        j.end_object();
+    }
+    j.end_array();
+    j.key("warnings").begin_array();
+    for (const auto& w : d.warnings) j.value(w);
+    j.end_array();
+    j.end_object();
+    return j.str() + "\n";
+}
+
+std::string residuals_csv(const Diagnosis& d) {
+    std::string s =
+        "row,speed_in_rpm,torque_in_Nm,P_loss_W,P_model_before_W,P_model_after_W,oil_temp_C,oil_temp_model_before_C,"
+        "oil_temp_model_after_C\n";
+    auto opt = [](const std::optional<double>& v) { return v ? fmt::format("{:.4f}", *v) : std::string(); };
+    for (const auto& r : d.residuals)
+        s += fmt::format("{},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f},{},{},{}\n", r.row, r.speed_rpm, r.torque, r.loss,
+                         r.loss_before, r.loss_after, opt(r.temp), opt(r.temp_before), opt(r.temp_after));
+    return s;
+}
+
+void write_calibrated_config(const std::string& config_in, const std::string& config_out, const Diagnosis& d) {
+    namespace fs = std::filesystem;
+    YAML::Node root = YAML::Load(io::read_input_file(config_in, io::kMaxYamlFileBytes));
+    // Keep the oil file reachable from the new location.
+    if (root["oil"] && root["oil"].IsScalar()) {
+        std::error_code ec;
+        const fs::path oil = fs::absolute(fs::path(config_in).parent_path() / root["oil"].as<std::string>(), ec);
+        const fs::path out_dir = fs::absolute(fs::path(config_out), ec).parent_path();
+        const fs::path rel = fs::relative(oil, out_dir, ec);
+        root["oil"] = (ec || rel.empty() ? oil : rel).string();
+    }
+    YAML::Node cal = root["calibration"] ? root["calibration"] : YAML::Node(YAML::NodeType::Map);
+    // Every calibration term is written afresh: the hypothesis started from the case's own
+    // calibration, so it holds the terms read from this block (in either spelling).
+    for (const char* k : {"windage", "churning_factor", "bearing_drag_f0", "seal_factor", "mesh_friction_factor",
+                          "auxiliary", "viscosity_factor", "heat_rejection_factor", "cooling_per_1000rpm"})
+        cal.remove(k);
+    const auto& mechs = d.calibrated.mechanisms;
+    for (size_t i = 0; i < mechs.size(); ++i) cal.remove(std::string(mechs[i].name()));
+    for (const auto& e : io::calibration_entries(mechs, d.calibrated.cal)) {
+        const std::string v = fmt::format("{:.6g}", e.value) + (e.unit.empty() ? "" : " " + e.unit);
+        if (e.mechanism.empty()) cal[e.key] = v;
+        else cal[e.mechanism][e.key] = v;
+    }
+    std::string note = "calibrated by gearloss diagnose (" + d.verdict + ")";
+    for (const auto& f : d.findings)
+        if (!f.effect.empty()) note += "; " + f.effect;
+    const auto& a = d.calibrated.art;
+    if (a.torque_gain != 1 || a.torque_offset != 0)
+        note += fmt::format("; recordings carried a torque-sensor error (gain {:.5g}, offset {:.4g} N*m), not written as physics",
+                            a.torque_gain, a.torque_offset);
+    cal["note"] = note;
+    root["calibration"] = cal;
+    YAML::Emitter em;
+    em << root;
+    io::AtomicFile f(config_out);
+    f.write("# Written by gearloss diagnose from " + config_in + "\n");
+    f.write(em.c_str());
+    f.write("\n");
+    f.commit();
+}
+
+}  // namespace gearloss::diagnosis

@@ -1,0 +1,386 @@
+#include "gearloss/diagnosis/recordings.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+#include <sstream>
+#include <map>
+#include <unordered_map>
+#include <numbers>
+#include <optional>
+
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/csv_read.hpp"
+#include "gearloss/model/validate.hpp"
+#include "gearloss/units/units.hpp"
+
+namespace gearloss::diagnosis {
+
+namespace {
+
+constexpr double rpm = std::numbers::pi / 30.0;
+// A raw log's time stamps, in seconds, within +-kMaxTime: Unix times (1.7e9 s) fit, and the
+// resolution of a double there (1e-4 s) stays far below a sample period; beyond it a
+// 5-minute block could no longer be told from the next one.
+constexpr double kMaxTime = 1e12;
+// Exact duplicate rows named one by one in the warnings; further ones are counted.
+constexpr int kDuplicateWarnings = 10;
+
+using io::split_csv_line;
+
+// A column is a quantity and its unit, "speed_in_rpm", "speed_in_Hz", "speed_in_1/min",
+// "speed_in_rad/s", "torque_in_Nm", "P_loss_kW", "oil_temp_C", "oil_temp_K", "time_min":
+// the prefix names the quantity, the rest is a unit read by the units module (rotational
+// speeds with its convention: Hz and 1/min count revolutions, a bare 1/s is ambiguous).
+struct QuantityColumn {
+    const char* prefix;
+    const char* key;
+    const units::Dimension* dim;
+    bool temperature;  // an absolute temperature (degC, K, degF)
+};
+const QuantityColumn kQuantityColumns[] = {
+    {"speed_in_", "speed_in", &units::dim::angular_speed, false},  {"speed_out_", "speed_out", &units::dim::angular_speed, false},
+    {"torque_in_", "torque_in", &units::dim::torque, false},       {"torque_out_", "torque_out", &units::dim::torque, false},
+    {"P_loss_", "loss", &units::dim::power, false},                {"time_", "time", &units::dim::time, false},
+    {"oil_temp_", "oil", &units::dim::temperature, true},          {"ambient_temp_", "ambient", &units::dim::temperature, true},
+    {"room_temp_", "ambient", &units::dim::temperature, true},     {"wall_temp_", "wall", &units::dim::temperature, true},
+};
+
+struct ColumnDef {
+    std::string key;
+    double scale = 1, offset = 0;  // SI = scale * cell + offset
+};
+
+// The definition of a header cell; nullopt for an unknown column. A known
+// quantity with a unit that is unknown, of the wrong dimension or ambiguous is an error.
+std::optional<ColumnDef> column_definition(const std::string& name, const std::string& file, int line, int col) {
+    if (name == "label") return ColumnDef{"label"};
+    for (const auto& q : kQuantityColumns) {
+        const std::string prefix = q.prefix;
+        if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+        const std::string unit = name.substr(prefix.size());
+        try {
+            const units::UnitFactor f = units::parse_unit(unit);
+            if (f.dim != *q.dim || f.affine != q.temperature)
+                throw units::UnitError(fmt::format("unit '{}' is not {}", unit,
+                                                   q.temperature ? "a temperature (C, degC, K)" : units::to_string(*q.dim)));
+            units::Quantity one;
+            one.value = f.scale;
+            one.dim = f.dim;
+            one.explicit_angle = f.angle;
+            one.rotation = f.rotation;
+            return ColumnDef{q.key, units::as_rotational_speed(one, unit), f.offset};
+        } catch (const units::UnitError& e) {
+            throw InputError(file, line, col, io::excerpt(name), e.message);
+        }
+    }
+    return std::nullopt;
+}
+
+struct Table {
+    std::vector<std::string> header;
+    std::map<std::string, size_t> col;  // key -> column index
+    std::vector<ColumnDef> def;         // per column (key empty: unknown)
+    std::vector<std::vector<std::string>> rows;
+    std::vector<int> lines;
+    std::vector<int> data_rows;         // 1 = first data line of the file (exact duplicates merged keep their number)
+};
+
+Table read_table(const std::string& file, std::istream& in, std::vector<std::string>& warnings) {
+    std::string line;
+    int ln = 0;
+    Table t;
+    std::vector<std::string> header;
+    while (std::getline(in, line)) {
+        ++ln;
+        if (line.empty() || line[0] == '#') continue;
+        if (line.size() >= 3 && static_cast<unsigned char>(line[0]) == 0xEF) line = line.substr(3);  // UTF-8 BOM
+        header = split_csv_line(line);
+        if (header.size() == 1)
+            if (const std::string hint = io::separator_hint(line); !hint.empty()) throw InputError(file, ln, 0, "", hint);
+        break;
+    }
+    if (header.empty()) throw InputError(file, ln, 0, "", "no header line");
+    t.header = header;
+    t.def.resize(header.size());
+    std::vector<std::string> unknown;
+    for (size_t i = 0; i < header.size(); ++i) {
+        const auto def = column_definition(header[i], file, ln, static_cast<int>(i + 1));
+        if (!def) {
+            unknown.push_back(fmt::format("{}:{}:{}: unknown column '{}' ignored", file, ln, i + 1, io::excerpt(header[i])));
+            continue;
+        }
+        if (t.col.count(def->key))
+            throw InputError(file, ln, static_cast<int>(i + 1), io::excerpt(header[i]),
+                             "column duplicates another for the same quantity");
+        t.col[def->key] = i;
+        t.def[i] = *def;
+    }
+    // Not one known column: not a recordings file at all (a password file, say). Its first
+    // line is not quoted.
+    if (t.col.empty())
+        throw InputError(file, ln, 0, "",
+                         "the header names none of the recordings columns (speed_in_rpm, torque_in_Nm, P_loss_W, "
+                         "oil_temp_C, time_s, ...); this is not a gearloss recordings CSV file");
+    warnings.insert(warnings.end(), unknown.begin(), unknown.end());
+    // Exact duplicates (every cell equal after trimming): a row exported twice would count
+    // twice as evidence. Merged into the first, with a warning naming both lines.
+    std::unordered_map<std::string, int> first_line;
+    int duplicates = 0, data_row = 0;
+    while (std::getline(in, line)) {
+        ++ln;
+        if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r,") == std::string::npos) continue;
+        ++data_row;
+        auto cells = split_csv_line(line);
+        if (cells.size() != header.size()) {
+            std::string msg = fmt::format("row has {} cells, the header has {}", cells.size(), header.size());
+            if (const std::string hint = io::separator_hint(line); !hint.empty()) msg += "; " + hint;
+            throw InputError(file, ln, 0, "", msg);
+        }
+        std::string key;
+        for (const auto& c : cells) key.append(std::to_string(c.size())).append(":").append(c);
+        const auto [it, fresh] = first_line.emplace(std::move(key), ln);
+        if (!fresh) {
+            if (++duplicates <= kDuplicateWarnings)
+                warnings.push_back(fmt::format("{}:{}: row repeats line {} exactly; counted once", file, ln, it->second));
+            continue;
+        }
+        t.rows.push_back(std::move(cells));
+        t.lines.push_back(ln);
+        t.data_rows.push_back(data_row);
+    }
+    if (duplicates > kDuplicateWarnings)
+        warnings.push_back(fmt::format("{}: {} more rows repeat an earlier row exactly; each counted once", file,
+                                       duplicates - kDuplicateWarnings));
+    if (t.rows.empty()) throw InputError(file, ln, 0, "", "no data rows");
+    return t;
+}
+
+constexpr double kMaxRecordedLoss = 1e10;             // W
+constexpr double kMaxRecordedTemperature = 20273.15;  // K: 20 000 degC (a 9999 degC typo stays an outlier to report)
+
+// Value of `key` in row r, converted to SI by the definition of its header.
+double cell(const std::string& file, const Table& t, size_t r, const std::string& key, bool* present = nullptr) {
+    const auto it = t.col.find(key);
+    if (it == t.col.end() || (present && t.rows[r][it->second].empty())) {
+        if (present) *present = false;
+        return 0;
+    }
+    const std::string& s = t.rows[r][it->second];
+    const std::string& name = t.header[it->second];
+    const int column = static_cast<int>(it->second + 1);
+    const double v = io::csv_cell_number(s, file, t.lines[r], column, name);
+    if (present) *present = true;
+    const double si = v * t.def[it->second].scale + t.def[it->second].offset;
+    if (!std::isfinite(si))
+        throw InputError(file, t.lines[r], column, name, "'" + io::excerpt(s) + "' is out of range (overflows in SI units)");
+    // The ranges the model states (gearloss/model/validate.hpp), so that no statistic of the diagnosis
+    // overflows: a recording outside them is an error at its cell, not a point to fit.
+    std::optional<std::string> fault;
+    if (key == "speed_in" || key == "speed_out") fault = solver::speed_fault(si);
+    else if (key == "torque_in" || key == "torque_out") fault = solver::torque_fault(si);
+    else if (key == "loss" && !(std::abs(si) <= kMaxRecordedLoss))
+        fault = fmt::format("loss {:.4g} W beyond the stated range (|P| <= {:g} W)", si, kMaxRecordedLoss);
+    else if ((key == "oil" || key == "ambient") && !(si <= kMaxRecordedTemperature))
+        fault = fmt::format("temperature {:.4g} degC beyond the stated range (at most {:g} degC)", si - 273.15,
+                            kMaxRecordedTemperature - 273.15);
+    if (fault) throw InputError(file, t.lines[r], column, name, *fault);
+    return si;
+}
+
+// Line and column of `key` in row r, for errors about its value.
+[[noreturn]] void fail_cell(const std::string& file, const Table& t, size_t r, const std::string& key,
+                            const std::string& message) {
+    const auto it = t.col.find(key);
+    const int column = it == t.col.end() ? 0 : static_cast<int>(it->second + 1);
+    throw InputError(file, t.lines[r], column, it == t.col.end() ? key : t.header[it->second], message);
+}
+
+void require(const std::string& file, const Table& t, const char* key, const char* name) {
+    if (!t.col.count(key)) throw InputError(file, 1, 0, name, std::string("required column '") + name + "' is missing");
+}
+
+}  // namespace
+
+Recordings read_recordings(const std::string& file, const StabilisationCriterion& crit) {
+    // A regular file of at most 64 MiB (a FIFO or a device is refused by name, unread).
+    return read_recordings_text(io::read_input_file(file, io::kMaxCsvFileBytes), file, crit);
+}
+
+Recordings read_recordings_text(const std::string& text, const std::string& file, const StabilisationCriterion& crit) {
+    // The criterion bounds the block loop below: at most window/block + 1 blocks per test.
+    if (!(crit.window_s > 0 && crit.block_s > 0 && std::isfinite(crit.window_s) && crit.window_s / crit.block_s <= 1e6 &&
+          crit.max_variation >= 0))
+        throw InputError("stabilisation criterion: window and block must be positive, at most 1e6 blocks");
+    io::check_input_text(text, file, io::kMaxCsvFileBytes);
+    Recordings rec;
+    rec.file = file;
+    std::istringstream in(text);
+    Table t = read_table(file, in, rec.warnings);
+    auto get = [&](size_t r, const char* key, bool* present = nullptr) { return cell(file, t, r, key, present); };
+
+    require(file, t, "speed_in", "speed_in_rpm");
+    require(file, t, "torque_in", "torque_in_Nm");
+    if (!t.col.count("time")) {
+        if (!t.col.count("loss") && !(t.col.count("torque_out") && t.col.count("speed_out")))
+            throw InputError(file, 1, 0, "P_loss_W",
+                             "required column 'P_loss_W' is missing (or give torque_out_Nm and speed_out_rpm)");
+        for (size_t r = 0; r < t.rows.size(); ++r) {
+            RecordedPoint p;
+            p.row = t.data_rows[r];
+            p.line = t.lines[r];
+            p.speed_in = get(r, "speed_in");
+            p.torque_in = get(r, "torque_in");
+            bool has = false;
+            double v = get(r, "oil", &has);
+            if (has) p.oil_temp = v;
+            v = get(r, "ambient", &has);
+            if (has) p.ambient_temp = v;
+            v = get(r, "torque_out", &has);
+            if (has) p.torque_out = v;
+            v = get(r, "speed_out", &has);
+            if (has) p.speed_out = v;
+            v = get(r, "loss", &has);
+            if (has) p.loss = v;
+            else if (p.torque_out && p.speed_out)
+                p.loss = p.torque_in * p.speed_in - std::abs(*p.torque_out * *p.speed_out);
+            else
+                fail_cell(file, t, r, "loss", "empty loss cell and no output torque and speed");
+            if (!std::isfinite(p.loss))
+                fail_cell(file, t, r, "torque_out", "the loss from input and output power overflows (not a finite number)");
+            if (t.col.count("label")) {
+                p.label = t.rows[r][t.col["label"]];
+                if (!io::is_printable_utf8(p.label))
+                    fail_cell(file, t, r, "label", "'" + io::excerpt(p.label) +
+                                                       "': a label must be printable UTF-8 text (save the file as UTF-8)");
+            }
+            if (p.speed_in < 0) fail_cell(file, t, r, "speed_in", "negative speed");
+            if (p.oil_temp && *p.oil_temp <= 0) fail_cell(file, t, r, "oil", "below absolute zero");
+            rec.points.push_back(p);
+        }
+        return rec;
+    }
+
+    // Raw log: split into tests at set-point changes, keep the last 30 min of each.
+    rec.from_log = true;
+    for (const char* k : {"speed_out", "torque_out", "oil"})
+        if (!t.col.count(k))
+            throw InputError(file, 1, 0, k, std::string("a raw log needs the column for '") + k +
+                                                "' (speed_out_rpm, torque_out_Nm, oil_temp_C)");
+    require(file, t, "ambient", "room_temp_C");
+    struct Sample {
+        double time, n, T, n_out, T_out, oil, room;
+        int line;
+    };
+    std::vector<Sample> s;
+    for (size_t r = 0; r < t.rows.size(); ++r) {
+        Sample x{get(r, "time"), get(r, "speed_in"), get(r, "torque_in"), get(r, "speed_out"),
+                 get(r, "torque_out"), get(r, "oil"), get(r, "ambient"), t.lines[r]};
+        if (!(std::abs(x.time) <= kMaxTime))
+            fail_cell(file, t, r, "time", fmt::format("time {:g} s is out of range (at most {:g} s in magnitude)", x.time, kMaxTime));
+        if (!s.empty() && !(x.time > s.back().time))  // a property of the row, not of a cell
+            throw InputError(file, x.line, 0, "time_s", "time must increase from row to row");
+        if (!(x.oil > 0)) fail_cell(file, t, r, "oil", "below absolute zero");
+        if (!(x.room > 0)) fail_cell(file, t, r, "ambient", "below absolute zero");
+        s.push_back(x);
+    }
+    // A new test starts when speed or torque leaves the current set-point for
+    // 10 consecutive samples (20 s at 0.5 Hz); the set-point is the running mean.
+    std::vector<std::pair<size_t, size_t>> tests;
+    size_t start = 0, off = 0;
+    double sum_n = 0, sum_T = 0;
+    size_t count = 0;
+    for (size_t i = 0; i < s.size(); ++i) {
+        if (count > 0) {
+            const double n_ref = sum_n / count, T_ref = sum_T / count;
+            const bool away = std::abs(s[i].n - n_ref) > std::max(0.03 * std::abs(n_ref), 5 * rpm) ||
+                              std::abs(s[i].T - T_ref) > std::max(0.05 * std::abs(T_ref), 3.0);
+            off = away ? off + 1 : 0;
+            if (off >= 10) {
+                const size_t cut = i + 1 - off;
+                tests.push_back({start, cut});
+                start = cut;
+                sum_n = sum_T = 0;
+                count = 0;
+                for (size_t j = cut; j <= i; ++j) {
+                    sum_n += s[j].n;
+                    sum_T += s[j].T;
+                    ++count;
+                }
+                off = 0;
+                continue;
+            }
+            if (away) continue;
+        }
+        sum_n += s[i].n;
+        sum_T += s[i].T;
+        ++count;
+    }
+    tests.push_back({start, s.size()});
+    int number = 0;
+    for (const auto& [a, b] : tests) {
+        if (b - a < 2) continue;
+        ++number;
+        RecordedPoint p;
+        p.row = number;
+        p.line = s[a].line;
+        p.label = fmt::format("test {} (lines {}-{})", number, s[a].line, s[b - 1].line);
+        const double t_end = s[b - 1].time;
+        const double duration = t_end - s[a].time;
+        size_t w0 = a;
+        while (w0 < b && s[w0].time < t_end - crit.window_s) ++w0;
+        double n = 0, T = 0, no = 0, To = 0, oil = 0, room = 0, loss = 0;
+        for (size_t j = w0; j < b; ++j) {
+            n += s[j].n;
+            T += s[j].T;
+            no += s[j].n_out;
+            To += s[j].T_out;
+            oil += s[j].oil;
+            room += s[j].room;
+            loss += s[j].T * s[j].n - std::abs(s[j].T_out * s[j].n_out);
+        }
+        const double k = static_cast<double>(b - w0);
+        p.speed_in = n / k;
+        p.torque_in = T / k;
+        p.speed_out = no / k;
+        p.torque_out = To / k;
+        p.oil_temp = oil / k;
+        p.ambient_temp = room / k;
+        p.loss = loss / k;
+        for (double x : {p.speed_in, p.torque_in, *p.speed_out, *p.torque_out, *p.oil_temp, *p.ambient_temp, p.loss})
+            if (!std::isfinite(x))
+                throw InputError(file, p.line, 0, "",
+                                 fmt::format("test {} (lines {}-{}): its means overflow (not finite numbers)", number,
+                                             s[a].line, s[b - 1].line));
+        // Criterion: 5-min block means of (T_oil - T_room) over the last 30 min vary < 0.5 K.
+        // The block count is bounded as well as the time: window/block + 1 blocks at most.
+        double lo = 1e300, hi = -1e300;
+        const double max_blocks = std::ceil(crit.window_s / crit.block_s) + 1;
+        int blocks = 0;
+        for (double b0 = t_end - crit.window_s; b0 < t_end - 1e-9 && ++blocks <= max_blocks; b0 += crit.block_s) {
+            double sum = 0;
+            int m = 0;
+            for (size_t j = w0; j < b; ++j)
+                if (s[j].time >= b0 && s[j].time < b0 + crit.block_s + 1e-9) {
+                    sum += s[j].oil - s[j].room;
+                    ++m;
+                }
+            if (m == 0) continue;
+            lo = std::min(lo, sum / m);
+            hi = std::max(hi, sum / m);
+        }
+        p.stabilisation_drift = hi - lo;
+        p.stabilised = duration >= crit.window_s - 1e-6 && p.stabilisation_drift < crit.max_variation;
+        if (!p.stabilised)
+            rec.warnings.push_back(fmt::format(
+                "{}: test {} at {:.0f} rpm / {:.0f} N m never stabilised ((T_oil - T_room) varied {:.2f} K over the "
+                "last {:.0f} min; criterion < {:.1f} K)",
+                file, number, p.speed_in / rpm, p.torque_in, p.stabilisation_drift,
+                std::min(duration, crit.window_s) / 60, crit.max_variation));
+        rec.points.push_back(p);
+    }
+    return rec;
+}
+
+}  // namespace gearloss::diagnosis

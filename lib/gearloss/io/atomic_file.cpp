@@ -1,0 +1,283 @@
+#include "gearloss/io/atomic_file.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace gearloss::io {
+
+namespace {
+
+std::atomic<bool> g_stdout_closed{false};
+
+// A completed temporary file waiting for its rename.
+struct Pending {
+    int fd;
+    std::string tmp, dir, name, shown;
+};
+
+struct Transaction {
+    bool active = false;
+    std::vector<Pending> pending;
+};
+Transaction& transaction() {
+    static Transaction t;
+    return t;
+}
+
+std::string why(int e) { return std::strerror(e); }
+
+void interrupted_check(const std::string& label) {
+    if (g_interrupted.load(std::memory_order_relaxed)) throw IoError("interrupted while writing " + label);
+}
+
+bool is_regular(int fd) {
+    struct stat s {};
+    return ::fstat(fd, &s) == 0 && S_ISREG(s.st_mode);
+}
+
+// Writes all of [p, p+n) to fd. Returns false when the reader closed the pipe (EPIPE:
+// SIGPIPE is ignored by the CLI). On a pipe, FIFO or terminal it waits with poll() in
+// short steps and writes at most PIPE_BUF bytes at a time, so an interrupt is seen even
+// when the reader stalls. Throws IoError on any other error or on an interrupt.
+bool write_all(int fd, const char* p, size_t n, bool waitable, const std::string& label) {
+    while (n > 0) {
+        interrupted_check(label);
+        size_t chunk = std::min(n, size_t(1) << 20);
+        if (waitable) {
+            pollfd pfd{fd, POLLOUT, 0};
+            const int r = ::poll(&pfd, 1, 200);
+            if (r < 0 && errno != EINTR) throw IoError("cannot write " + label + ": " + why(errno));
+            if (r <= 0) continue;
+            chunk = std::min(n, size_t(PIPE_BUF));
+        }
+        const ssize_t w = ::write(fd, p, chunk);
+        if (w < 0) {
+            if (errno == EINTR) continue;
+            if (errno == EAGAIN || errno == EWOULDBLOCK) {  // a non-blocking descriptor inherited
+                waitable = true;
+                continue;
+            }
+            if (errno == EPIPE) return false;
+            throw IoError("cannot write " + label + ": " + why(errno));
+        }
+        p += w;
+        n -= static_cast<size_t>(w);
+    }
+    return true;
+}
+
+void fsync_directory(const std::string& dir) {
+    const int d = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (d < 0) return;
+    ::fsync(d);  // durability of the rename; some file systems refuse it, harmlessly
+    ::close(d);
+}
+
+void rename_into_place(Pending& p) {
+    const std::string target = (p.dir == "/" ? "/" : p.dir + "/") + p.name;
+    if (::rename(p.tmp.c_str(), target.c_str()) != 0) {
+        const int e = errno;
+        ::close(p.fd);
+        ::unlink(p.tmp.c_str());
+        throw IoError("cannot rename into '" + p.shown + "': " + why(e));
+    }
+    fsync_directory(p.dir);
+    ::close(p.fd);  // releases the lock only now: the file has its final name
+    remove_stale_temporaries(p.dir, p.name);
+}
+
+void discard(std::vector<Pending>& list) {
+    for (auto& p : list) {
+        ::close(p.fd);
+        ::unlink(p.tmp.c_str());
+    }
+    list.clear();
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), label_("'" + path_ + "'") {
+    target_ = resolve_output(path_);
+    switch (target_.kind) {
+    case OutputTarget::Kind::descriptor: {
+        fd_ = target_.fd;
+        if (fd_ == 1) {
+            label_ = "to standard output";
+            std::fflush(stdout);  // keep the order of text printed through stdio (errors: see finish_stdout)
+            closed_by_reader_ = g_stdout_closed;
+        }
+        struct stat s {};
+        if (::fstat(fd_, &s) != 0) throw IoError("cannot write " + label_ + ": " + why(errno));
+        waitable_ = !S_ISREG(s.st_mode);
+        break;
+    }
+    case OutputTarget::Kind::direct:
+        open_direct();
+        break;
+    case OutputTarget::Kind::absent:
+    case OutputTarget::Kind::regular:
+        create_temporary();
+        break;
+    }
+}
+
+// A character device or FIFO: opened for writing as it is (no O_CREAT, no O_TRUNC). A
+// FIFO without a reader is waited for in short steps, so an interrupt ends the wait.
+void AtomicFile::open_direct() {
+    const std::string p = target_.path();
+    const bool fifo = S_ISFIFO(target_.st.st_mode);
+    const int flags = O_WRONLY | O_NOCTTY | O_CLOEXEC | O_NOFOLLOW | (fifo ? O_NONBLOCK : 0);
+    for (;;) {
+        fd_ = ::open(p.c_str(), flags);
+        if (fd_ >= 0) break;
+        if (errno == EINTR) continue;
+        if (fifo && errno == ENXIO) {  // no reader yet
+            interrupted_check(label_);
+            const timespec step{0, 50'000'000};
+            ::nanosleep(&step, nullptr);
+            continue;
+        }
+        throw IoError("cannot write " + label_ + ": " + why(errno));
+    }
+    own_fd_ = true;
+    struct stat s {};
+    if (::fstat(fd_, &s) != 0 || s.st_dev != target_.st.st_dev || s.st_ino != target_.st.st_ino || S_ISREG(s.st_mode)) {
+        ::close(fd_);
+        fd_ = -1;
+        throw IoError("cannot write " + label_ + ": the file changed while it was opened");
+    }
+    if (fifo) ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
+    waitable_ = true;
+}
+
+void AtomicFile::create_temporary() {
+    std::string tmpl = (target_.dir == "/" ? "/" : target_.dir + "/") + temp_prefix(target_.name) + "XXXXXX";
+    fd_ = ::mkostemp(tmpl.data(), O_CLOEXEC);  // O_CREAT | O_EXCL, mode 0600: never follows a planted link
+    if (fd_ < 0)
+        throw IoError("cannot write " + label_ + ": cannot create a temporary file in '" + target_.dir + "': " + why(errno));
+    own_fd_ = true;
+    tmp_ = tmpl;
+    ::flock(fd_, LOCK_EX | LOCK_NB);  // "in use": remove_stale_temporaries leaves it alone
+    mode_t mode = 0666 & ~current_umask();
+    if (target_.kind == OutputTarget::Kind::regular) {
+        const struct stat& st = target_.st;
+        // The owner can only be given away by root; the group also by a member of it.
+        // Failures leave the file to the caller, as a new file would be.
+        if (::geteuid() == 0) {
+            if (::fchown(fd_, st.st_uid, st.st_gid) != 0) {}
+        } else if (st.st_gid != ::getegid()) {
+            if (::fchown(fd_, static_cast<uid_t>(-1), st.st_gid) != 0) {}
+        }
+        mode = st.st_mode & 07777;  // after fchown, which may clear set-id bits
+    }
+    if (::fchmod(fd_, mode) != 0) {
+        const int e = errno;
+        ::close(fd_);
+        ::unlink(tmp_.c_str());
+        fd_ = -1;
+        throw IoError("cannot write " + label_ + ": " + why(e));
+    }
+}
+
+AtomicFile::~AtomicFile() {
+    if (own_fd_ && fd_ >= 0) ::close(fd_);
+    if (!committed_ && !tmp_.empty()) ::unlink(tmp_.c_str());
+}
+
+void AtomicFile::write(std::string_view s) {
+    if (closed_by_reader_) return;
+    interrupted_check(label_);
+    buf_.append(s);
+    if (buf_.size() >= (size_t(1) << 20)) flush_buffer();
+}
+
+void AtomicFile::flush_buffer() {
+    if (!closed_by_reader_ && !buf_.empty() && !write_all(fd_, buf_.data(), buf_.size(), waitable_, label_)) {
+        closed_by_reader_ = true;
+        if (target_.kind == OutputTarget::Kind::descriptor && fd_ == 1) g_stdout_closed = true;
+    }
+    buf_.clear();
+}
+
+void AtomicFile::commit() {
+    if (committed_) return;
+    flush_buffer();
+    if (tmp_.empty()) {  // written directly
+        if (own_fd_) {
+            const int fd = fd_;
+            fd_ = -1;
+            if (::close(fd) != 0 && errno != EINTR) throw IoError("cannot write " + label_ + ": " + why(errno));
+        }
+        committed_ = true;
+        return;
+    }
+    if (::fsync(fd_) != 0) throw IoError("cannot write " + label_ + ": " + why(errno));
+    interrupted_check(label_);
+    Pending p{fd_, tmp_, target_.dir, target_.name, path_};
+    fd_ = -1;
+    committed_ = true;  // the temporary file now belongs to the transaction or is renamed
+    auto& tx = transaction();
+    if (tx.active) tx.pending.push_back(std::move(p));
+    else rename_into_place(p);
+}
+
+OutputTransaction::OutputTransaction() { transaction().active = true; }
+
+OutputTransaction::~OutputTransaction() {
+    auto& tx = transaction();
+    discard(tx.pending);
+    tx.active = false;
+}
+
+void OutputTransaction::publish() {
+    auto& tx = transaction();
+    finish_stdout();
+    if (g_interrupted) throw IoError("interrupted; no output file written");
+    std::vector<Pending> list = std::move(tx.pending);
+    tx.pending.clear();
+    tx.active = false;
+    for (size_t i = 0; i < list.size(); ++i) {
+        try {
+            rename_into_place(list[i]);
+        } catch (...) {
+            std::vector<Pending> rest(list.begin() + static_cast<long>(i) + 1, list.end());
+            discard(rest);
+            throw;
+        }
+    }
+}
+
+bool stdout_closed() { return g_stdout_closed; }
+
+void finish_stdout() {
+    const bool flushed = std::fflush(stdout) == 0;
+    const int e = errno;
+    if (flushed && !std::ferror(stdout)) return;
+    std::clearerr(stdout);
+    // An earlier stdio write may have failed: a pipe without a reader is a quiet end.
+    pollfd pfd{STDOUT_FILENO, POLLOUT, 0};
+    if ((!flushed && e == EPIPE) || g_stdout_closed || (::poll(&pfd, 1, 0) == 1 && (pfd.revents & POLLERR))) {
+        g_stdout_closed = true;
+        return;
+    }
+    throw IoError("cannot write to standard output: " + (flushed ? std::string("write error") : why(e)));
+}
+
+void write_stdout(std::string_view text) {
+    if (g_stdout_closed) return;
+    finish_stdout();
+    if (g_stdout_closed) return;
+    if (!write_all(STDOUT_FILENO, text.data(), text.size(), !is_regular(STDOUT_FILENO), "to standard output"))
+        g_stdout_closed = true;
+}
+
+}  // namespace gearloss::io

@@ -1,0 +1,75 @@
+#pragma once
+// Output files are written to a temporary file beside the target and renamed over it
+// only when complete, so a reader never sees a partial file and an interrupted run
+// leaves the previous file (or none). Details (lib/gearloss/io/output_paths.hpp):
+//  - the temporary file TARGET.tmp.gearloss-XXXXXX is created with O_EXCL (mkostemp) in
+//    the directory of the file finally written, with the target's mode (and owner, as
+//    root) when it exists, else 0666 & ~umask; it is flock'ed while in use;
+//  - a symbolic link is written through: the link stays, the file it names is replaced;
+//  - "-", /dev/stdout, /dev/fd/N, a character device or a FIFO is written directly,
+//    never replaced;
+//  - every write, flush, fsync, close and rename is checked (IoError, exit 3); a reader
+//    that closed its pipe (EPIPE, with SIGPIPE ignored) ends that stream quietly;
+//  - an interrupt (g_interrupted) stops the writing (IoError) and nothing is renamed.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gearloss/core/errors.hpp"
+#include "gearloss/core/interrupt.hpp"
+#include "gearloss/io/output_paths.hpp"
+
+namespace gearloss::io {
+
+class AtomicFile {
+public:
+    explicit AtomicFile(std::string path);   // "-" writes to stdout directly
+    ~AtomicFile();                            // discards the temporary file if not committed
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    void write(std::string_view s);
+    // Flush, fsync and rename (inside an OutputTransaction: the rename waits for
+    // publish()); throws IoError on failure or interrupt.
+    void commit();
+
+private:
+    void flush_buffer();
+    void open_direct();
+    void create_temporary();
+
+    std::string path_, label_;  // as given; "'path'" or "to standard output" for messages
+    OutputTarget target_;
+    int fd_ = -1;
+    bool own_fd_ = false, waitable_ = false, closed_by_reader_ = false, committed_ = false;
+    std::string tmp_;           // temporary file, empty when written directly
+    std::string buf_;
+};
+
+// The files of one command appear together: while an OutputTransaction exists,
+// AtomicFile::commit() leaves the completed temporary file in place and publish()
+// renames them all, after flushing stdout (checked) and checking for an interrupt. The
+// destructor removes the temporary files not published (error, interrupt).
+class OutputTransaction {
+public:
+    OutputTransaction();
+    ~OutputTransaction();
+    OutputTransaction(const OutputTransaction&) = delete;
+    OutputTransaction& operator=(const OutputTransaction&) = delete;
+    void publish();
+};
+
+// Text on standard output, checked: IoError on a write error (e.g. ENOSPC on /dev/full);
+// a closed pipe (EPIPE) ends standard output quietly and later text is dropped.
+void write_stdout(std::string_view text);
+// Flushes stdio's stdout, checked as write_stdout.
+void finish_stdout();
+// A reader closed the pipe on standard output.
+bool stdout_closed();
+
+// IoError (exit 3) and the interrupt flag (set by the signal handler: long loops stop and
+// outputs are discarded) are core's; the io names stay.
+using gearloss::g_interrupted;
+using gearloss::IoError;
+
+}  // namespace gearloss::io

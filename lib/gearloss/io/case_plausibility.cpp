@@ -1,0 +1,80 @@
+#include "gearloss/io/case_plausibility.hpp"
+
+#include <cstdio>
+#include <fmt/format.h>
+#include <mutex>
+#include <set>
+#include <variant>
+
+namespace gearloss::io {
+
+void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication lubrication) {
+    const YamlNode housing = root.at("housing");
+    // The housing box is known when the heat path is a housing surface with its height and length.
+    std::optional<solver::HousingBox> box;
+    if (auto hr = root.at("thermal").get("heat_rejection"))
+        if (auto hs = hr->get("housing"); hs && hs->has("height") && hs->has("length"))
+            if (const auto* s = std::get_if<thermal::HousingSurface>(&c.model.thermal.rejection.model))
+                box = solver::housing_box(s->area, s->height, s->length);
+
+    if (auto t = root.at("thermal").get("oil_temperature"))
+        if (c.model.thermal.mode == solver::ThermalMode::fixed) {
+            const std::string located = t->located("");
+            c.oil_temperature_key = located.substr(0, located.size() - 2);  // without the trailing ": "
+        }
+    std::optional<double> housing_height;
+    if (auto hr = root.at("thermal").get("heat_rejection"))
+        if (auto hs = hr->get("housing"); hs && hs->has("height"))
+            if (const auto* s = std::get_if<thermal::HousingSurface>(&c.model.thermal.rejection.model))
+                housing_height = s->height;
+    using J = solver::PlausibilityFinding::Subject;
+    using S = solver::PlausibilityFinding::Severity;
+    const auto gears = root.at("gears").items();
+    for (const auto& f : solver::check_plausibility(c.model, lubrication, box, housing_height)) {
+        // (YamlNode is never assigned: assigning a YAML::Node rebinds the document's data.)
+        const auto locate = [&]() -> YamlNode {
+            switch (f.subject) {
+                case J::oil_level:
+                    if (auto n = housing.get("oil_level")) return *n;
+                    return housing;
+                case J::oil_volume: return housing.at("oil_volume");
+                case J::gear:
+                    if (f.gear >= 0 && static_cast<size_t>(f.gear) < gears.size()) {
+                        const YamlNode& g = gears[static_cast<size_t>(f.gear)];
+                        if (auto im = g.get("immersion")) return *im;
+                        if (auto lv = housing.get("oil_level")) return *lv;
+                        return g;
+                    }
+                    return housing;
+                case J::lubrication:
+                    if (auto n = housing.get("lubrication")) return *n;
+                    if (auto lv = housing.get("oil_level")) return *lv;
+                    return housing;
+            }
+            return housing;
+        };
+        const YamlNode where = locate();
+        if (f.severity == S::error) where.fail(f.message);
+        c.warnings.push_back(where.located((f.severity == S::note ? "note: " : "warning: ") + f.message));
+    }
+}
+
+void check_oil_temperature(Case& c, const std::string& option) {
+    const auto& m = c.model;
+    if (m.thermal.mode != solver::ThermalMode::fixed || !(m.thermal.oil_temperature > m.oil.max_temperature)) return;
+    const std::string what = fmt::format("warning: fixed oil temperature {:.1f} degC is above the permissible {:.1f} degC "
+                                         "of oil '{}' (its 'max_temperature')",
+                                         m.thermal.oil_temperature - 273.15, m.oil.max_temperature - 273.15, m.oil.name);
+    if (option.empty() && !c.oil_temperature_key.empty()) c.warnings.push_back(c.oil_temperature_key + ": " + what);
+    else c.warnings.push_back(InputError::format("", 0, 0, option.empty() ? "thermal.oil_temperature" : option, what));
+}
+
+void print_warnings(const Case& c) {
+    static std::mutex mutex;
+    static std::set<std::string> printed;
+    const std::lock_guard lock(mutex);
+    for (const auto& w : c.warnings)
+        if (printed.insert(w).second) std::fprintf(stderr, "gearloss: %s\n", w.c_str());
+}
+
+}  // namespace gearloss::io

@@ -1,0 +1,20 @@
+#pragma once
+// Runs the model's plausibility checks (gearloss/solver/plausibility.hpp) on a loaded case and
+// locates each finding at the YAML key it concerns: errors throw InputError, warnings
+// and notes go to Case::warnings.
+#include "gearloss/io/config.hpp"
+#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/solver/plausibility.hpp"
+
+namespace gearloss::io {
+
+void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication lubrication);
+
+// After the command-line overrides: a fixed oil temperature above the oil's permissible
+// one is a warning (`option` names the override, or empty for the case file's value).
+void check_oil_temperature(Case& c, const std::string& option);
+
+// Prints the case's warnings on stderr, each once per process (sweeps re-read the case).
+void print_warnings(const Case& c);
+
+}  // namespace gearloss::io

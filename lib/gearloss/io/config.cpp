@@ -1,0 +1,267 @@
+// Case loader: assembles a Case (gearbox ratios, housing, operating grid) from the sections of config_*.cpp.
+#include "gearloss/io/config.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <map>
+
+#include "gearloss/io/case_plausibility.hpp"
+#include "gearloss/io/config_internal.hpp"
+#include "gearloss/io/csv_read.hpp"
+#include "gearloss/io/issue_location.hpp"
+#include "gearloss/io/mechanism_config.hpp"
+#include "gearloss/io/sweep.hpp"
+#include "gearloss/model/validate.hpp"
+
+namespace gearloss::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+// Position where the unit starts in "600rpm" / "1.5e-3 m" (an 'e' followed by a
+// digit or sign belongs to the number); npos when there is no unit.
+size_t unit_start(const std::string& s) {
+    // The unit is whatever follows the number ("700 1/min": "1/min", not "min").
+    size_t b = 0;
+    while (b < s.size() && s[b] == ' ') ++b;
+    if (b < s.size() && s[b] == '+') ++b;
+    double v = 0;
+    const auto [ptr, ec] = std::from_chars(s.data() + b, s.data() + s.size(), v);
+    if (ec != std::errc() && ec != std::errc::result_out_of_range) return std::string::npos;
+    size_t u = static_cast<size_t>(ptr - s.data());
+    while (u < s.size() && s[u] == ' ') ++u;
+    return u < s.size() ? u : std::string::npos;
+}
+}  // namespace
+
+std::vector<double> parse_value_list(const std::string& text, const units::Dimension& d, const char* what,
+                                     const char* example) {
+    // Items are comma-separated; a unit on the last item applies to items
+    // without one: "600,700,800rpm".
+    std::vector<std::string> parts;
+    size_t start = 0;
+    for (size_t i = 0; i <= text.size(); ++i)
+        if (i == text.size() || text[i] == ',') {
+            std::string p = text.substr(start, i - start);
+            p.erase(0, p.find_first_not_of(' '));
+            p.erase(p.find_last_not_of(' ') + 1);
+            parts.push_back(p);
+            start = i + 1;
+        }
+    const size_t u = unit_start(parts.back());
+    const std::string unit = u == std::string::npos ? "" : parts.back().substr(u);
+    std::vector<double> out;
+    for (const auto& p : parts) {
+        if (p.empty()) throw InputError("", 0, 0, what, "empty item in '" + text + "' (expected e.g. '" + example + "')");
+        const std::string q = unit_start(p) == std::string::npos ? p + " " + unit : p;
+        units::Quantity v;
+        try {
+            v = units::parse_quantity(q);
+        } catch (const units::UnitError& e) {
+            throw InputError("", 0, 0, what, e.message + " (expected e.g. '" + example + "')");
+        }
+        if (v.dim != d || v.absolute_temperature)
+            throw InputError("", 0, 0, what,
+                             "'" + p + "' has dimension " + units::to_string(v.dim) + ", expected " + units::to_string(d) +
+                                 " (e.g. '" + example + "')");
+        try {
+            out.push_back(units::as_rotational_speed(v, q));
+        } catch (const units::UnitError& e) {
+            throw InputError("", 0, 0, what, e.message + " (expected e.g. '" + example + "')");
+        }
+    }
+    return out;
+}
+
+namespace {
+
+std::vector<double> load_axis(const YamlNode& n, const units::Dimension& d, const char* example) {
+    std::vector<double> v;
+    if (n.is_sequence()) {
+        for (const auto& it : n.items()) v.push_back(it.as_quantity(d, example));
+    } else if (n.is_map()) {
+        n.allow_keys({"from", "to", "count"});
+        const double a = n.at("from").as_quantity(d, example), b = n.at("to").as_quantity(d, example);
+        const int c = n.at("count").as_int();
+        if (c < 1 || c > 1000000) n.at("count").fail("count must be 1..1000000");
+        for (int i = 0; i < c; ++i) v.push_back(c == 1 ? a : a + (b - a) * i / (c - 1));
+    } else {
+        n.fail(std::string("expected a list of values or {from, to, count}, e.g. [") + example + "]");
+    }
+    if (v.empty()) n.fail("empty list");
+    return v;
+}
+
+}  // namespace
+
+void replace_oil(Case& c, const lubricant::Oil& oil) {
+    c.model.oil = oil;
+    for (auto& b : c.model.gearbox.bearings) detail::set_bearing_friction(b.spec, oil);
+}
+
+Case load_case(const std::string& file, const std::optional<std::string>& ratio_override) {
+    const std::string text = read_input_file(file, kMaxYamlFileBytes);  // a regular file, bounded (gearloss/io/csv_read.hpp)
+    return load_case_text(text, file, fs::path(file).parent_path().string(), ratio_override);
+}
+
+namespace {
+Case load_case_impl(const std::string& text, const std::string& file, const std::string& base_dir,
+                    const std::optional<std::string>& ratio_override);
+}
+
+Case load_case_text(const std::string& text, const std::string& file, const std::string& base_dir,
+                    const std::optional<std::string>& ratio_override) {
+    try {
+        return load_case_impl(text, file, base_dir, ratio_override);
+    } catch (const YAML::Exception& e) {
+        // Any structural surprise inside yaml-cpp is still an input error with its position.
+        throw InputError(file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1, "",
+                         "unexpected YAML structure: " + e.msg);
+    }
+}
+
+namespace {
+Case load_case_impl(const std::string& text, const std::string& file, const std::string& base_dir,
+                    const std::optional<std::string>& ratio_override) {
+    Case c;
+    c.file = file;
+    const YamlNode root = YamlNode::load_text(text, file);
+    // Where every item and key was written, kept with the model for errors found later.
+    auto source = std::make_shared<SourceIndex>();
+    source->set_file(file);
+    index_sources(root, "", *source);
+    root.allow_keys({"name", "description", "oil", "materials", "shafts", "gears", "meshes", "bearings", "seals",
+                     "clutches", "housing", "thermal", "gearbox", "operating", "options", "mechanisms", "calibration", "vehicle",
+                     "sweep"});
+    c.sweep = read_sweep(root);
+    auto& m = c.model;
+    m.name = root.has("name") ? root.at("name").as_title() : fs::path(file).stem().string();
+
+    const YamlNode oil = root.at("oil");
+    if (oil.is_scalar()) {
+        const fs::path p = fs::path(base_dir) / oil.as_string();
+        std::error_code ec;  // non-throwing: a malformed name is an input error, not a crash
+        if (!fs::is_regular_file(p, ec)) oil.fail("oil file '" + excerpt(p.string(), 200) + "' does not exist or is not a file");
+        const YamlNode oil_root = YamlNode::load_file(p.string());
+        const YamlNode oil_node = oil_root.has("oil") ? oil_root.at("oil") : oil_root;
+        m.oil = load_oil(oil_node);
+        index_sources(oil_node, "oil", *source);  // the oil's keys in their own file
+    } else {
+        m.oil = load_oil(oil);
+    }
+
+    detail::Loader L{root, m, {}, {}, {}};
+    L.load_materials();
+    L.load_shafts();
+    L.load_gears();
+    L.load_meshes();
+    L.load_bearings();
+    L.load_seals();
+    L.load_clutches();
+
+    const YamlNode gbn = root.at("gearbox");
+    gbn.allow_keys({"input", "output", "ratio", "ratios"});
+    m.gearbox.input_shaft = L.shaft_ref(gbn.at("input"));
+    m.gearbox.output_shaft = L.shaft_ref(gbn.at("output"));
+    if (auto rs = gbn.get("ratios")) {
+        for (auto& [name, rn] : rs->entries()) {
+            if (const std::string why = name_problem(name, YamlNode::kMaxNameBytes); !why.empty())
+                rn.fail("ratio '" + excerpt(name) + "': " + why);
+            rn.allow_keys({"engage", "note"});
+            std::vector<int> eng;
+            for (const auto& g : rn.at("engage").items()) {
+                const int gi = L.gear_ref(g);
+                if (!m.gearbox.gears[gi].free) g.fail("gear '" + g.as_string() + "' is fixed to its shaft; only 'mount: free' gears are engaged");
+                eng.push_back(gi);
+            }
+            m.gearbox.ratios.push_back({name, eng});
+        }
+        const std::string sel = ratio_override ? *ratio_override : (gbn.has("ratio") ? gbn.at("ratio").as_string() : "");
+        if (sel.empty()) gbn.fail("several ratios are defined; select one with 'ratio' (or --ratio)");
+        const auto it = std::find_if(m.gearbox.ratios.begin(), m.gearbox.ratios.end(),
+                                     [&](const auto& r) { return r.name == sel; });
+        if (it == m.gearbox.ratios.end()) {
+            const std::string all = fmt::format("{}", fmt::join(m.ratio_names(), ", "));
+            if (ratio_override) throw InputError(file, 0, 0, "--ratio", "unknown ratio '" + sel + "'; defined: " + all);
+            gbn.at("ratio").fail("unknown ratio '" + excerpt(sel) + "'; defined: " + all);
+        }
+        m.gearbox.engaged = it->engaged;
+        m.ratio = sel;
+    } else if (ratio_override) {
+        throw InputError(file, 0, 0, "--ratio", "the config defines no 'gearbox.ratios'");
+    }
+
+    const YamlNode h = root.at("housing");
+    h.allow_keys({"oil_volume", "oil_level", "lubrication", "note"});
+    const auto lubrication = h.has("lubrication") ? h.at("lubrication").as_enum<solver::Lubrication>(
+                                                        {{"dip", solver::Lubrication::dip}, {"injection", solver::Lubrication::injection}})
+                                                  : solver::Lubrication::dip;
+    m.gearbox.oil_volume = h.positive_quantity("oil_volume", units::dim::volume, "2 L");
+    if (auto lv = h.get("oil_level")) m.gearbox.oil_level = lv->as_quantity(units::dim::length, "-60 mm");
+
+    detail::load_thermal(root.at("thermal"), m.thermal);
+    if (auto o = root.get("options")) detail::load_options(*o, m);
+    if (auto mech = root.get("mechanisms")) load_mechanism_settings(*mech, m);
+    if (auto cal = root.get("calibration")) load_calibration(*cal, m);
+
+    const YamlNode op = root.at("operating");
+    op.allow_keys({"speeds", "torques", "points"});
+    if (op.has("points")) {
+        if (op.has("speeds") || op.has("torques")) op.fail("give either 'points' or 'speeds' and 'torques'");
+        c.grid.is_grid = false;
+        for (const auto& p : op.at("points").items()) {
+            const auto pr = p.items();
+            if (pr.size() != 2) p.fail("each point is [speed, torque], e.g. [800 rpm, 250 N*m]");
+            c.grid.points.emplace_back(pr[0].as_quantity(units::dim::angular_speed, "800 rpm"),
+                                       pr[1].as_quantity(units::dim::torque, "250 N*m"));
+        }
+        if (c.grid.points.empty()) op.at("points").fail("empty list");
+    } else {
+        c.grid.speeds = load_axis(op.at("speeds"), units::dim::angular_speed, "800 rpm");
+        c.grid.torques = load_axis(op.at("torques"), units::dim::torque, "250 N*m");
+    }
+
+    if (auto v = root.get("vehicle")) {
+        load_vehicle(*v, c);
+        for (size_t i = 0; i < c.vehicle->gears.size(); ++i)
+            if (std::ranges::none_of(m.gearbox.ratios, [&](const auto& r) { return r.name == c.vehicle->gears[i]; }))
+                v->at("gears").items()[i].fail("'" + excerpt(c.vehicle->gears[i]) + "' is not one of gearbox.ratios");
+    }
+
+    m.source = std::move(source);
+    // Errors found once the model is assembled point at the item they come from. Every
+    // ratio is checked here, so a ratio selected at run time (Model::select_ratio, for a
+    // drive cycle or a loss table per gear) needs no check that could fail without a line.
+    const auto assemble = [&](solver::Model& mm) {
+        const bool other = mm.ratio != m.ratio;
+        const std::string in_ratio = other ? "ratio '" + mm.ratio + "': " : "";
+        const YamlNode ratio_node = other ? gbn.at("ratios").at(mm.ratio) : gbn;
+        try {
+            mm.finalise();
+        } catch (const gearbox::TopologyError& e) {
+            (e.section.empty() ? ratio_node : locate_in_case(root, e.section, e.item, e.key)).fail(in_ratio + e.message);
+        }
+        if (const auto issues = solver::validate(mm); !issues.empty()) {
+            const auto& first = issues.front();
+            locate_in_case(root, first.section, first.item, first.key).fail(in_ratio + solver::summarise(issues));
+        }
+    };
+    assemble(m);
+    if (m.gearbox.ratios.size() > 1) {
+        solver::Model other = m;
+        for (const auto& r : m.gearbox.ratios)
+            if (r.name != m.ratio) {
+                other.gearbox.engaged = r.engaged;
+                other.ratio = r.name;
+                assemble(other);
+            }
+    }
+    check_case_plausibility(root, c, lubrication);
+    return c;
+}
+}  // namespace
+
+}  // namespace gearloss::io

@@ -1,0 +1,65 @@
+#pragma once
+// YAML case description -> solver::Model + operating grid (docs/config.md).
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/model/model.hpp"
+#include "gearloss/torque_converter/torque_converter.hpp"
+#include "gearloss/vehicle/vehicle.hpp"
+
+namespace gearloss::io {
+
+struct OperatingGrid {
+    // Either a speeds x torques grid (speed outer, torque inner) or a point list.
+    std::vector<double> speeds, torques;             // rad/s, N*m
+    std::vector<std::pair<double, double>> points;   // (rad/s, N*m)
+    bool is_grid = true;
+    size_t size() const { return is_grid ? speeds.size() * torques.size() : points.size(); }
+    std::pair<double, double> at(size_t i) const {
+        if (!is_grid) return points[i];
+        return {speeds[i / torques.size()], torques[i % torques.size()]};
+    }
+};
+
+// One axis of a design-space sweep (gearloss/io/sweep.hpp).
+struct SweepAxis {
+    std::string label;               // CSV column name (the first path)
+    std::vector<std::string> paths;  // set together (e.g. both gears of a mesh)
+    std::vector<std::string> values; // YAML scalars as written ("3.75 mm", "oils/75W140-A.yaml")
+};
+
+struct Case {
+    std::string file;
+    solver::Model model;
+    OperatingGrid grid;
+    std::optional<vehicle::Vehicle> vehicle;  // for `gearloss cycle`
+    std::optional<torque_converter::TorqueConverter> torque_converter;
+    std::vector<SweepAxis> sweep;  // `sweep:` axes (map runs every combination; gearloss/io/sweep.hpp)
+    // Plausibility findings ("file:line:col: key: warning: ..."), printed by every
+    // command on stderr and listed by `check`.
+    std::vector<std::string> warnings;
+    std::string oil_temperature_key;  // "file:line:col: thermal.oil_temperature" when the case fixes it
+};
+
+// The `vehicle` block (docs/config.md) into c.vehicle (and c.torque_converter).
+void load_vehicle(const YamlNode& n, Case& c);
+
+// Loads a case; `ratio` overrides gearbox.ratio.
+Case load_case(const std::string& file, const std::optional<std::string>& ratio = std::nullopt);
+// Same from text; `name` appears in messages, relative oil files resolve against `base_dir`.
+Case load_case_text(const std::string& text, const std::string& name, const std::string& base_dir,
+                    const std::optional<std::string>& ratio = std::nullopt);
+// Loads an oil from a YAML mapping (inline or a separate file).
+lubricant::Oil load_oil(const YamlNode& node);
+lubricant::Oil load_oil_file(const std::string& file);
+// Replaces the oil of a loaded case (bearing friction pairs follow the new oil).
+void replace_oil(Case& c, const lubricant::Oil& oil);
+
+// "600,700,800rpm" or "600 rpm, 700 rpm" -> SI values of the expected dimension.
+std::vector<double> parse_value_list(const std::string& text, const units::Dimension& d, const char* what,
+                                     const char* example);
+
+}  // namespace gearloss::io

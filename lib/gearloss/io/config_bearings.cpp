@@ -1,0 +1,207 @@
+// Case loader: bearings (SKF constants, seals, oil bath), shaft seals and wet clutch packs (docs/config.md).
+#include <fmt/format.h>
+#include <set>
+#include <string>
+
+#include "gearloss/bearings/skf_constants.hpp"
+#include "gearloss/io/config_internal.hpp"
+#include "gearloss/io/csv_read.hpp"
+
+namespace gearloss::io::detail {
+
+namespace dim = units::dim;
+using lubricant::BaseOil;
+
+// SKF sliding friction pair of a bearing from the oil (or the SKF defaults by type and base oil).
+void set_bearing_friction(bearings::BearingSpec& s, const lubricant::Oil& oil) {
+    const bool synthetic = oil.base != BaseOil::mineral && oil.base != BaseOil::transmission_fluid;
+    const auto& pair = bearings::is_roller(s.type) ? oil.bearing_roller : oil.bearing_ball;
+    s.mu_bl = pair.mu_bl;
+    s.mu_ehl = pair.mu_ehl ? *pair.mu_ehl
+                           : bearings::default_mu_ehl(s.type, synthetic, oil.base == BaseOil::transmission_fluid);
+}
+
+void Loader::load_bearings() {
+    if (!root.has("bearings")) return;
+    std::set<std::string> names;
+    for (const auto& n : root.at("bearings").items()) {
+        n.allow_keys({"name", "type", "series", "designation", "d", "D", "B", "C0", "Y", "shaft", "position",
+                      "under_gear", "locating", "lubrication", "seals", "seal_counterface", "constants", "oil_bath",
+                      "note", "count"});
+        gearbox::Bearing b;
+        b.name = n.at("name").as_name();
+        if (!names.insert(b.name).second) n.at("name").fail("duplicate bearing name '" + b.name + "'");
+        auto& s = b.spec;
+        const YamlNode tn = n.at("type");
+        const auto t = bearings::bearing_type_from_string(tn.as_string());
+        if (!t) {
+            std::string all;
+            for (const auto& x : bearings::bearing_type_names()) all += (all.empty() ? "" : ", ") + x;
+            tn.fail("unknown bearing type '" + excerpt(tn.as_string()) + "'; known: " + all);
+        }
+        s.type = *t;
+        s.d = n.positive_quantity("d", dim::length, "35 mm");
+        s.D = n.positive_quantity("D", dim::length, "80 mm");
+        if (s.d >= s.D)
+            n.at("D").fail(fmt::format("outer diameter D = {} mm must exceed bore d = {} mm", s.D * 1e3, s.d * 1e3));
+        s.B = n.has("B") ? n.positive_quantity("B", dim::length, "21 mm") : 0.25 * (s.D - s.d);
+        if (!n.has("B") && bearings::is_roller(s.type) && n.has("oil_bath"))
+            n.fail("give the width 'B' for roller bearings in an oil bath (drag depends on it)");
+        if (n.has("C0")) s.C0 = n.positive_quantity("C0", dim::force, "18.3 kN");
+        if (n.has("Y")) {
+            s.Y = n.at("Y").as_number();
+            if (!(s.Y > 0 && s.Y < 5)) n.at("Y").fail("axial load factor Y outside (0, 5)");
+        }
+        const std::string series = n.has("series") ? n.at("series").as_string() : "";
+        auto k = bearings::skf_constants(s.type, series);
+        if (!k && !n.has("constants")) {
+            std::string all;
+            for (const auto& x : bearings::series_names(s.type)) all += (all.empty() ? "" : ", ") + x;
+            (n.has("series") ? n.at("series") : n)
+                .fail(fmt::format("no SKF constants for a {} bearing of series '{}'; known series: {} (or give "
+                                  "'constants')",
+                                  bearings::to_string(s.type), excerpt(series), all));
+        }
+        if (k) s.k = *k;
+        if (auto c = n.get("constants")) {
+            c->allow_keys({"R1", "R2", "R3", "R4", "S1", "S2", "S3", "S4", "K_Z", "K_L", "rows"});
+            auto set = [&](const char* key, double& v) {
+                if (auto x = c->get(key)) v = x->as_number();
+            };
+            set("R1", s.k.R1); set("R2", s.k.R2); set("R3", s.k.R3); set("R4", s.k.R4);
+            set("S1", s.k.S1); set("S2", s.k.S2); set("S3", s.k.S3); set("S4", s.k.S4);
+            set("K_Z", s.k.K_Z); set("K_L", s.k.K_L);
+            if (auto x = c->get("rows")) s.k.rows = x->as_int();
+            if (!(s.k.R1 > 0 && s.k.S1 > 0)) c->fail("R1 and S1 must be positive");
+        }
+        if (s.type == bearings::BearingType::deep_groove_ball && s.C0 <= 0)
+            n.fail("deep groove ball bearings need the static load rating 'C0' (for the axial-load terms)");
+        if (auto l = n.get("lubrication"))
+            s.K_rs = l->as_enum<double>({{"splash", 3e-8}, {"oil_bath_low", 3e-8}, {"oil_jet", 3e-8},
+                                        {"oil_bath", 0.0}, {"grease", 6e-8}, {"oil_air", 6e-8}});
+        set_bearing_friction(s, model.oil);
+        if (auto se = n.get("seals")) {
+            const std::string st = se->as_string();
+            if (st != "none") {
+                // M_seal = K_S1 d_s^beta + K_S2 (SKF 2004 seal moment, both sides sealed).
+                using BT = bearings::BearingType;
+                if (s.type == BT::deep_groove_ball && st == "RS1") {
+                    const double D_mm = s.D * 1e3;  // the catalogue's table is by D in mm
+                    s.seal_beta = 2.25;
+                    if (D_mm <= 62) { s.seal_KS1 = 0.023; s.seal_KS2 = 2; }
+                    else if (D_mm <= 80) { s.seal_KS1 = 0.018; s.seal_KS2 = 20; }
+                    else if (D_mm <= 100) { s.seal_KS1 = 0.018; s.seal_KS2 = 15; }
+                    else { s.seal_KS1 = 0.018; s.seal_KS2 = 0; }
+                } else if ((s.type == BT::angular_contact_ball || s.type == BT::self_aligning_ball) && st == "RS1") {
+                    s.seal_beta = 2; s.seal_KS1 = 0.014; s.seal_KS2 = 10;
+                } else if ((s.type == BT::cylindrical_roller || s.type == BT::cylindrical_roller_full) && st == "LS") {
+                    s.seal_beta = 2; s.seal_KS1 = 0.032; s.seal_KS2 = 50;
+                } else if (s.type == BT::spherical_roller && (st == "CS" || st == "CS2" || st == "CS5")) {
+                    s.seal_beta = 2; s.seal_KS1 = 0.057; s.seal_KS2 = 50;
+                } else if (st == "Z" || st == "RZ" || st == "2Z") {
+                    // shields: no contact friction
+                } else {
+                    se->fail(fmt::format("no seal constants for '{}' on a {} bearing (known: DGBB RS1, ACBB/SABB RS1, "
+                                         "CRB LS, SRB CS/CS2/CS5, shields Z/RZ)",
+                                         st, bearings::to_string(s.type)));
+                }
+                // Unset: the inner-ring shoulder estimate d + 0.2 (D - d) (gearloss/bearings/skf_model.hpp).
+                if (n.has("seal_counterface"))
+                    s.seal_ds = n.positive_quantity("seal_counterface", dim::length, "30 mm");
+            }
+        }
+        if (auto ob = n.get("oil_bath")) {
+            ob->allow_keys({"level", "V_M"});
+            const double H = ob->quantity("level", dim::length, "10 mm");
+            if (H < 0) ob->at("level").fail("oil level cannot be negative");
+            s.bath_H = H;
+            s.bath_VM = ob->at("V_M").as_number();
+            if (!(s.bath_VM >= 0 && s.bath_VM < 0.01)) ob->at("V_M").fail("drag factor V_M outside 0..0.01 (SKF diagram)");
+        }
+        b.shaft = shaft_ref(n.at("shaft"));
+        if (auto ug = n.get("under_gear")) {
+            b.under_gear = gear_ref(*ug);
+            const auto& g = model.gearbox.gears[b.under_gear];
+            if (!g.free && !g.is_planet())
+                ug->fail("bearing under gear '" + g.spec.name + "', which is neither 'mount: free' nor a planet");
+            if (g.shaft != b.shaft)
+                ug->fail("gear '" + g.spec.name + "' is not on shaft '" + n.at("shaft").as_string() + "'" +
+                         (g.is_planet() ? " (a planet bearing names the carrier as its shaft)" : ""));
+            b.position = g.position;
+            if (g.is_planet()) b.multiplicity = g.planets;  // listed once, runs in every planet
+        } else {
+            b.position = n.quantity("position", dim::length, "20 mm");
+        }
+        if (auto lc = n.get("locating")) b.locating = lc->as_bool();
+        int count = 1;
+        if (auto c = n.get("count")) {
+            count = c->as_int();
+            if (count < 1 || count > 8) c->fail("count must be 1..8 (identical bearings side by side)");
+        }
+        for (int i = 0; i < count; ++i) {
+            gearbox::Bearing bi = b;
+            if (count > 1) {
+                bi.name = b.name + "." + std::to_string(i + 1);
+                if (!names.insert(bi.name).second)
+                    n.at("count").fail("bearing name '" + bi.name + "' (of 'count' side by side) is already taken");
+            }
+            model.gearbox.bearings.push_back(bi);
+        }
+    }
+    // A free gear or a planet needs bearings under it (its speed differs from the shaft's).
+    for (size_t g = 0; g < model.gearbox.gears.size(); ++g) {
+        if (!model.gearbox.gears[g].free && !model.gearbox.gears[g].is_planet()) continue;
+        bool any = false;
+        for (const auto& b : model.gearbox.bearings) any = any || b.under_gear == static_cast<int>(g);
+        if (!any)
+            root.at("gears").items()[g].fail("gear '" + model.gearbox.gears[g].spec.name +
+                                             "' turns on its own bearings ('mount: free' or a planet) but no bearing "
+                                             "has 'under_gear' naming it");
+    }
+}
+
+void Loader::load_seals() {
+    if (!root.has("seals")) return;
+    std::set<std::string> names;
+    for (const auto& n : root.at("seals").items()) {
+        n.allow_keys({"name", "shaft", "diameter", "note"});
+        gearbox::Seal s;
+        s.name = n.at("name").as_name();
+        if (!names.insert(s.name).second) n.at("name").fail("duplicate seal name '" + s.name + "'");
+        s.shaft = shaft_ref(n.at("shaft"));
+        s.diameter = n.positive_quantity("diameter", dim::length, "40 mm");
+        model.gearbox.seals.push_back(s);
+    }
+}
+
+void Loader::load_clutches() {
+    if (!root.has("clutches")) return;
+    std::set<std::string> names;
+    for (const auto& n : root.at("clutches").items()) {
+        n.allow_keys({"name", "engages", "interfaces", "r_inner", "r_outer", "clearance", "roughness", "oil_supply",
+                      "note"});
+        gearbox::ClutchPack c;
+        c.pack.name = n.at("name").as_name();
+        if (!names.insert(c.pack.name).second) n.at("name").fail("duplicate clutch name '" + c.pack.name + "'");
+        c.gear = gear_ref(n.at("engages"));
+        if (!model.gearbox.gears[c.gear].free)
+            n.at("engages").fail("a clutch engages a 'mount: free' gear (it locks that gear to its shaft)");
+        c.pack.interfaces = n.at("interfaces").as_int();
+        if (c.pack.interfaces < 1 || c.pack.interfaces > 100) n.at("interfaces").fail("must be 1-100");
+        c.pack.r_inner = n.positive_quantity("r_inner", dim::length, "55 mm");
+        c.pack.r_outer = n.positive_quantity("r_outer", dim::length, "72 mm");
+        if (c.pack.r_outer <= c.pack.r_inner) n.at("r_outer").fail("r_outer must exceed r_inner");
+        c.pack.clearance = n.positive_quantity("clearance", dim::length, "0.15 mm");
+        if (auto r = n.get("roughness")) c.pack.roughness = r->as_quantity(dim::length, "1 um");
+        if (c.pack.roughness > 0 && c.pack.clearance / c.pack.roughness < 3)
+            n.at("clearance").fail("clearance below 3x the roughness: the open-pack drag model (full film, "
+                                   "Patir & Cheng shear factor for H >= 3) does not apply");
+        if (auto q = n.get("oil_supply")) {
+            c.pack.oil_supply = q->as_quantity(units::make_dim(3, 0, -1, 0), "0.4 L/min");
+            if (c.pack.oil_supply < 0) q->fail("must not be negative");
+        }
+        model.gearbox.clutches.push_back(c);
+    }
+}
+
+}  // namespace gearloss::io::detail

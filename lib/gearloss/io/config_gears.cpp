@@ -1,0 +1,164 @@
+// Case loader: materials, shafts, gears and meshes (the Loader's gear-train sections, docs/config.md).
+#include <fmt/format.h>
+#include <set>
+#include <string>
+
+#include "gearloss/io/config_internal.hpp"
+#include "gearloss/io/csv_read.hpp"
+
+namespace gearloss::io::detail {
+
+namespace dim = units::dim;
+
+int Loader::shaft_ref(const YamlNode& n) {
+    const std::string s = n.as_string();
+    auto it = shaft_index.find(s);
+    if (it == shaft_index.end()) n.fail("unknown shaft '" + excerpt(s) + "'");
+    return it->second;
+}
+
+int Loader::gear_ref(const YamlNode& n) {
+    const std::string s = n.as_string();
+    auto it = gear_index.find(s);
+    if (it == gear_index.end()) n.fail("unknown gear '" + excerpt(s) + "'");
+    return it->second;
+}
+
+geometry::Material Loader::material(const YamlNode& n) {
+    if (n.is_scalar()) {
+        const std::string s = n.as_string();
+        auto it = materials.find(s);
+        if (it == materials.end()) n.fail("unknown material '" + excerpt(s) + "'; define it under 'materials'");
+        return it->second;
+    }
+    n.allow_keys({"E", "poisson", "density"});
+    geometry::Material m;
+    m.E = n.positive_quantity("E", dim::pressure, "210 GPa");
+    m.poisson = n.at("poisson").as_number();
+    if (!(m.poisson > 0 && m.poisson < 0.5)) n.at("poisson").fail("Poisson ratio must be in (0, 0.5)");
+    if (n.has("density")) m.density = n.positive_quantity("density", dim::density, "7850 kg/m^3");
+    return m;
+}
+
+void Loader::load_materials() {
+    materials["steel"] = geometry::Material{};
+    if (auto ms = root.get("materials"))
+        for (auto& [name, node] : ms->entries()) materials[name] = material(node);
+}
+
+void Loader::load_shafts() {
+    const YamlNode s = root.at("shafts");
+    for (const auto& item : s.items()) {
+        std::string name;
+        bool fixed = false;
+        if (item.is_scalar()) name = item.as_name();
+        else {
+            item.allow_keys({"name", "fixed", "note"});
+            name = item.at("name").as_name();
+            if (auto f = item.get("fixed")) fixed = f->as_bool();
+        }
+        if (shaft_index.count(name)) item.fail("duplicate shaft name '" + excerpt(name) + "'");
+        shaft_index[name] = static_cast<int>(model.gearbox.shafts.size());
+        model.gearbox.shafts.push_back({name, fixed});
+    }
+    if (model.gearbox.shafts.size() < 2) s.fail("a gearbox needs at least two shafts");
+}
+
+void Loader::load_gears() {
+    for (const auto& n : root.at("gears").items()) {
+        n.allow_keys({"name", "shaft", "position", "teeth", "module", "profile_shift", "face_width", "pressure_angle",
+                      "helix_angle", "hand", "material", "Ra", "Rq", "mount", "immersion", "addendum_coefficient",
+                      "dedendum_coefficient", "internal", "carrier", "planets", "tip_diameter", "tip_alteration_factor", "note"});
+        gearbox::Gear g;
+        auto& s = g.spec;
+        s.name = n.at("name").as_name();
+        if (gear_index.count(s.name)) n.at("name").fail("duplicate gear name '" + s.name + "'");
+        if (auto c = n.get("carrier")) {
+            // A planet: it turns on pins of the carrier, N identical ones equally spaced.
+            g.carrier = shaft_ref(*c);
+            g.shaft = g.carrier;
+            if (n.has("shaft")) n.at("shaft").fail("a planet gear names its 'carrier', not a 'shaft'");
+            if (n.has("mount")) n.at("mount").fail("a planet gear always turns on its own bearings; drop 'mount'");
+            g.planets = n.has("planets") ? n.at("planets").as_int() : 1;
+            if (g.planets < 1 || g.planets > 12) n.at("planets").fail("number of planets must be 1..12");
+        } else {
+            if (n.has("planets")) n.at("planets").fail("'planets' needs a 'carrier'");
+            g.shaft = shaft_ref(n.at("shaft"));
+        }
+        if (auto in = n.get("internal")) s.internal = in->as_bool();
+        if (s.internal && g.is_planet()) n.at("internal").fail("a planet cannot be an internal gear");
+        g.position = n.has("position") ? n.quantity("position", dim::length, "60 mm") : 0.0;
+        const YamlNode zt = n.at("teeth");
+        s.z = zt.as_int();
+        if (s.z < 5) zt.fail(fmt::format("number of teeth must be at least 5, got {}", s.z));
+        s.mn = n.positive_quantity("module", dim::length, "3.5 mm");
+        s.x = n.has("profile_shift") ? n.at("profile_shift").as_number() : 0.0;
+        if (!(s.x > -1.5 && s.x < 2.5)) n.at("profile_shift").fail("profile shift coefficient outside -1.5..2.5");
+        s.b = n.positive_quantity("face_width", dim::length, "35 mm");
+        s.alpha_n = n.has("pressure_angle") ? n.quantity("pressure_angle", dim::angle, "20 deg") : 20.0 * deg;
+        if (!(s.alpha_n > 10 * deg && s.alpha_n < 35 * deg))
+            n.at("pressure_angle").fail("pressure angle outside 10..35 deg");
+        s.beta = n.has("helix_angle") ? n.quantity("helix_angle", dim::angle, "20 deg") : 0.0;
+        if (!(s.beta >= 0 && s.beta < 45 * deg)) n.at("helix_angle").fail("helix angle outside 0..45 deg (give the hand separately)");
+        if (s.beta > 0) {
+            s.hand = n.at("hand").as_enum<geometry::Hand>({{"right", geometry::Hand::right}, {"left", geometry::Hand::left}});
+        } else {
+            s.hand = geometry::Hand::spur;
+        }
+        if (n.has("addendum_coefficient")) s.ha_star = n.at("addendum_coefficient").as_number();
+        if (n.has("dedendum_coefficient")) s.hf_star = n.at("dedendum_coefficient").as_number();
+        if (n.has("tip_diameter") && n.has("tip_alteration_factor"))
+            n.at("tip_alteration_factor").fail("give either 'tip_diameter' or 'tip_alteration_factor', not both");
+        if (n.has("tip_diameter")) s.tip_diameter = n.positive_quantity("tip_diameter", dim::length, "82.46 mm");
+        if (auto k = n.get("tip_alteration_factor")) {
+            s.tip_alteration_factor = k->as_number();
+            if (!(*s.tip_alteration_factor > -1.0 && *s.tip_alteration_factor <= 0.5))
+                k->fail("tip alteration factor k outside -1..0.5 (ISO 21771 sign: k <= 0 shortens the tip)");
+        }
+        s.material = n.has("material") ? material(n.at("material")) : materials["steel"];
+        if (n.has("Ra")) s.Ra = n.positive_quantity("Ra", dim::length, "0.5 um");
+        if (n.has("Rq")) s.Rq = n.positive_quantity("Rq", dim::length, "0.6 um");
+        if (s.Ra > 50e-6) n.at("Ra").fail("roughness above 50 um; check the unit");
+        if (auto m = n.get("mount"))
+            g.free = m->as_enum<bool>({{"fixed", false}, {"free", true}});
+        if (auto im = n.get("immersion")) {
+            g.immersion = im->as_quantity(dim::length, "10 mm");
+            if (*g.immersion < 0) im->fail("immersion depth cannot be negative");
+        }
+        gear_index[s.name] = static_cast<int>(model.gearbox.gears.size());
+        model.gearbox.gears.push_back(g);
+    }
+    if (model.gearbox.gears.size() < 2) root.at("gears").fail("a gearbox needs at least two gears");
+}
+
+void Loader::load_meshes() {
+    std::set<int> used;
+    std::set<std::string> names;
+    for (const auto& n : root.at("meshes").items()) {
+        n.allow_keys({"name", "gears", "angle", "centre_distance", "note"});
+        gearbox::Mesh m;
+        const auto g = n.at("gears").items();
+        if (g.size() != 2) n.at("gears").fail("a mesh names exactly two gears");
+        m.gear[0] = gear_ref(g[0]);
+        m.gear[1] = gear_ref(g[1]);
+        if (m.gear[0] == m.gear[1]) n.at("gears").fail("a gear cannot mesh with itself");
+        m.name = n.has("name") ? n.at("name").as_name()
+                               : model.gearbox.gears[m.gear[0]].spec.name + "-" + model.gearbox.gears[m.gear[1]].spec.name;
+        if (!names.insert(m.name).second)
+            (n.has("name") ? n.at("name") : n.at("gears"))
+                .fail("duplicate mesh name '" + m.name + "'" +
+                      (n.has("name") ? "" : " (the default name, from its gears; give the mesh a 'name')"));
+        m.angle = n.has("angle") ? n.quantity("angle", dim::angle, "30 deg") : 0.0;
+        m.centre_distance = n.opt_quantity("centre_distance", dim::length, "95 mm");
+        if (m.centre_distance && *m.centre_distance <= 0) n.at("centre_distance").fail("must be positive");
+        try {
+            (void)geometry::pair_geometry(model.gearbox.gears[m.gear[0]].spec, model.gearbox.gears[m.gear[1]].spec,
+                                          m.centre_distance);
+        } catch (const geometry::GeometryError& e) {
+            n.fail(e.message);
+        }
+        model.gearbox.meshes.push_back(m);
+    }
+}
+
+}  // namespace gearloss::io::detail

@@ -1,0 +1,185 @@
+// Case loader: the oil (`oil:` inline or an oil file) -> lubricant::Oil (docs/config.md).
+#include <algorithm>
+#include <fmt/format.h>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "gearloss/io/config.hpp"
+
+namespace gearloss::io {
+
+namespace dim = units::dim;
+using lubricant::BaseOil;
+
+namespace {
+
+BaseOil parse_base(const YamlNode& n) {
+    return n.as_enum<BaseOil>({{"mineral", BaseOil::mineral},
+                               {"PAO", BaseOil::pao},
+                               {"pao", BaseOil::pao},
+                               {"ester", BaseOil::ester},
+                               {"PAG", BaseOil::pag},
+                               {"pag", BaseOil::pag},
+                               {"PAG_water_soluble", BaseOil::pag_water_soluble},
+                               {"phosphate_ester", BaseOil::phosphate_ester},
+                               {"traction_fluid", BaseOil::traction_fluid},
+                               {"transmission_fluid", BaseOil::transmission_fluid}});
+}
+
+lubricant::BearingFrictionPair parse_pair(const YamlNode& n) {
+    n.allow_keys({"mu_bl", "mu_ehl"});
+    lubricant::BearingFrictionPair p;
+    if (auto v = n.get("mu_bl")) {
+        p.mu_bl = v->as_number();
+        if (!(p.mu_bl >= 0 && p.mu_bl < 1)) v->fail("must be in [0, 1)");
+    }
+    if (auto v = n.get("mu_ehl")) {
+        p.mu_ehl = v->as_number();
+        if (!(*p.mu_ehl >= 0 && *p.mu_ehl < 1)) v->fail("must be in [0, 1)");
+    }
+    return p;
+}
+
+}  // namespace
+
+lubricant::Oil load_oil(const YamlNode& n) {
+    n.allow_keys({"name", "base", "viscosity", "density", "thermal_expansion", "piezoviscosity", "X_L",
+                  "thermal_conductivity", "specific_heat", "bearing_friction", "gear_friction", "traction",
+                  "max_temperature", "note"});
+    lubricant::Oil oil;
+    oil.name = n.at("name").as_title();
+    oil.base = parse_base(n.at("base"));
+    oil.max_temperature = lubricant::default_max_temperature(oil.base);
+    if (auto t = n.get("max_temperature")) {
+        oil.max_temperature = t->as_temperature();
+        if (!(oil.max_temperature > 273.15 && oil.max_temperature < 273.15 + 400))
+            t->fail("permissible oil temperature outside 0..400 degC");
+    }
+
+    const YamlNode v = n.at("viscosity");
+    v.allow_keys({"law", "points", "astm_d341"});
+    if (auto c = v.get("astm_d341")) {
+        c->allow_keys({"A", "B"});
+        lubricant::WaltherLaw w;
+        w.A = c->at("A").as_number();
+        w.B = c->at("B").as_number();
+        if (!(w.B > 0)) c->at("B").fail("must be positive (viscosity falls with temperature)");
+        oil.viscosity = w;
+        if (v.has("points")) v.at("points").fail("give either 'points' or 'astm_d341', not both");
+    } else {
+        const auto pts = v.at("points").items();
+        std::vector<std::pair<double, double>> tv;
+        for (const auto& p : pts) {
+            const auto pair = p.items();
+            if (pair.size() != 2) p.fail("each point is [temperature, kinematic viscosity], e.g. [40 degC, 112.35 cSt]");
+            const double T = pair[0].as_temperature();
+            const double nu = pair[1].as_quantity(dim::kinematic_viscosity, "112.35 cSt");
+            if (!(nu > 0)) pair[1].fail("viscosity must be positive");
+            tv.emplace_back(T, nu * 1e6);
+        }
+        std::sort(tv.begin(), tv.end());
+        for (size_t i = 1; i < tv.size(); ++i) {
+            if (tv[i].first == tv[i - 1].first) v.at("points").fail("two points at the same temperature");
+            if (tv[i].second >= tv[i - 1].second)
+                v.at("points").fail("viscosity must fall as temperature rises");
+        }
+        std::string law = tv.size() == 3 ? "vogel" : "astm_d341";
+        if (auto l = v.get("law")) law = l->as_enum<std::string>({{"vogel", "vogel"}, {"astm_d341", "astm_d341"}});
+        try {
+            if (law == "vogel") {
+                if (tv.size() != 3) v.at("points").fail("the Vogel law needs exactly 3 points");
+                const double T[3] = {tv[0].first - 273.15, tv[1].first - 273.15, tv[2].first - 273.15};
+                const double nu[3] = {tv[0].second, tv[1].second, tv[2].second};
+                oil.viscosity = lubricant::VogelLaw::fit(T, nu);
+            } else {
+                if (tv.size() < 2) v.at("points").fail("ASTM D341 needs 2 points (3 points select the Vogel law)");
+                oil.viscosity = lubricant::WaltherLaw::fit(tv.front().first, tv.front().second, tv.back().first,
+                                                           tv.back().second);
+            }
+        } catch (const InputError& e) {
+            if (e.where().known()) throw;  // already at its line
+            v.at("points").fail(e.message);  // a fit that cannot hold these points
+        }
+    }
+
+    const YamlNode d = n.at("density");
+    if (d.is_map()) {
+        d.allow_keys({"value", "at"});
+        const double rho = d.positive_quantity("value", dim::density, "885 kg/m^3");
+        const double T = d.has("at") ? d.at("at").as_temperature() : 288.15;
+        oil.rho15 = rho;  // corrected below once the expansion is known
+        oil.expansion = 0;
+        const double beta = n.has("thermal_expansion")
+                                ? n.at("thermal_expansion").as_quantity(dim::per_kelvin, "6.8e-4 1/K")
+                                : 6.5e-4;
+        oil.rho15 = rho / (1.0 - beta * (T - 288.15));
+        oil.expansion = beta;
+    } else {
+        oil.rho15 = d.as_quantity(dim::density, "885 kg/m^3");
+        if (!(oil.rho15 > 300 && oil.rho15 < 2500)) d.fail("density outside 300..2500 kg/m^3; check the unit");
+        if (auto e = n.get("thermal_expansion")) oil.expansion = e->as_quantity(dim::per_kelvin, "6.8e-4 1/K");
+    }
+    if (!(oil.expansion >= 0 && oil.expansion < 5e-3))
+        n.at("thermal_expansion").fail("expansion coefficient must be in [0, 5e-3] 1/K (positive: density falls with T)");
+
+    if (auto pz = n.get("piezoviscosity")) {
+        if (pz->is_scalar()) {
+            if (pz->as_string() != "gold") pz->fail("use 'gold' or a list of [temperature, coefficient] pairs");
+        } else {
+            for (const auto& p : pz->items()) {
+                const auto pair = p.items();
+                if (pair.size() != 2) p.fail("each entry is [temperature, coefficient], e.g. [40 degC, 1.387e-8 1/Pa]");
+                const double T = pair[0].as_temperature();
+                const double a = pair[1].as_quantity(dim::per_pascal, "1.387e-8 1/Pa");
+                if (!(a > 1e-10 && a < 1e-6)) pair[1].fail("pressure-viscosity coefficient outside 1e-10..1e-6 1/Pa");
+                oil.piezo_table.push_back({T, a});
+            }
+            std::sort(oil.piezo_table.begin(), oil.piezo_table.end(),
+                      [](const auto& a, const auto& b) { return a.T_K < b.T_K; });
+        }
+    }
+    if (auto x = n.get("X_L")) {
+        oil.X_L = x->as_number();
+        if (!(oil.X_L > 0 && oil.X_L < 3)) x->fail("X_L must be in (0, 3)");
+    } else if (auto def = lubricant::default_XL(oil.base)) {
+        oil.X_L = *def;
+    } else {
+        n.fail(fmt::format("base oil '{}' has no standard X_L (ISO/TS 6336-20); give 'X_L' (e.g. 0.65, Fernandes 2015)",
+                           lubricant::to_string(oil.base)));
+    }
+    if (auto k = n.get("thermal_conductivity")) oil.k_fixed = k->as_quantity(dim::thermal_conductivity, "0.15 W/(m*K)");
+    if (auto c = n.get("specific_heat")) oil.cp_fixed = c->as_quantity(dim::specific_heat, "2000 J/(kg*K)");
+    oil.traction = lubricant::default_traction(oil.base);
+    if (auto tr = n.get("traction")) {
+        tr->allow_keys({"eyring_stress", "limiting_shear_stress", "limiting_shear_slope", "boundary_friction", "mixed_B",
+                        "mixed_m", "roelands_index"});
+        auto& t = oil.traction;
+        if (auto v = tr->get("eyring_stress")) t.eyring_stress = v->as_quantity(dim::pressure, "5 MPa");
+        if (auto v = tr->get("limiting_shear_stress")) t.limiting_shear_0 = v->as_quantity(dim::pressure, "1 MPa");
+        if (auto v = tr->get("limiting_shear_slope")) t.limiting_shear_slope = v->as_number();
+        if (auto v = tr->get("boundary_friction")) t.mu_boundary = v->as_number();
+        if (auto v = tr->get("mixed_B")) t.mixed_B = v->as_number();
+        if (auto v = tr->get("mixed_m")) t.mixed_m = v->as_number();
+        if (auto v = tr->get("roelands_index")) {
+            t.roelands_Z = v->as_number();
+            if (!(t.roelands_Z > 0.1 && t.roelands_Z < 1.5)) v->fail("Roelands index must be in (0.1, 1.5) (typical 0.4-0.8)");
+        }
+        if (!(t.eyring_stress > 0 && t.limiting_shear_0 >= 0 && t.limiting_shear_slope >= 0 && t.limiting_shear_slope < 1 &&
+              t.mu_boundary > 0 && t.mu_boundary < 1 && t.mixed_B > 0 && t.mixed_m > 0))
+            tr->fail("traction properties out of range (Eyring stress > 0, 0 <= slope < 1, 0 < boundary friction < 1)");
+    }
+    if (auto bf = n.get("bearing_friction")) {
+        bf->allow_keys({"ball", "roller"});
+        if (auto b = bf->get("ball")) oil.bearing_ball = parse_pair(*b);
+        if (auto r = bf->get("roller")) oil.bearing_roller = parse_pair(*r);
+    }
+    return oil;
+}
+
+lubricant::Oil load_oil_file(const std::string& file) {
+    const YamlNode root = YamlNode::load_file(file);
+    return load_oil(root.has("oil") ? root.at("oil") : root);
+}
+
+}  // namespace gearloss::io

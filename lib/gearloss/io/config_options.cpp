@@ -1,0 +1,120 @@
+// Case loader: the `options:` block (the loss mechanisms' choices) and the `thermal:` block (heat path, docs/config.md).
+#include "gearloss/io/config_internal.hpp"
+#include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
+
+namespace gearloss::io::detail {
+
+void load_options(const YamlNode& n, solver::Model& m) {
+    n.allow_keys({"losses", "gear_loss_factor", "mesh_friction", "film_thermal_correction", "lambda_roughness",
+                  "gear_friction"});
+    // The loss mechanisms own these choices; `options:` is their spelling of earlier versions
+    // (the mechanisms block, read after it, sets the same).
+    if (auto l = n.get("losses")) {
+        l->allow_keys({"mesh", "churning", "bearings", "seals"});
+        for (const char* name : {"mesh", "churning", "bearings", "seals"})
+            if (auto v = l->get(name)) m.mechanisms.at(name).set_enabled(v->as_bool());
+    }
+    auto& f = mesh::mesh_forms(m);
+    if (auto v = n.get("gear_loss_factor"))
+        f.loss_factor = v->as_enum<mesh::LossFactorModel>({{"ohlendorf", mesh::LossFactorModel::ohlendorf},
+                                                          {"buckingham", mesh::LossFactorModel::buckingham},
+                                                          {"wimmer", mesh::LossFactorModel::wimmer}});
+    if (auto v = n.get("mesh_friction"))
+        f.friction = v->as_enum<mesh::FrictionModel>({{"schlenk", mesh::FrictionModel::schlenk},
+                                                      {"iso_6336_20", mesh::FrictionModel::iso_6336_20},
+                                                      {"fernandes_mixed", mesh::FrictionModel::fernandes_mixed},
+                                                      {"ehl_local", mesh::FrictionModel::ehl_local}});
+    if (auto v = n.get("film_thermal_correction"))
+        f.film_correction = v->as_enum<mesh::ThermalFilmCorrection>({{"gupta", mesh::ThermalFilmCorrection::gupta},
+                                                                     {"simplified", mesh::ThermalFilmCorrection::simplified},
+                                                                     {"none", mesh::ThermalFilmCorrection::none}});
+    if (auto v = n.get("lambda_roughness"))
+        f.lambda_roughness = v->as_enum<mesh::LambdaRoughness>({{"average_Ra", mesh::LambdaRoughness::average_Ra},
+                                                                {"composite_Rq", mesh::LambdaRoughness::composite_Rq}});
+    if (auto gf = n.get("gear_friction")) {
+        gf->allow_keys({"mu_bl", "mu_ehl"});
+        auto& mesh = m.mechanisms.at("mesh");
+        double mu_bl = mesh.parameter("mu_bl"), mu_ehl = mesh.parameter("mu_ehl");
+        if (auto v = gf->get("mu_bl")) mu_bl = v->as_number();
+        if (auto v = gf->get("mu_ehl")) mu_ehl = v->as_number();
+        if (!mesh::mixed_friction_pair_valid(mu_bl, mu_ehl)) gf->fail("need 0 <= mu_ehl < mu_bl < 1");
+        mesh.set_parameter("mu_bl", mu_bl);
+        mesh.set_parameter("mu_ehl", mu_ehl);
+    }
+}
+
+void load_thermal(const YamlNode& n, solver::ThermalSettings& t) {
+    n.allow_keys({"mode", "oil_temperature", "ambient", "heat_rejection", "max_oil_temperature", "heat_capacity",
+                  "network"});
+    if (auto net = n.get("network")) {
+        if (n.has("heat_capacity")) net->fail("give either 'heat_capacity' (one node) or 'network', not both");
+        net->allow_keys({"oil", "housing", "oil_to_housing", "clutch_packs", "clutch_to_oil", "note"});
+        auto& w = t.network;
+        w.C_oil = net->positive_quantity("oil", units::dim::heat_capacity, "2 kJ/K");
+        const auto conductance = units::make_dim(2, 1, -3, -1);
+        if (net->has("housing")) {
+            w.C_housing = net->positive_quantity("housing", units::dim::heat_capacity, "5 kJ/K");
+            w.G_oil_housing = net->positive_quantity("oil_to_housing", conductance, "30 W/K");
+        } else if (net->has("oil_to_housing")) {
+            net->at("oil_to_housing").fail("'oil_to_housing' needs a 'housing' node");
+        }
+        if (net->has("clutch_packs")) {
+            w.C_clutch = net->positive_quantity("clutch_packs", units::dim::heat_capacity, "1 kJ/K");
+            w.G_clutch_oil = net->positive_quantity("clutch_to_oil", conductance, "40 W/K");
+        } else if (net->has("clutch_to_oil")) {
+            net->at("clutch_to_oil").fail("'clutch_to_oil' needs a 'clutch_packs' node");
+        }
+        t.heat_capacity = w.total_capacity();
+    }
+    if (auto hc = n.get("heat_capacity")) {
+        t.heat_capacity = hc->as_quantity(units::dim::heat_capacity, "25 kJ/K");
+        if (!(t.heat_capacity > 0)) hc->fail("heat capacity must be positive");
+        t.network = {};
+        t.network.C_oil = t.heat_capacity;
+    }
+    t.ambient = n.at("ambient").as_temperature();
+    t.mode = n.has("mode") ? n.at("mode").as_enum<solver::ThermalMode>({{"stabilised", solver::ThermalMode::stabilised},
+                                                                        {"stabilized", solver::ThermalMode::stabilised},
+                                                                        {"fixed", solver::ThermalMode::fixed}})
+                           : solver::ThermalMode::stabilised;
+    if (t.mode == solver::ThermalMode::fixed) t.oil_temperature = n.at("oil_temperature").as_temperature();
+    else if (n.has("oil_temperature")) t.oil_temperature = n.at("oil_temperature").as_temperature();
+    if (auto m = n.get("max_oil_temperature")) {
+        t.equilibrium.T_max = m->as_temperature();
+        if (t.equilibrium.T_max <= t.ambient + 1) m->fail("must be above the ambient temperature");
+    }
+    if (t.mode == solver::ThermalMode::stabilised || n.has("heat_rejection")) {
+        const YamlNode h = n.at("heat_rejection");
+        h.allow_keys({"resistance", "reference_speed", "speed_exponent", "housing"});
+        if (h.has("resistance") == h.has("housing"))
+            h.fail("give exactly one of 'resistance' (equivalent thermal resistance) or 'housing' (surface model)");
+        if (h.has("resistance")) {
+            thermal::ThermalResistance r;
+            r.R0 = h.positive_quantity("resistance", units::dim::thermal_resistance, "0.12 K/W");
+            if (h.has("reference_speed")) {
+                r.n_ref = h.positive_quantity("reference_speed", units::dim::angular_speed, "600 rpm");
+                r.exponent = h.at("speed_exponent").as_number();
+                if (!(r.exponent >= 0 && r.exponent < 2)) h.at("speed_exponent").fail("exponent outside 0..2");
+            }
+            t.rejection.model = r;
+        } else {
+            const YamlNode s = h.at("housing");
+            s.allow_keys({"area", "emissivity", "height", "length", "air_speed"});
+            thermal::HousingSurface hs;
+            hs.area = s.positive_quantity("area", units::dim::area, "0.5 m^2");
+            if (s.has("emissivity")) {
+                hs.emissivity = s.at("emissivity").as_number();
+                if (!(hs.emissivity >= 0 && hs.emissivity <= 1)) s.at("emissivity").fail("emissivity must be in [0, 1]");
+            }
+            if (s.has("height")) hs.height = s.positive_quantity("height", units::dim::length, "0.3 m");
+            hs.length = s.has("length") ? s.positive_quantity("length", units::dim::length, "0.3 m") : hs.height;
+            if (s.has("air_speed")) {
+                hs.air_speed = s.at("air_speed").as_quantity(units::dim::velocity, "2 m/s");
+                if (hs.air_speed < 0) s.at("air_speed").fail("air speed cannot be negative");
+            }
+            t.rejection.model = hs;
+        }
+    }
+}
+
+}  // namespace gearloss::io::detail

@@ -1,0 +1,86 @@
+#pragma once
+// Reading input (recordings, drive cycles, and the bounded file reader every input
+// file goes through): one line into trimmed cells (double quotes protect commas), a
+// cell into a finite number or an error naming the place, and the bounds on what is
+// read at all (README "Reliability": only regular files, sizes, line lengths, text).
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gearloss/core/errors.hpp"
+
+namespace gearloss::io {
+
+// Bounds on input files (README "Reliability").
+inline constexpr std::size_t kMaxYamlFileBytes = std::size_t{16} << 20;  // case, oil and sweep files: 16 MiB
+inline constexpr std::size_t kMaxCsvFileBytes = std::size_t{64} << 20;   // recordings and cycles: 64 MiB
+inline constexpr std::size_t kMaxShardFileBytes = std::size_t{4} << 30; // map shards (merge): 4 GiB
+inline constexpr std::size_t kMaxLineBytes = 65536;                       // any line of any input file
+inline constexpr std::size_t kExcerptChars = 60;                          // quoted input in messages
+
+// Reads a file the user named. Only a regular file is read (a FIFO, a device, a socket
+// or a directory is refused by name before any byte is read); more than `max_bytes`
+// is refused without reading it all; the text must pass check_input_text. Failures are
+// InputErrors naming `file` and never quoting its content.
+std::string read_input_file(const std::string& file, std::size_t max_bytes);
+// The same without the text check, for content that is only hashed.
+std::string read_regular_file(const std::string& file, std::size_t max_bytes);
+
+// The bounds on text already in memory (the *_text entry points): at most `max_bytes`,
+// every line at most kMaxLineBytes, and text only: a NUL or another control byte (other
+// than tab, CR, LF) means the file is not YAML or CSV, and it is refused without quoting it.
+void check_input_text(std::string_view text, const std::string& file, std::size_t max_bytes);
+
+// At most `max` characters of `s` for a message: control bytes and invalid UTF-8 are
+// shown as '?', and "..." marks a cut.
+std::string excerpt(std::string_view s, std::size_t max = kExcerptChars);
+
+// Valid UTF-8 (no overlong forms, no surrogates) without control characters (C0, DEL, C1).
+bool is_printable_utf8(std::string_view s);
+
+// Why `s` cannot name a component (empty when it can): printable UTF-8 without invisible
+// characters (no-break and other Unicode spaces, zero-width and direction marks, variation
+// selectors, byte-order mark), no blank at either end, no ',' or '"' (names become CSV
+// column names), no '/' and not "." or ".." (a ratio's name becomes part of a file name),
+// at most max_bytes. Two names that look alike are then the same bytes.
+std::string name_problem(std::string_view s, std::size_t max_bytes);
+
+// A hint when a CSV line is separated by semicolons or tabs instead of commas ("" otherwise).
+std::string separator_hint(const std::string& line);
+
+inline std::vector<std::string> split_csv_line(const std::string& line) {
+    std::vector<std::string> out;
+    std::string cur;
+    bool quoted = false;
+    for (char c : line) {
+        if (c == '"') quoted = !quoted;
+        else if (c == ',' && !quoted) {
+            out.push_back(cur);
+            cur.clear();
+        } else if (c != '\r') cur += c;
+    }
+    out.push_back(cur);
+    for (auto& s : out) {
+        s.erase(0, s.find_first_not_of(" \t"));
+        s.erase(s.find_last_not_of(" \t") + 1);
+    }
+    return out;
+}
+
+// The cell as a finite number; InputError at file:line:column, key `column`, otherwise.
+inline double csv_cell_number(const std::string& s, const std::string& file, int line, int column,
+                              const std::string& column_name) {
+    if (s.empty()) throw InputError(file, line, column, column_name, "empty cell; a number is expected");
+    double v = 0;
+    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == s.data() + s.size() && !std::isfinite(v)))
+        throw InputError(file, line, column, column_name, "'" + excerpt(s) + "' is out of range (not a finite number)");
+    if (ec != std::errc() || p != s.data() + s.size())
+        throw InputError(file, line, column, column_name, "'" + excerpt(s) + "' is not a number");
+    return v;
+}
+
+}  // namespace gearloss::io

@@ -1,0 +1,213 @@
+#include "gearloss/io/cycle_report.hpp"
+
+#include "gearloss/losses/loss_mechanism.hpp"
+
+#include <chrono>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/csv_format.hpp"
+#include "gearloss/io/json.hpp"
+#include "gearloss/model/validate.hpp"
+
+namespace gearloss::io {
+
+namespace {
+constexpr double kRpm = 30.0 / std::numbers::pi;
+double celsius(double K) { return K - 273.15; }
+}  // namespace
+
+cycle::Powertrain load_powertrain(const Case& c, const std::optional<std::string>& oil_file) {
+    if (!c.vehicle) throw InputError(c.file, 0, 0, "vehicle", "the case has no 'vehicle' block (needed by `gearloss cycle`)");
+    cycle::Powertrain pt;
+    pt.vehicle = *c.vehicle;
+    pt.torque_converter = c.torque_converter;
+    // One loaded case; each gear is the model with that ratio selected (no re-reading).
+    Case k = c;
+    if (oil_file) replace_oil(k, load_oil_file(*oil_file));
+    for (const auto& g : c.vehicle->gears) pt.gears.push_back(k.model.with_ratio(g));
+    return pt;
+}
+
+void CycleStudyOptions::validate() const {
+    const auto temperature = [](const char* key, double T) {
+        if (!(T >= solver::kMinAmbient_K && T <= solver::kMaxAmbient_K))
+            throw InputError("", 0, 0, key, fmt::format("{:.4g} degC is outside the stated range -100..300 degC", T - 273.15));
+    };
+    temperature("--start-temp", start_temperature);
+    temperature("--ambient", ambient);
+    temperature("--warm-temp", warm_temperature);
+    if (prewarm_target) {
+        temperature("--prewarm", *prewarm_target);
+        if (!(*prewarm_target > start_temperature))
+            throw InputError("", 0, 0, "--prewarm", "the pre-warm temperature must be above the start temperature");
+    }
+    if (!(heater_power > 0 && heater_power <= 1e6))
+        throw InputError("", 0, 0, "--heater", "heater power must be positive and at most 1 MW");
+}
+
+CycleStudy run_cycle_study(const cycle::Powertrain& pt, const cycle::DriveCycle& dc, const CycleStudyOptions& o) {
+    o.validate();
+    CycleStudy s;
+    s.cycle_name = dc.name;
+    const auto t0 = std::chrono::steady_clock::now();
+    s.cold = cycle::simulate_cycle(pt, dc, cycle::uniform(o.start_temperature), o.ambient, true);
+    s.seconds_per_run = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    s.warm = cycle::simulate_cycle(pt, dc, cycle::uniform(o.warm_temperature), o.ambient, false).totals;
+    if (o.prewarm_target) {
+        const auto& net = pt.thermal_model().thermal.network;
+        s.ideal_prewarm_time = net.C_oil * (*o.prewarm_target - o.start_temperature) / o.heater_power;
+        s.prewarm = cycle::prewarm(pt, cycle::uniform(o.start_temperature), *o.prewarm_target, o.heater_power, o.ambient);
+        s.prewarmed = cycle::simulate_cycle(pt, dc, s.prewarm->state, o.ambient, false).totals;
+    }
+    return s;
+}
+
+std::string cycle_trace_csv(const cycle::Powertrain& pt, const cycle::CycleResult& r) {
+    const bool fuel = pt.vehicle.engine.fuel_map.has_value();
+    const bool tc = pt.torque_converter.has_value();
+    const auto& net = pt.thermal_model().thermal.network;
+    std::string s =
+        "time_s,speed_kmh,accel_m_s2,gear,input_speed_rpm,input_torque_Nm,engine_speed_rpm,engine_torque_Nm,oil_temp_C";
+    if (net.has_housing()) s += ",housing_temp_C";
+    if (net.has_clutch()) s += ",clutch_temp_C";
+    const auto& mechs = pt.thermal_model().mechanisms;
+    for (size_t k = 0; k < mechs.size(); ++k) s += fmt::format(",{}", mechs[k].column());
+    s += ",P_gearbox_W";
+    if (tc) s += ",P_converter_W,converter_speed_ratio,lockup";
+    if (fuel) s += ",fuel_g_s";
+    s += "\n";
+    for (const auto& t : r.trace) {
+        s += fmt::format("{},{},{},{},{},{},{},{},{}", csv_number(t.time), csv_fixed(t.speed * 3.6, 3),
+                         csv_number(t.accel), t.gear, csv_number(t.input_speed * kRpm), csv_number(t.input_torque),
+                         csv_number(t.engine_speed * kRpm), csv_number(t.engine_torque), csv_fixed(celsius(t.T_oil), 3));
+        if (net.has_housing()) s += "," + csv_fixed(celsius(t.T_housing), 3);
+        if (net.has_clutch()) s += "," + csv_fixed(celsius(t.T_clutch), 3);
+        for (size_t k = 0; k < mechs.size(); ++k) s += "," + csv_number(k < t.P_mech.size() ? t.P_mech[k] : 0.0);
+        s += "," + csv_number(t.P_gearbox);
+        if (tc) s += fmt::format(",{},{},{}", csv_number(t.P_tc), csv_number(t.tc_speed_ratio), t.lockup ? 1 : 0);
+        if (fuel) s += "," + csv_number(t.fuel_rate * 1e3);
+        s += "\n";
+    }
+    return s;
+}
+
+namespace {
+double litres(const cycle::Powertrain& pt, double kg) { return kg / pt.vehicle.engine.fuel_density * 1e3; }
+
+void totals_json(Json& j, const cycle::Powertrain& pt, const cycle::CycleTotals& t) {
+    j.begin_object();
+    j.key("oil_temp_start_C").value(celsius(t.start[0]));
+    j.key("oil_temp_end_C").value(celsius(t.end[0]));
+    j.key("gearbox_loss_kJ").value(t.gearbox_loss() / 1e3);
+    const auto& mechs = pt.thermal_model().mechanisms;
+    for (size_t k = 0; k < mechs.size(); ++k)
+        j.key(std::string(mechs[k].name()) + "_kJ").value(k < t.E_mech.size() ? t.E_mech[k] / 1e3 : 0.0);
+    j.key("converter_kJ").value(t.E_tc / 1e3);
+    j.key("heat_to_ambient_kJ").value(t.E_ambient / 1e3);
+    j.key("gearbox_mean_efficiency").value(t.mean_efficiency());
+    if (t.has_fuel) {
+        j.key("fuel_L").value(litres(pt, t.fuel));
+        j.key("fuel_L_per_100km").value(t.distance > 0 ? litres(pt, t.fuel) / (t.distance / 1e5) : 0.0);
+    }
+    j.end_object();
+}
+
+std::string totals_text(const cycle::Powertrain& pt, const cycle::CycleTotals& t, const char* label) {
+    const auto& mechs = pt.thermal_model().mechanisms;
+    std::string parts;
+    for (size_t k = 0; k < mechs.size(); ++k)
+        parts += fmt::format("{}{} {:.1f}", k ? ", " : "", mechs[k].label(), k < t.E_mech.size() ? t.E_mech[k] / 1e3 : 0.0);
+    std::string s = fmt::format("{}: oil {:.1f} -> {:.1f} degC; gearbox loss {:.1f} kJ ({})", label, celsius(t.start[0]),
+                                celsius(t.end[0]), t.gearbox_loss() / 1e3, parts);
+    if (pt.torque_converter) s += fmt::format(", converter {:.1f} kJ", t.E_tc / 1e3);
+    s += fmt::format("; mean gearbox efficiency {:.2f} %", 100 * t.mean_efficiency());
+    if (t.has_fuel)
+        s += t.distance > 0
+                 ? fmt::format("; fuel {:.3f} L ({:.2f} L/100 km)", litres(pt, t.fuel), litres(pt, t.fuel) / (t.distance / 1e5))
+                 : fmt::format("; fuel {:.3f} L (no distance driven)", litres(pt, t.fuel));
+    return s + "\n";
+}
+
+double relative_saving(double base, double other) { return base > 0 ? (base - other) / base : 0.0; }
+}  // namespace
+
+std::string cycle_summary_text(const cycle::Powertrain& pt, const CycleStudy& s, const CycleStudyOptions& o) {
+    const auto& c = s.cold.totals;
+    std::string out = fmt::format("cycle {}: {:.0f} s, {:.3f} km, tractive energy at the wheels {:.0f} kJ; ambient {:.1f} degC\n",
+                                  s.cycle_name, c.duration, c.distance / 1e3, c.E_wheel / 1e3, celsius(o.ambient));
+    out += totals_text(pt, c, "start  ");
+    out += totals_text(pt, s.warm, "warm   ");
+    const double extra = c.gearbox_loss() + c.E_tc - s.warm.gearbox_loss() - s.warm.E_tc;
+    out += fmt::format("cold start costs {:.1f} kJ more transmission loss than a warm start at {:.0f} degC", extra / 1e3,
+                       celsius(o.warm_temperature));
+    if (c.has_fuel)
+        out += fmt::format(" ({:.3f} L fuel, {:.2f} %)", litres(pt, c.fuel - s.warm.fuel),
+                           100 * relative_saving(c.fuel, s.warm.fuel));
+    out += "\n";
+    if (s.prewarm) {
+        const auto& p = *s.prewarm;
+        out += fmt::format("pre-warm to {:.0f} degC at {:.0f} W: ideal (no heat loss, oil node {:.0f} J/K) {:.0f} s; ",
+                           celsius(*o.prewarm_target), o.heater_power, pt.thermal_model().thermal.network.C_oil,
+                           s.ideal_prewarm_time);
+        if (p.reached)
+            out += fmt::format("with the heat path to ambient {:.0f} s, {:.1f} kJ ({:.1f} kJ lost meanwhile)\n", p.time,
+                               p.energy / 1e3, p.heat_lost / 1e3);
+        else
+            out += fmt::format("not reached: the oil levels off at {:.1f} degC (heat loss = heater power); after {:.0f} s "
+                               "it is at {:.1f} degC, {:.1f} kJ spent\n",
+                               celsius(p.max_oil_temperature), p.time, celsius(p.state[0]), p.energy / 1e3);
+        const auto& w = *s.prewarmed;
+        out += totals_text(pt, w, "prewarm");
+        const double saved = c.gearbox_loss() + c.E_tc - w.gearbox_loss() - w.E_tc;
+        out += fmt::format("pre-warming saves {:.1f} kJ of transmission loss for {:.1f} kJ of heater energy", saved / 1e3,
+                           p.energy / 1e3);
+        if (c.has_fuel) {
+            const double fuel_saved = c.fuel - w.fuel;
+            out += fmt::format("; fuel {:.3f} L ({:.2f} %), {:.1f} kJ of fuel energy; net {:.1f} kJ", litres(pt, fuel_saved),
+                               100 * relative_saving(c.fuel, w.fuel), fuel_saved * pt.vehicle.engine.lower_heating_value / 1e3,
+                               (fuel_saved * pt.vehicle.engine.lower_heating_value - p.energy) / 1e3);
+        }
+        out += "\n";
+    }
+    return out;
+}
+
+std::string cycle_summary_json(const cycle::Powertrain& pt, const CycleStudy& s, const CycleStudyOptions& o) {
+    Json j;
+    const auto& c = s.cold.totals;
+    j.begin_object();
+    j.key("cycle").value(s.cycle_name);
+    j.key("duration_s").value(c.duration);
+    j.key("distance_km").value(c.distance / 1e3);
+    j.key("wheel_energy_kJ").value(c.E_wheel / 1e3);
+    j.key("ambient_C").value(celsius(o.ambient));
+    j.key("start");
+    totals_json(j, pt, c);
+    j.key("warm_start");
+    totals_json(j, pt, s.warm);
+    if (s.prewarm) {
+        const auto& p = *s.prewarm;
+        j.key("prewarm").begin_object();
+        j.key("target_C").value(celsius(*o.prewarm_target));
+        j.key("heater_W").value(o.heater_power);
+        j.key("ideal_time_s").value(s.ideal_prewarm_time);
+        j.key("reached").value(p.reached);
+        j.key("time_s").value(p.time);
+        j.key("energy_kJ").value(p.energy / 1e3);
+        j.key("heat_lost_kJ").value(p.heat_lost / 1e3);
+        if (!p.reached) j.key("levels_off_at_C").value(celsius(p.max_oil_temperature));
+        j.key("run");
+        totals_json(j, pt, *s.prewarmed);
+        if (c.has_fuel) {
+            j.key("fuel_saved_L").value(litres(pt, c.fuel - s.prewarmed->fuel));
+            j.key("fuel_saved_percent").value(100 * relative_saving(c.fuel, s.prewarmed->fuel));
+        }
+        j.end_object();
+    }
+    j.end_object();
+    return j.str() + "\n";
+}
+
+}  // namespace gearloss::io

@@ -1,0 +1,130 @@
+#include "gearloss/io/drive_cycle_csv.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/csv_read.hpp"
+
+namespace gearloss::io {
+
+namespace fs = std::filesystem;
+using cycle::DriveCycle;
+
+DriveCycle load_cycle_csv(const std::string& file) {
+    // A regular file of at most 64 MiB (a FIFO or a device is refused by name, unread).
+    std::istringstream in(read_input_file(file, kMaxCsvFileBytes));
+    DriveCycle c;
+    c.name = fs::path(file).stem().string();
+    std::string line;
+    int ln = 0;
+    int it = -1, iv = -1, ig = -1;
+    size_t ncol = 0;
+    while (std::getline(in, line)) {
+        ++ln;
+        if (ln == 1 && line.size() >= 3 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);  // BOM
+        if (line.empty() || line[0] == '#') continue;
+        const auto cells = split_csv_line(line);
+        if (it < 0) {
+            for (size_t k = 0; k < cells.size(); ++k) {
+                int* slot = cells[k] == "time_s" ? &it : cells[k] == "speed_kmh" ? &iv : cells[k] == "gear" ? &ig : nullptr;
+                if (!slot) continue;
+                if (*slot >= 0)
+                    throw InputError(file, ln, static_cast<int>(k + 1), cells[k], "column '" + cells[k] + "' given twice");
+                *slot = static_cast<int>(k);
+            }
+            if (it < 0 || iv < 0) {
+                const std::string hint = cells.size() == 1 ? separator_hint(line) : std::string();
+                throw InputError(file, ln, 1, "", hint.empty() ? "header must name the columns 'time_s' and 'speed_kmh' (optional 'gear')" : hint);
+            }
+            ncol = cells.size();
+            continue;
+        }
+        if (cells.size() != ncol) {
+            const std::string hint = separator_hint(line);
+            throw InputError(file, ln, 1, "", "expected " + std::to_string(ncol) + " cells, found " + std::to_string(cells.size()) +
+                                                  (hint.empty() ? "" : "; " + hint));
+        }
+        const double t = csv_cell_number(cells[it], file, ln, it + 1, "time_s");
+        const double v = csv_cell_number(cells[iv], file, ln, iv + 1, "speed_kmh");
+        if (v < 0 || v > 500) throw InputError(file, ln, iv + 1, "speed_kmh", "speed must be in [0, 500] km/h");
+        if (!c.time.empty() && !(t > c.time.back()))
+            throw InputError(file, ln, it + 1, "time_s", "time must increase from row to row");
+        c.time.push_back(t);
+        c.speed.push_back(v / 3.6);
+        if (ig >= 0) {
+            const double g = csv_cell_number(cells[ig], file, ln, ig + 1, "gear");
+            if (g < 0 || g > 20 || g != std::floor(g)) throw InputError(file, ln, ig + 1, "gear", "gear must be 0-20");
+            c.gear.push_back(static_cast<int>(g));
+        }
+    }
+    if (c.time.size() < 2) throw InputError(file, ln, 0, "", "a cycle needs at least two samples");
+    return c;
+}
+
+namespace {
+const std::map<std::string, std::vector<std::string>>& named() {
+    // Seed 003's ARTEMIS run (urban + highway, 2061 s, 33.6 km) is urban followed by motorway 130.
+    static const std::map<std::string, std::vector<std::string>> m = {
+        {"nedc", {"nedc"}},
+        {"wltc", {"wltc-class3b"}},
+        {"wltc-class3b", {"wltc-class3b"}},
+        {"artemis", {"artemis-urban", "artemis-motorway-130"}},
+        {"artemis-urban", {"artemis-urban"}},
+        {"artemis-rural", {"artemis-rural"}},
+        {"artemis-motorway-130", {"artemis-motorway-130"}},
+        {"artemis-motorway-150", {"artemis-motorway-150"}},
+    };
+    return m;
+}
+}  // namespace
+
+std::vector<std::string> cycle_names() {
+    std::vector<std::string> v;
+    for (const auto& [k, _] : named()) v.push_back(k);
+    return v;
+}
+
+DriveCycle resolve_cycle(const std::string& name_or_file, const std::vector<std::string>& dirs,
+                         const std::function<std::string()>& shipped) {
+    const auto it = named().find(name_or_file);
+    if (it == named().end()) {
+        std::error_code ec;
+        // Any existing path is read as a file: a FIFO, a device or a directory is then refused by name.
+        if (fs::exists(fs::status(name_or_file, ec))) return load_cycle_csv(name_or_file);
+        std::string names;
+        for (const auto& n : cycle_names()) names += (names.empty() ? "" : ", ") + n;
+        throw InputError("", 0, 0, "--cycle", "'" + excerpt(name_or_file) + "' is neither a cycle file nor one of: " + names);
+    }
+    std::vector<std::string> search = dirs;
+    bool asked_shipped = false;
+    DriveCycle out;
+    for (size_t k = 0; k < it->second.size(); ++k) {
+        std::string found;
+        for (size_t i = 0; found.empty(); ++i) {
+            if (i == search.size()) {
+                if (asked_shipped || !shipped) break;
+                asked_shipped = true;
+                search.push_back(shipped());
+            }
+            const fs::path p = fs::path(search[i]) / (it->second[k] + ".csv");
+            std::error_code ec;
+            if (fs::is_regular_file(p, ec)) found = p.string();
+        }
+        if (found.empty()) {
+            std::string searched;
+            for (const auto& d : search) searched += (searched.empty() ? "" : ", ") + d;
+            throw InputError("", 0, 0, "--cycle", "cycle file '" + it->second[k] + ".csv' not found in " +
+                                                      (searched.empty() ? std::string("any folder") : searched));
+        }
+        DriveCycle part = load_cycle_csv(found);
+        out = k == 0 ? part : cycle::concatenate(out, part, name_or_file);
+    }
+    out.name = name_or_file;
+    return out;
+}
+
+}  // namespace gearloss::io

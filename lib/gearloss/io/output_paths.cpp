@@ -1,0 +1,209 @@
+#include "gearloss/io/output_paths.hpp"
+
+#include "gearloss/io/csv_read.hpp"
+
+#include <cctype>
+#include <cerrno>
+#include <climits>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <dirent.h>
+#include <fcntl.h>
+#include <fstream>
+#include <optional>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/atomic_file.hpp"
+
+namespace gearloss::io {
+namespace {
+
+bool all_digits(const std::string& s) {
+    if (s.empty() || s.size() > 9) return false;
+    for (char c : s)
+        if (c < '0' || c > '9') return false;
+    return true;
+}
+
+// /dev/stdout, /dev/fd/N, /proc/self/fd/N, /proc/<own pid>/fd/N: the descriptor N.
+std::optional<int> descriptor_of(const std::string& p) {
+    if (p == "-" || p == "/dev/stdout") return 1;
+    if (p == "/dev/stderr") return 2;
+    const std::string own = "/proc/" + std::to_string(::getpid()) + "/fd/";
+    for (const std::string& prefix : {std::string("/dev/fd/"), std::string("/proc/self/fd/"),
+                                     std::string("/proc/thread-self/fd/"), own})
+        if (p.size() > prefix.size() && p.compare(0, prefix.size(), prefix) == 0 && all_digits(p.substr(prefix.size())))
+            return std::atoi(p.c_str() + prefix.size());
+    return std::nullopt;
+}
+
+void split(const std::string& p, std::string& dir, std::string& name) {
+    const auto slash = p.find_last_of('/');
+    if (slash == std::string::npos) {
+        dir = ".";
+        name = p;
+    } else {
+        dir = slash == 0 ? "/" : p.substr(0, slash);
+        name = p.substr(slash + 1);
+    }
+}
+
+std::string cannot(const std::string& path, const std::string& why) { return "cannot write '" + path + "': " + why; }
+
+}  // namespace
+
+OutputTarget resolve_output(const std::string& path) {
+    OutputTarget t;
+    if (path.empty()) throw IoError("cannot write '': empty file name");
+    std::string p = path;
+    for (int hops = 0;; ++hops) {
+        if (hops > 40) throw IoError(cannot(path, std::strerror(ELOOP)));
+        if (const auto fd = descriptor_of(p)) {
+            t.kind = OutputTarget::Kind::descriptor;
+            t.fd = *fd;
+            return t;
+        }
+        split(p, t.dir, t.name);
+        struct stat ls {};
+        if (::lstat(p.c_str(), &ls) != 0) {
+            // Missing (or not reachable): the temporary file's creation reports why.
+            if (t.name.empty() || t.name == "." || t.name == "..") throw IoError(cannot(path, "not a file name"));
+            t.kind = OutputTarget::Kind::absent;
+            break;
+        }
+        if (S_ISLNK(ls.st_mode)) {
+            std::string target(static_cast<size_t>(ls.st_size > 0 ? ls.st_size : PATH_MAX) + 1, '\0');
+            const ssize_t n = ::readlink(p.c_str(), target.data(), target.size());
+            if (n < 0) throw IoError(cannot(path, std::strerror(errno)));
+            target.resize(static_cast<size_t>(n));
+            if (target.empty()) throw IoError(cannot(path, "empty symbolic link"));
+            p = target[0] == '/' ? target : (t.dir == "/" ? "/" : t.dir + "/") + target;
+            continue;
+        }
+        if (S_ISDIR(ls.st_mode) || t.name.empty()) throw IoError(cannot(path, "is a directory"));
+        t.st = ls;
+        if (S_ISREG(ls.st_mode)) t.kind = OutputTarget::Kind::regular;
+        else if (S_ISCHR(ls.st_mode) || S_ISFIFO(ls.st_mode)) t.kind = OutputTarget::Kind::direct;
+        else throw IoError(cannot(path, S_ISBLK(ls.st_mode) ? "a block device is not written" : "not a regular file"));
+        break;
+    }
+    // A directory that is (a link to) /proc/self/fd: the descriptor named by the last component.
+    if (char* real = ::realpath(t.dir.c_str(), nullptr)) {
+        const std::string r = real;
+        std::free(real);
+        if (const auto fd = descriptor_of(r + "/" + t.name)) {
+            t.kind = OutputTarget::Kind::descriptor;
+            t.fd = *fd;
+        }
+    }
+    return t;
+}
+
+std::string temp_prefix(const std::string& name) {
+    const size_t room = NAME_MAX - std::strlen(kTempMarker) - 6;
+    return (name.size() > room ? name.substr(0, room) : name) + kTempMarker;
+}
+
+void remove_stale_temporaries(const std::string& dir, const std::string& name) {
+    const std::string prefix = temp_prefix(name);
+    DIR* d = ::opendir(dir.c_str());
+    if (!d) return;
+    const std::time_t now = std::time(nullptr);
+    while (const dirent* e = ::readdir(d)) {
+        const std::string n = e->d_name;
+        if (n.size() != prefix.size() + 6 || n.compare(0, prefix.size(), prefix) != 0) continue;
+        bool random_part = true;
+        for (size_t i = prefix.size(); i < n.size(); ++i)
+            random_part = random_part && std::isalnum(static_cast<unsigned char>(n[i]));
+        if (!random_part) continue;
+        const std::string full = (dir == "/" ? "/" : dir + "/") + n;
+        const int fd = ::open(full.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+        if (fd < 0) continue;
+        struct stat s {}, l {};
+        if (::fstat(fd, &s) == 0 && S_ISREG(s.st_mode) && (::geteuid() == 0 || s.st_uid == ::geteuid()) &&
+            now - s.st_mtime > kStaleTempSeconds && ::flock(fd, LOCK_EX | LOCK_NB) == 0 && ::lstat(full.c_str(), &l) == 0 &&
+            l.st_dev == s.st_dev && l.st_ino == s.st_ino)
+            ::unlink(full.c_str());
+        ::close(fd);
+    }
+    ::closedir(d);
+}
+
+void require_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) {
+    struct Id {
+        std::string option, path;
+        bool inode = false, shareable = false;
+        dev_t dev = 0;
+        ino_t ino = 0;
+        std::string key;
+    };
+    std::vector<Id> ids;
+    for (const auto& [option, path] : outputs) {
+        if (path.empty()) continue;
+        Id id;
+        id.option = option;
+        id.path = path;
+        try {
+            const OutputTarget t = resolve_output(path);
+            struct stat s {};
+            if (t.kind == OutputTarget::Kind::descriptor ? ::fstat(t.fd, &s) == 0
+                                                         : t.kind != OutputTarget::Kind::absent && ((s = t.st), true)) {
+                id.inode = true;
+                id.dev = s.st_dev;
+                id.ino = s.st_ino;
+                id.shareable = S_ISCHR(s.st_mode);
+            } else if (t.kind == OutputTarget::Kind::descriptor) {
+                id.key = "fd:" + std::to_string(t.fd);
+            } else {
+                char* real = ::realpath(t.dir.c_str(), nullptr);
+                id.key = (real ? std::string(real) : t.dir) + "/" + t.name;
+                std::free(real);
+            }
+        } catch (const IoError&) {
+            id.key = path;  // not writable: reported when written
+        }
+        for (const Id& o : ids) {
+            const bool same = id.inode ? o.inode && o.dev == id.dev && o.ino == id.ino : !o.inode && o.key == id.key;
+            if (same && !id.shareable)
+                throw InputError("", 0, 0, o.option,
+                                 o.option + " and " + option + " name the same file" +
+                                     (o.path == path ? " '" + path + "'" : " ('" + o.path + "' and '" + path + "')") +
+                                     "; give two different files");
+        }
+        ids.push_back(std::move(id));
+    }
+}
+
+void require_outputs_not_inputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                                const std::vector<std::pair<std::string, std::string>>& inputs) {
+    for (const auto& [in_option, in_path] : inputs) {
+        struct stat in {};
+        if (in_path.empty() || in_path == "-" || ::stat(in_path.c_str(), &in) != 0 || !S_ISREG(in.st_mode)) continue;
+        for (const auto& [option, path] : outputs) {
+            if (path.empty() || path == "-") continue;
+            struct stat out {};
+            if (::stat(path.c_str(), &out) != 0 || out.st_dev != in.st_dev || out.st_ino != in.st_ino) continue;
+            throw InputError("", 0, 0, option,
+                             option + " '" + excerpt(path, 200) + "' is the input " + in_option + " '" + excerpt(in_path, 200) +
+                                 "'; write the output to another file");
+        }
+    }
+}
+
+mode_t current_umask() {
+    static const mode_t mask = [] {
+        std::ifstream in("/proc/self/status");
+        std::string line;
+        while (std::getline(in, line))
+            if (line.rfind("Umask:", 0) == 0) return static_cast<mode_t>(std::strtoul(line.c_str() + 6, nullptr, 8));
+        const mode_t m = ::umask(022);  // no /proc: read it by setting it back
+        ::umask(m);
+        return m;
+    }();
+    return mask;
+}
+
+}  // namespace gearloss::io

@@ -1,0 +1,292 @@
+#include "gearloss/io/reports.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "gearloss/bearings/skf_constants.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/core/message_text.hpp"
+#include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
+#include "gearloss/mesh/ehl_path.hpp"
+#include "gearloss/io/json.hpp"
+
+namespace gearloss::io {
+
+namespace {
+constexpr double rpm = 30.0 / std::numbers::pi;
+constexpr double deg = 180.0 / std::numbers::pi;
+
+std::string status_line(const solver::Model& m, const solver::PointResult& r) {
+    if (r.status == solver::PointStatus::no_equilibrium)
+        return fmt::format("status: no_equilibrium (losses exceed heat rejection up to {:.1f} degC)\n",
+                           r.oil_temperature - 273.15);
+    if (r.status == solver::PointStatus::out_of_range)
+        return "status: " + solver::status_text(r) + " (no losses computed)\n";
+    if (r.status == solver::PointStatus::above_oil_limit)
+        return fmt::format("status: above_oil_limit (the oil settles above its permissible {:.1f} degC)\n",
+                           m.oil.max_temperature - 273.15);
+    return "status: ok\n";
+}
+}  // namespace
+
+std::string point_report(const Case& c, const solver::PointResult& r) {
+    const auto& m = c.model;
+    std::string s;
+    s += fmt::format("{} — oil {}{}\n", m.name, m.oil.name, m.ratio.empty() ? "" : ", ratio " + m.ratio);
+    if (r.status == solver::PointStatus::out_of_range) {
+        // The inputs as given, however large (or not finite): short, never "inf" or 300 digits.
+        s += fmt::format("input  {} rpm  {} N*m  {} W\n", finite_number_text(r.speed_in * rpm),
+                         finite_number_text(r.torque_in), finite_number_text(r.power_in));
+        return s + status_line(m, r);
+    }
+    s += fmt::format("input  {:10.2f} rpm  {:10.2f} N*m  {:10.1f} W\n", r.speed_in * rpm, r.torque_in, r.power_in);
+    s += status_line(m, r);
+    if (!solver::has_values(r.status)) return s;
+    s += fmt::format("output {:10.2f} rpm  {:10.2f} N*m  {:10.1f} W\n", r.omega_out * rpm, r.torque_out, r.power_out);
+    s += fmt::format("oil temperature {:.2f} degC (ambient {:.2f} degC, {})\n", r.oil_temperature - 273.15,
+                     r.ambient - 273.15, m.thermal.mode == solver::ThermalMode::fixed ? "fixed" : "stabilised");
+    const auto os = m.oil.state(r.oil_temperature);
+    s += fmt::format("oil at that temperature: nu {:.3f} cSt, rho {:.1f} kg/m^3, eta {:.3f} mPa*s, alpha {:.3f} 1/GPa\n\n",
+                     os.nu_cSt, os.rho, os.eta * 1e3, os.alpha_p * 1e9);
+    const auto& Lo = r.losses;
+    // One section per loss mechanism, from the mechanism (its oil-independent terms at this point).
+    const solver::PointState p = solver::prepare_point(m, r.speed_in, r.torque_in);
+    std::string totals;
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+        const auto& mech = m.mechanisms[i];
+        if (i < Lo.detail.size()) s += mech.report(m, p.input(), *p.data[i], Lo.detail[i]);
+        totals += fmt::format("{} {:.2f}, ", mech.label(), Lo.power[i]);
+    }
+    s += fmt::format("\ntotals [W]: {}total {:.2f}\n", totals, Lo.total());
+    if (r.has_efficiency) s += fmt::format("efficiency {:.4f} %\n", 100.0 * r.efficiency);
+    if (Lo.has_lambda) s += fmt::format("minimum specific film thickness Lambda {:.3f}\n", Lo.lambda_min);
+    return s;
+}
+
+namespace {
+struct MeshRow {
+    std::string name;
+    const geometry::PairGeometry* g;
+    const gearbox::Layout::MeshData* md;
+};
+}  // namespace
+
+std::string check_report(const Case& c) {
+    const auto& m = c.model;
+    const auto& gb = m.gearbox;
+    const auto& L = m.layout;
+    std::string s = fmt::format("{}: configuration is valid\n", c.file);
+    s += fmt::format("overall ratio n_out/n_in = {:.6f} (i = n_in/n_out = {:.5f}){}\n", L.ratio, 1.0 / L.ratio,
+                     m.ratio.empty() ? "" : ", ratio '" + m.ratio + "'");
+    s += "\nmeshes (lengths in mm)\n";
+    for (size_t i = 0; i < gb.meshes.size(); ++i) {
+        const auto& md = L.meshes[i];
+        const auto& g = md.geom;
+        const auto& g0 = gb.gears[gb.meshes[i].gear[0]].spec;
+        const auto& g1 = gb.gears[gb.meshes[i].gear[1]].spec;
+        s += fmt::format("  {} ({} / {}): {}\n", gb.meshes[i].name, g0.name, g1.name, md.loaded ? "loaded" : "idle");
+        s += fmt::format("    u = {:.5f}, a = {:.3f}, a_w = {:.3f}, alpha_t = {:.4f} deg, alpha_wt = {:.4f} deg, beta_b = {:.4f} deg\n",
+                         g.u, g.a * 1e3, g.a_w * 1e3, g.alpha_t * deg, g.alpha_wt * deg, g.beta_b * deg);
+        s += fmt::format("    d = {:.3f} / {:.3f}, d_w = {:.3f} / {:.3f}, d_a = {:.3f} / {:.3f}, d_f = {:.3f} / {:.3f}, d_b = {:.3f} / {:.3f}\n",
+                         g.d[0] * 1e3, g.d[1] * 1e3, g.dw[0] * 1e3, g.dw[1] * 1e3, g.da[0] * 1e3, g.da[1] * 1e3,
+                         g.df[0] * 1e3, g.df[1] * 1e3, g.db[0] * 1e3, g.db[1] * 1e3);
+        s += fmt::format("    y = {:.4f}, k = {:.4f}, tip thickness = {:.3f} / {:.3f}, tip clearance = {:.3f} / {:.3f}\n", g.y,
+                         g.k, g.tip_thickness[0] * 1e3, g.tip_thickness[1] * 1e3, g.tip_clearance[0] * 1e3,
+                         g.tip_clearance[1] * 1e3);
+        s += fmt::format("    eps_1 = {:.4f}, eps_2 = {:.4f}, eps_alpha = {:.4f}, eps_beta = {:.4f}, eps_gamma = {:.4f}\n",
+                         g.eps1, g.eps2, g.eps_alpha, g.eps_beta, g.eps_gamma);
+        s += fmt::format("    tips: {} {} (k = {:.4f}), {} {} (k = {:.4f})\n", g0.name, geometry::to_string(g.tip_source[0]),
+                         g.k_applied[0], g1.name, geometry::to_string(g.tip_source[1]), g.k_applied[1]);
+        if (g.transverse_gap)
+            s += fmt::format("    note: eps_alpha = {:.4f} < 1; contact stays continuous through the overlap (eps_gamma = "
+                             "{:.4f}); H_V from the contact-line sweep\n",
+                             g.eps_alpha, g.eps_gamma);
+        s += fmt::format("    H_V: Ohlendorf {:.4f}, Buckingham {:.4f}, Wimmer (rigid) {:.4f} [used: {}]; rho_redC = {:.4f}, L_min = {:.3f}\n",
+                         md.H_V_ohlendorf, md.H_V_buckingham, md.H_V_wimmer, mesh::to_string(mesh::mesh_forms(m).loss_factor),
+                         g.rho_redC * 1e3, md.L_min * 1e3);
+    }
+    s += "\nshafts (housing frame, y up, mm) and speeds per input speed\n";
+    for (size_t i = 0; i < gb.shafts.size(); ++i)
+        s += fmt::format("  {:<10} centre ({:8.3f}, {:8.3f})  n/n_in = {:+.6f}\n", gb.shafts[i].name,
+                         L.shaft_centre[i].x() * 1e3, L.shaft_centre[i].y() * 1e3, L.body_speed_ratio[L.body_of_shaft[i]]);
+    s += "\ngears: n/n_in, immersion [mm]\n";
+    for (size_t g = 0; g < gb.gears.size(); ++g)
+        s += fmt::format("  {:<10} {:+.6f}  {:7.2f}{}\n", gb.gears[g].spec.name, L.body_speed_ratio[L.body_of_gear[g]],
+                         L.gear_immersion[g] * 1e3, gb.gears[g].free ? "  (free)" : "");
+    s += "\nbearings: n/n_in, radial and axial load per 100 N*m input (forward / reverse torque)\n";
+    for (size_t i = 0; i < gb.bearings.size(); ++i) {
+        const auto& b = gb.bearings[i];
+        s += fmt::format("  {:<10} {:<26} {:.5f}  Fr {:8.1f} / {:8.1f} N  Fa {:8.1f} / {:8.1f} N{}\n", b.name,
+                         bearings::to_string(b.spec.type), L.bearing_speed_ratio[i], 100 * L.bearing_Fr_pos[i],
+                         100 * L.bearing_Fr_neg[i], 100 * L.bearing_Fa_pos[i], 100 * L.bearing_Fa_neg[i],
+                         b.spec.type == bearings::BearingType::needle_roller ? "  (SKF constants: caged CRB proxy)" : "");
+    }
+    s += "\nloss mechanisms: alternative forms (selected in [ ]; the axes of map --spread) and parameters (SI)\n";
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+        const auto& mech = m.mechanisms[i];
+        s += fmt::format("  {:<12} {}\n", mech.name(), mech.column());
+        for (const auto& a : mech.forms(m)) {
+            const std::string chosen = mech.form(m, a.axis);
+            std::string list;
+            for (const auto& f : a.forms) list += fmt::format(" {}", f == chosen ? "[" + f + "]" : f);
+            s += fmt::format("    {}.{}:{}\n", mech.name(), a.axis, list);
+        }
+        const auto params = mech.parameters();
+        for (size_t k = 0; k < params.size(); ++k)
+            s += fmt::format("    {} = {:.6g}{} ({})\n", params[k].name, mech.parameter(params[k].name),
+                             params[k].calibration ? " [calibration]" : "", params[k].description);
+    }
+    const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
+    s += fmt::format("\noil {} ({}): nu40 = {:.3f} cSt, nu100 = {:.3f} cSt, rho15 = {:.1f} kg/m^3, X_L = {:.3f}\n", m.oil.name,
+                     lubricant::to_string(m.oil.base), s40.nu_cSt, s100.nu_cSt, m.oil.rho15, m.oil.X_L);
+    s += fmt::format("    alpha_p(40) = {:.4g} 1/Pa, alpha_p(100) = {:.4g} 1/Pa, beta_T(40) = {:.4g} 1/K\n", s40.alpha_p,
+                     s100.alpha_p, s40.beta_T);
+    s += fmt::format("    permissible oil temperature {:.1f} degC (above it a stabilised point is 'above_oil_limit')\n",
+                     m.oil.max_temperature - 273.15);
+    s += fmt::format("operating points: {}\n", c.grid.size());
+    if (!c.warnings.empty()) {
+        s += fmt::format("\nplausibility ({}):\n", c.warnings.size());
+        for (const auto& w : c.warnings) s += "  " + w + "\n";
+    }
+    return s;
+}
+
+std::string check_json(const Case& c) {
+    const auto& m = c.model;
+    const auto& gb = m.gearbox;
+    const auto& L = m.layout;
+    Json j;
+    j.begin_object();
+    j.key("file").value(c.file);
+    j.key("name").value(m.name);
+    j.key("valid").value(true);
+    j.key("ratio_name").value(m.ratio);
+    j.key("speed_ratio_out_in").value(L.ratio);
+    // A key with the values of the two gears of a mesh.
+    const auto both = [&j](const char* key, const auto& a, const auto& b) { j.key(key).begin_array().value(a).value(b).end_array(); };
+    j.key("meshes").begin_array();
+    for (size_t i = 0; i < gb.meshes.size(); ++i) {
+        const auto& md = L.meshes[i];
+        const auto& g = md.geom;
+        j.begin_object();
+        j.key("name").value(gb.meshes[i].name);
+        both("gears", gb.gears[gb.meshes[i].gear[0]].spec.name, gb.gears[gb.meshes[i].gear[1]].spec.name);
+        j.key("loaded").value(md.loaded);
+        j.key("u").value(g.u);
+        j.key("centre_distance_mm").value(g.a_w * 1e3);
+        j.key("reference_centre_distance_mm").value(g.a * 1e3);
+        j.key("working_pressure_angle_deg").value(g.alpha_wt * deg);
+        both("tip_diameters_mm", g.da[0] * 1e3, g.da[1] * 1e3);
+        both("tip_sources", geometry::to_string(g.tip_source[0]), geometry::to_string(g.tip_source[1]));
+        both("tip_alteration_factors", g.k_applied[0], g.k_applied[1]);
+        both("root_diameters_mm", g.df[0] * 1e3, g.df[1] * 1e3);
+        both("working_pitch_diameters_mm", g.dw[0] * 1e3, g.dw[1] * 1e3);
+        j.key("eps_1").value(g.eps1);
+        j.key("eps_2").value(g.eps2);
+        j.key("eps_alpha").value(g.eps_alpha);
+        j.key("eps_beta").value(g.eps_beta);
+        j.key("eps_gamma").value(g.eps_gamma);
+        j.key("H_V_ohlendorf").value(md.H_V_ohlendorf);
+        j.key("H_V_buckingham").value(md.H_V_buckingham);
+        j.key("H_V_wimmer").value(md.H_V_wimmer);
+        j.key("H_V_model").value(mesh::to_string(mesh::mesh_forms(m).loss_factor));
+        j.key("H_V").value(md.loss_factor(mesh::mesh_forms(m).loss_factor));
+        j.key("rho_redC_mm").value(g.rho_redC * 1e3);
+        j.end_object();
+    }
+    j.end_array();
+    j.key("shafts").begin_array();
+    for (size_t i = 0; i < gb.shafts.size(); ++i) {
+        j.begin_object();
+        j.key("name").value(gb.shafts[i].name);
+        j.key("x_mm").value(L.shaft_centre[i].x() * 1e3);
+        j.key("y_mm").value(L.shaft_centre[i].y() * 1e3);
+        j.key("speed_ratio").value(L.body_speed_ratio[L.body_of_shaft[i]]);
+        j.end_object();
+    }
+    j.end_array();
+    j.key("gears").begin_array();
+    for (size_t g = 0; g < gb.gears.size(); ++g) {
+        j.begin_object();
+        j.key("name").value(gb.gears[g].spec.name);
+        j.key("speed_ratio").value(L.body_speed_ratio[L.body_of_gear[g]]);
+        j.key("immersion_mm").value(L.gear_immersion[g] * 1e3);
+        j.end_object();
+    }
+    j.end_array();
+    j.key("bearings").begin_array();
+    for (size_t i = 0; i < gb.bearings.size(); ++i) {
+        j.begin_object();
+        j.key("name").value(gb.bearings[i].name);
+        j.key("type").value(bearings::to_string(gb.bearings[i].spec.type));
+        j.key("speed_ratio").value(L.bearing_speed_ratio[i]);
+        j.key("Fr_per_Nm").value(L.bearing_Fr_pos[i]);
+        j.key("Fa_per_Nm").value(L.bearing_Fa_pos[i]);
+        j.end_object();
+    }
+    j.end_array();
+    const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
+    j.key("oil").begin_object();
+    j.key("name").value(m.oil.name);
+    j.key("base").value(lubricant::to_string(m.oil.base));
+    j.key("nu40_cSt").value(s40.nu_cSt);
+    j.key("nu100_cSt").value(s100.nu_cSt);
+    j.key("rho15_kg_m3").value(m.oil.rho15);
+    j.key("X_L").value(m.oil.X_L);
+    j.key("max_temperature_C").value(m.oil.max_temperature - 273.15);
+    j.end_object();
+    j.key("mechanisms").begin_array();
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+        const auto& mech = m.mechanisms[i];
+        j.begin_object().key("name").value(std::string(mech.name())).key("column").value(std::string(mech.column()));
+        j.key("forms").begin_array();
+        for (const auto& a : mech.forms(m)) {
+            j.begin_object().key("axis").value(a.axis).key("selected").value(mech.form(m, a.axis)).key("forms").begin_array();
+            for (const auto& f : a.forms) j.value(f);
+            j.end_array().end_object();
+        }
+        j.end_array().key("parameters").begin_object();
+        const auto params = mech.parameters();
+        for (size_t k = 0; k < params.size(); ++k) j.key(params[k].name).value(mech.parameter(params[k].name));
+        j.end_object().end_object();
+    }
+    j.end_array();
+    j.key("operating_points").value(c.grid.size());
+    j.key("warnings").begin_array();
+    for (const auto& w : c.warnings) j.value(w);
+    j.end_array();
+    j.end_object();
+    return j.str() + "\n";
+}
+
+std::string mesh_profile_csv(const Case& c, const std::string& mesh_name, double omega_in, double torque_in,
+                             double oil_temperature, int positions) {
+    const auto& m = c.model;
+    int k = -1;
+    std::string names;
+    for (size_t i = 0; i < m.gearbox.meshes.size(); ++i) {
+        names += (names.empty() ? "" : ", ") + m.gearbox.meshes[i].name;
+        if (m.gearbox.meshes[i].name == mesh_name) k = static_cast<int>(i);
+    }
+    if (k < 0) throw InputError("", 0, 0, "--mesh", "unknown mesh '" + excerpt(mesh_name) + "'; meshes: " + names);
+    const solver::PointState p = solver::prepare_point(m, omega_in, torque_in);
+    const auto& ms = mesh::mesh_friction_point(m, p.data).meshes[static_cast<size_t>(k)];
+    const auto& md = m.layout.meshes[static_cast<size_t>(k)];
+    if (ms.F_bn <= 0.0 || ms.omega_rel == 0.0)
+        throw InputError("", 0, 0, "--mesh", "mesh '" + excerpt(mesh_name) + "' carries no load or does not turn at this point");
+    const auto prof = mesh::ehl_path(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime, ms.sigma,
+                                     oil_temperature, m.oil, m.oil.traction, positions);
+    std::string s =
+        "position_from_pitch_mm,position_from_T1_mm,load_share,p0_GPa,hertz_halfwidth_um,u_entrainment_m_s,v_slide_m_s,"
+        "slide_to_roll,h_c_um,h_min_um,lambda,film_temp_C,flash_rise_K,shear_rise_K,mu_ehl,mu,local_efficiency\n";
+    for (const auto& pt : prof.points)
+        s += fmt::format("{:.4f},{:.4f},{:.4f},{:.5f},{:.3f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{:.4f},{:.3f},{:.3f},{:.3f},{:.6f},"
+                         "{:.6f},{:.6f}\n",
+                         pt.from_pitch * 1e3, pt.xi * 1e3, pt.load_share, pt.c.p0 * 1e-9, pt.c.a * 1e6, pt.u_e, pt.v_slide,
+                         pt.srr, pt.c.h_c * 1e6, pt.c.h_min * 1e6, pt.c.lambda, pt.c.T_film - 273.15, pt.c.dT_flash,
+                         pt.c.dT_shear, pt.c.mu_ehl, pt.c.mu, pt.local_efficiency);
+    return s;
+}
+
+}  // namespace gearloss::io

@@ -1,0 +1,18 @@
+#pragma once
+// Human-readable and JSON reports for `gearloss point` and `gearloss check`.
+#include <string>
+
+#include "gearloss/io/config.hpp"
+#include "gearloss/solver/operating_point.hpp"
+
+namespace gearloss::io {
+
+std::string point_report(const Case& c, const solver::PointResult& r);
+std::string check_report(const Case& c);
+std::string check_json(const Case& c);
+// Local thermal-EHL state along the path of contact of mesh `mesh_name` at the
+// point's oil temperature (CSV). Throws InputError for an unknown or idle mesh.
+std::string mesh_profile_csv(const Case& c, const std::string& mesh_name, double omega_in, double torque_in,
+                             double oil_temperature, int positions);
+
+}  // namespace gearloss::io

@@ -1,0 +1,144 @@
+// Rolling bearings as a loss mechanism: the SKF (2004) friction model per bearing with the
+// loads from the gear forces (gearbox::Layout), times the planets it stands for, plus the
+// calibration's no-load drag term after Palmgren (1959).
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "gearloss/bearings/skf_model.hpp"
+#include "gearloss/losses/registry.hpp"
+#include "gearloss/model/model.hpp"
+
+namespace gearloss::bearings {
+namespace {
+
+constexpr double rad_s_to_rpm = 30.0 / std::numbers::pi;  // the report's speed column
+
+struct BearingPoint : losses::MechanismPointOf<BearingPoint> {
+    std::vector<SkfAtPoint> skf;     // per bearing
+    // Per bearing: the powers of its dimensions, kept from point to point (this storage is
+    // reused for the points a thread solves) and made again only when the bearing differs.
+    std::vector<SkfGeometry> geometry;
+    std::vector<double> omega;       // rad/s
+    std::vector<double> drag_coef;   // Palmgren drag, W per (nu_cSt)^(2/3)
+    bool any_drag = false;           // a bearing with the SKF drag term
+};
+
+class Bearings final : public losses::LossMechanism {
+public:
+    enum : size_t { kDragF0 };
+    std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<Bearings>(*this); }
+    std::string_view name() const override { return "bearings"; }
+    std::string_view label() const override { return "bearings"; }
+    std::string_view column() const override { return "P_bearing_W"; }
+    std::vector<std::string> components(const solver::Model& m) const override {
+        return losses::names_of(m.gearbox.bearings, [](const auto& b) { return b.name; });
+    }
+    std::vector<losses::DetailQuantity> quantities() const override { return {{"P_bearing_{}_W", 1.0}}; }
+    std::vector<losses::Parameter> parameters() const override {
+        // Palmgren (1959) no-load moment M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm] per bearing.
+        return {{"drag_f0", "Palmgren no-load factor f0 of an added bearing drag", nullptr, "1.5", 0.0, 0.0, 100.0, true}};
+    }
+    std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<BearingPoint>(); }
+
+    void prepare(const solver::Model& m, const losses::PointInput& in, losses::MechanismPoint& out) const override {
+        const auto& gb = m.gearbox;
+        const auto& L = m.layout;
+        auto& p = static_cast<BearingPoint&>(out);
+        const size_t n = gb.bearings.size();
+        p.skf.assign(n, SkfAtPoint{});
+        p.geometry.resize(n);
+        p.omega.assign(n, 0.0);
+        p.drag_coef.assign(n, 0.0);
+        p.any_drag = false;
+        const double f0 = param(kDragF0);
+        const bool neg = in.torque_in < 0.0;
+        const double T = std::abs(in.torque_in);
+        for (size_t i = 0; i < n; ++i) {
+            const double w = L.bearing_speed_ratio[i] * std::abs(in.omega_in);
+            p.omega[i] = w;
+            if (!enabled()) continue;  // switched off: no SKF loss and no drag
+            const double Fr_gear = T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]);
+            const double Fcf = L.bearing_Fcf_per_w2[i] * in.omega_in * in.omega_in;  // planet centrifugal load
+            const double Fr = Fcf > 0.0 ? std::hypot(Fr_gear, Fcf) : Fr_gear;
+            const double Fa = T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]);
+            const auto& spec = gb.bearings[i].spec;
+            if (!p.geometry[i].matches(spec)) p.geometry[i] = SkfGeometry::of(spec);
+            p.skf[i] = SkfAtPoint::make(spec, p.geometry[i], Fr, Fa, w);
+            // Palmgren (1959): M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm], P = M0 omega.
+            if (f0 > 0.0) p.drag_coef[i] = palmgren_drag_coef(gb.bearings[i].spec, f0, w);
+            p.any_drag = p.any_drag || p.skf[i].drag_b != 0.0;
+        }
+    }
+
+    std::string point_fault(const solver::Model& m, const losses::MechanismPoint& pt) const override {
+        const auto& p = static_cast<const BearingPoint&>(pt);
+        // Called once per point: the message is built only for a fault.
+        for (size_t i = 0; i < p.skf.size(); ++i) {
+            const char* f = !std::isfinite(p.omega[i]) ? "speed" : p.skf[i].fault();
+            if (!f && !std::isfinite(p.drag_coef[i])) f = "drag";
+            if (f) return "bearing " + m.gearbox.bearings[i].name + " " + f;
+        }
+        return {};
+    }
+
+    double power(const solver::Model& m, const losses::MechanismPoint& pt, losses::Evaluation& e,
+                 losses::MechanismDetail* d) const override {
+        const auto& gb = m.gearbox;
+        const auto& p = static_cast<const BearingPoint&>(pt);
+        if (d) d->reset(p.skf.size(), 1);
+        double total = 0.0;
+        // The SKF and Palmgren correlations take nu in cSt (their catalogue unit): its powers are
+        // computed here once per temperature, from the ln(nu/cSt) shared by every mechanism.
+        const double nu = e.oil.nu_cSt;
+        if (enabled() && !p.skf.empty()) {
+            const double lnnu = e.ln_nu_cSt;
+            const double nu06 = std::exp(0.6 * lnnu), nu064 = std::exp(0.64 * lnnu), nu14 = std::exp(1.4 * lnnu);
+            const double nu1379 = p.any_drag ? std::exp(1.379 * lnnu) : 0.0;
+            for (size_t i = 0; i < p.skf.size(); ++i) {
+                const double M = p.skf[i].moment(nu, nu06, nu064, nu14, nu1379);  // N*m
+                const double P = M * p.omega[i] * gb.bearings[i].multiplicity;      // x planets
+                total += P;
+                if (d) d->at(i) = P;
+            }
+        }
+        if (param(kDragF0) > 0.0) {
+            const double nu23 = std::cbrt(nu * nu);
+            for (size_t i = 0; i < p.drag_coef.size(); ++i) {
+                const double P = p.drag_coef[i] * nu23 * gb.bearings[i].multiplicity;
+                total += P;
+                if (d) d->at(i) += P;
+            }
+        }
+        return total;
+    }
+
+    std::string loss_fault(const solver::Model& m, const losses::MechanismPoint&,
+                           const losses::MechanismDetail& d) const override {
+        for (size_t i = 0; i < m.gearbox.bearings.size(); ++i)
+            if (!(std::isfinite(d.at(i)) && d.at(i) >= 0)) return "bearing " + m.gearbox.bearings[i].name + " loss";
+        return {};
+    }
+
+    std::string report(const solver::Model& m, const losses::PointInput& in, const losses::MechanismPoint&,
+                       const losses::MechanismDetail& d) const override {
+        const auto& gb = m.gearbox;
+        const auto& L = m.layout;
+        std::string s = "bearings              type                       n [rpm]   Fr [N]    Fa [N]    P [W]\n";
+        const bool neg = in.torque_in < 0;
+        const double T = std::abs(in.torque_in);
+        for (size_t i = 0; i < gb.bearings.size(); ++i)
+            s += fmt::format("  {:<18} {:<26} {:8.1f} {:9.1f} {:9.1f} {:8.2f}\n", gb.bearings[i].name,
+                             to_string(gb.bearings[i].spec.type), L.bearing_speed_ratio[i] * std::abs(in.omega_in) * rad_s_to_rpm,
+                             T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]),
+                             T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]), d.at(i));
+        return s;
+    }
+};
+
+}  // namespace
+}  // namespace gearloss::bearings
+
+namespace gearloss::losses {
+std::unique_ptr<LossMechanism> create_bearings() { return make_mechanism<bearings::Bearings>(); }
+}  // namespace gearloss::losses

@@ -1,0 +1,111 @@
+#include "gearloss/solver/plausibility.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+namespace gearloss::solver {
+
+std::optional<HousingBox> housing_box(double area, double height, double length) {
+    // A = 2(LH + LW + HW)  ->  W = (A/2 - L H) / (L + H)
+    const double width = (0.5 * area - length * height) / (length + height);
+    if (!(width > 0) || !std::isfinite(width)) return std::nullopt;
+    return HousingBox{length, width, height};
+}
+
+namespace {
+
+double tip_radius(const Model& m, size_t g) {
+    const auto& gb = m.gearbox;
+    const auto& spec = gb.gears[g].spec;
+    double ra = 0.5 * spec.d() + spec.mn * (spec.ha_star + spec.x);
+    for (size_t k = 0; k < gb.meshes.size(); ++k)
+        for (int s = 0; s < 2; ++s)
+            if (gb.meshes[k].gear[s] == static_cast<int>(g)) ra = 0.5 * m.layout.meshes[k].geom.da[s];
+    return ra;
+}
+
+// Area of the circular segment of radius r below a chord at depth h (0 <= h <= 2r).
+double segment_area(double r, double h) {
+    h = std::clamp(h, 0.0, 2.0 * r);
+    const double theta = std::acos(1.0 - h / r);  // half angle
+    return r * r * (theta - std::sin(theta) * std::cos(theta));
+}
+
+}  // namespace
+
+std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication lubrication,
+                                                    const std::optional<HousingBox>& box,
+                                                    std::optional<double> housing_height) {
+    using S = PlausibilityFinding::Severity;
+    using J = PlausibilityFinding::Subject;
+    std::vector<PlausibilityFinding> out;
+    const auto& gb = m.gearbox;
+    const auto& L = m.layout;
+    const double mm = 1e3;
+
+    double deepest = 0, displaced = 0;
+    bool any_dipping = false;
+    for (size_t g = 0; g < gb.gears.size(); ++g) {
+        const double h = L.gear_immersion[g];
+        if (!(h > 0)) continue;
+        any_dipping = true;
+        deepest = std::max(deepest, h);
+        const double ra = tip_radius(m, g);
+        const auto& gear = gb.gears[g];
+        displaced += segment_area(ra, h) * gear.spec.b;
+        // The churning correlation of Changenet & Velex (2007) was fitted on partly
+        // immersed gears; a gear under the oil altogether is outside it.
+        if (h >= 2.0 * ra)
+            out.push_back({S::warning, J::gear, static_cast<int>(g),
+                           fmt::format("gear '{}' is fully submerged (immersion {:.1f} mm, tip diameter {:.1f} mm): the "
+                                       "churning model (Changenet & Velex 2007) is fitted for partly immersed gears and "
+                                       "is extrapolated here; check the oil level",
+                                       gear.spec.name, h * mm, 2.0 * ra * mm)});
+        else if (h > ra && !gear.is_planet() && !gear.spec.internal)
+            out.push_back({S::note, J::gear, static_cast<int>(g),
+                           fmt::format("the oil stands {:.1f} mm above the axis of gear '{}' (immersion {:.1f} mm > tip "
+                                       "radius {:.1f} mm): the shaft's seals and bearings run submerged",
+                                       (h - ra) * mm, gear.spec.name, h * mm, ra * mm)});
+    }
+    if (!any_dipping && lubrication == Lubrication::dip)
+        out.push_back({S::warning, J::lubrication, -1,
+                       gb.oil_level ? fmt::format("no gear touches the oil (oil level {:.1f} mm is below every gear tip): "
+                                                  "churning is zero; set 'housing.lubrication: injection' for a "
+                                                  "jet-lubricated box, or check the oil level",
+                                                  *gb.oil_level * mm)
+                                    : std::string("no gear dips (no 'oil_level' and no gear 'immersion'): churning is zero; "
+                                                  "set 'housing.lubrication: injection' for a jet-lubricated box")});
+    if (box) {
+        const double V = gb.oil_volume, Vh = box->volume();
+        if (V > Vh)
+            out.push_back({S::error, J::oil_volume, -1,
+                           fmt::format("oil volume {:.2f} L exceeds the volume of the housing ({:.0f} x {:.0f} x {:.0f} mm "
+                                       "= {:.2f} L, from housing area, height and length)",
+                                       V * 1e3, box->length * mm, box->width * mm, box->height * mm, Vh * 1e3)});
+        // The floor lies below the deepest gear tip, so the oil stands at least `deepest`
+        // over the whole floor; the dipping gears displace part of that pool.
+        const double needed = box->length * box->width * deepest - displaced;
+        if (any_dipping && V < 0.5 * needed)
+            out.push_back({S::warning, J::oil_volume, -1,
+                           fmt::format("oil volume {:.2f} L cannot reach the oil level: a pool {:.1f} mm deep (the deepest "
+                                       "immersion) over the housing floor ({:.0f} x {:.0f} mm) holds at least {:.2f} L",
+                                       V * 1e3, deepest * mm, box->length * mm, box->width * mm, needed * 1e3)});
+    }
+    if (gb.oil_level && housing_height && *housing_height > 0) {
+        // The housing cannot be lower than the gears, so the oil cannot stand higher
+        // above the lowest gear tip than the housing is tall.
+        double bottom = 1e300;
+        for (size_t g = 0; g < gb.gears.size(); ++g)
+            if (!gb.gears[g].is_planet()) bottom = std::min(bottom, L.shaft_centre[gb.gears[g].shaft].y() - tip_radius(m, g));
+        if (bottom < 1e300 && *gb.oil_level - bottom > *housing_height)
+            out.push_back({S::error, J::oil_level, -1,
+                           fmt::format("oil level {:.1f} mm is {:.1f} mm above the lowest gear tip, more than the "
+                                       "housing height {:.0f} mm",
+                                       *gb.oil_level * mm, (*gb.oil_level - bottom) * mm, *housing_height * mm)});
+    }
+    return out;
+}
+
+}  // namespace gearloss::solver

@@ -1,0 +1,40 @@
+#pragma once
+// Checks of a built model that no single key can make: the oil level against the
+// gears and shafts, the oil volume against the housing and the level. Run before
+// any computation; the loader turns each finding into a located warning or error.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gearloss/model/model.hpp"
+
+namespace gearloss::solver {
+
+enum class Lubrication { dip, injection };
+
+// Outer envelope of the housing [m], when the case describes it.
+struct HousingBox {
+    double length = 0, width = 0, height = 0;
+    double volume() const { return length * width * height; }
+};
+
+struct PlausibilityFinding {
+    enum class Severity { note, warning, error };
+    enum class Subject { oil_level, oil_volume, gear, lubrication };
+    Severity severity = Severity::warning;
+    Subject subject = Subject::oil_level;
+    int gear = -1;  // index into gearbox.gears for Subject::gear
+    std::string message;
+};
+
+// `box`: the housing's outer envelope when known; `housing_height` [m] when known
+// (the oil level cannot stand higher above the lowest gear tip).
+std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication lubrication,
+                                                    const std::optional<HousingBox>& box,
+                                                    std::optional<double> housing_height);
+
+// Box of a rectangular housing from its outer surface A = 2(LH + LW + HW), height H
+// and length L; nullopt when no positive width fits.
+std::optional<HousingBox> housing_box(double area, double height, double length);
+
+}  // namespace gearloss::solver

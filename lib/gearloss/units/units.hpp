@@ -1,0 +1,66 @@
+#pragma once
+// Quantities with units at the input/output boundary. Everything inside the
+// library is SI; this module turns "3.5 mm", "800 rpm", "250 N*m", "40 degC",
+// "112.35 cSt" into SI numbers and checks the dimension the caller expects.
+#include <array>
+#include <string>
+#include <string_view>
+#include "gearloss/core/errors.hpp"
+
+namespace gearloss::units {
+
+// Exponents of the SI base dimensions: length, mass, time, temperature.
+struct Dimension {
+    std::array<int, 4> e{0, 0, 0, 0};
+    constexpr bool operator==(const Dimension&) const = default;
+};
+
+Dimension make_dim(int L, int M, int T, int Th);
+std::string to_string(const Dimension& d);
+
+// Named dimensions used by the loaders.
+namespace dim {
+extern const Dimension none, length, mass, time, temperature, angle, angular_speed, force, torque,
+    pressure, power, area, volume, density, kinematic_viscosity, dynamic_viscosity, per_kelvin,
+    per_pascal, velocity, thermal_resistance, heat_transfer_coefficient, thermal_conductivity,
+    specific_heat, heat_capacity, energy;
+}  // namespace dim
+
+struct Quantity {
+    double value = 0.0;  // SI
+    Dimension dim;
+    bool absolute_temperature = false;  // parsed from degC/degF/K alone
+    bool explicit_angle = false;        // the unit names an angle (rad, deg, rev, rpm)
+    bool rotation = false;              // the unit names a frequency (Hz) or a time other than the second (1/min)
+};
+
+// Parses "<number> <unit expression>". Throws UnitError with a message that
+// says what was wrong. A bare number parses as dimensionless.
+Quantity parse_quantity(std::string_view text);
+
+// Parses a unit expression alone ("N*m", "W/(m^2*K)", "1/K", "cSt").
+// Temperature units degC/degF are accepted only as a whole expression and
+// then `offset` receives the additive part (K = scale*x + offset).
+struct UnitFactor {
+    double scale = 1.0;
+    double offset = 0.0;
+    Dimension dim;
+    bool affine = false;
+    bool angle = false;     // see Quantity::explicit_angle
+    bool rotation = false;  // see Quantity::rotation
+};
+UnitFactor parse_unit(std::string_view expr);
+
+// A quantity of dimension 1/s read as a rotational speed [rad/s]. An explicit
+// angle (rpm, rev/min, rad/s, deg/s) is taken as written; a frequency with no
+// angle (Hz, 1/min, min^-1, the DIN spellings of a speed of rotation) counts
+// revolutions per time; a bare 1/s is ambiguous (rad/s or rev/s) and throws.
+// Other dimensions: the SI value unchanged.
+double as_rotational_speed(const Quantity& q, std::string_view text);
+
+// A unit that cannot be read; the caller knows where it was written and rethrows located.
+struct UnitError : InputError {
+    using InputError::InputError;
+};
+
+}  // namespace gearloss::units
