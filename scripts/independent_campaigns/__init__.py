@@ -1,0 +1,12 @@
+"""The code of scripts/independent-campaigns.py (the entry point: arguments and the run).
+
+Independent blind campaigns for `gearloss diagnose`, one module per stage:
+  numerics     interpolation, root finding, mean/median (standard library only)
+  cases        the case variants, the keys read from case and oil files, the derived case
+  model_table  the binary's fixed-temperature maps, interpolated in oil temperature
+  heat_balance the heat path re-implemented here, the steady oil temperature, its checks
+  effects      the concealed effects in perturbed forms, and the acceptance mapping
+  campaigns    a case's shared setup, the plan, one campaign's recordings.csv + truth.json
+  scoring      diagnose run blind, the outcome of each campaign, the tables
+Split from the single script to keep every file under the project's 600-line limit.
+"""
