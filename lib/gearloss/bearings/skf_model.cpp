@@ -94,14 +94,8 @@ SkfLoadTerms load_terms(const BearingSpec& b, const Catalogue& c, const SkfGeome
             break;
         case BearingType::angular_contact_ball:
         case BearingType::angular_contact_ball_double:
-        case BearingType::four_point_contact: {
-            const double Fg_r = k.R3 * w[0] * n * n;
-            const double Fg_s = k.S3 * w[0] * n * n;
-            g.G_rr = k.R1 * w[1] * pow(Fr + Fg_r + k.R2 * Fa, 0.54);
-            g.G_sl = k.S1 * w[2] * (pow(Fr + Fg_s, 4.0 / 3.0) + k.S2 * pow(Fa, 4.0 / 3.0));
-            break;
-        }
-        case BearingType::self_aligning_ball: {
+        case BearingType::four_point_contact:
+        case BearingType::self_aligning_ball: {  // same form; their exponents differ (kDmExponents)
             const double Fg_r = k.R3 * w[0] * n * n;
             const double Fg_s = k.S3 * w[0] * n * n;
             g.G_rr = k.R1 * w[1] * pow(Fr + Fg_r + k.R2 * Fa, 0.54);
