@@ -1,0 +1,73 @@
+#pragma once
+// Is what a hypothesis leaves consistent with measurement noise? The absolute adequacy test
+// of the diagnosis, independent of any candidate: the noise of a residual channel (declared,
+// from replicates, or from differences of neighbouring points), a goodness-of-fit test of the
+// residuals against it, and a non-parametric test for structure left over speed, torque, oil
+// temperature and run order (cross-validated smoothers with a permutation p-value).
+//
+// Everything here works on plain vectors: one channel (the relative loss residual, or the oil
+// temperature residual in K) of one campaign at a time.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gearloss::diagnosis::adequacy {
+
+// One residual channel of a campaign: the residuals and the coordinates of their points.
+struct Channel {
+    std::vector<double> residual;  // recorded - model, in the channel's unit (relative loss, or K)
+    std::vector<double> speed;     // input speed of each point (any unit; levels are found in it)
+    std::vector<double> torque;    // input torque of each point
+    std::vector<double> oil_temp;  // oil temperature of each point (K or degC)
+    std::vector<double> order;     // run order of each point (row number)
+};
+
+// How large the noise of a channel is, and how well that is known.
+struct NoiseEstimate {
+    double sigma = 0;        // one standard deviation, in the channel's unit
+    double dof = 0;          // degrees of freedom of the estimate (infinity when declared)
+    std::string source;      // "declared", "replicates", "neighbour differences", "none"
+    int pairs = 0;           // replicate groups or pseudo-residuals used
+    bool known() const { return sigma > 0 && dof > 0; }
+};
+
+// The noise of a channel from the recordings themselves, without any model form:
+// 1. replicates: points at the same operating point (speed and torque within `rel_tol`),
+//    pooled within-group variance (dof = sum of (group size - 1));
+// 2. otherwise pseudo-residuals of neighbouring points (Gasser, Sroka & Jennen-Steinmetz 1986):
+//    along torque within each speed level and along speed within each torque level, each
+//    interior point against the straight line through its two neighbours, normalised to unit
+//    variance; the scale is a robust one (MAD-based, so that a band or step at one level does
+//    not inflate it) with dof reduced by the estimator's efficiency;
+// 3. fewer than 3 usable pseudo-residuals: source "none", sigma 0.
+// The residual that goes in is the channel's residual (the model removes most of the
+// variation, so what remains is smooth plus noise).
+NoiseEstimate estimate_noise(const Channel& c, double rel_tol = 0.01);
+
+// Goodness of fit: are the residuals larger than the noise allows? RSS / sigma^2 against
+// chi-squared with (n - fitted) dof for a declared noise (dof infinite), else the ratio of
+// mean squares against Fisher's F(n - fitted, noise.dof). Boost.Math distributions.
+struct FitTest {
+    double statistic = 0;    // mean square of the residuals / sigma^2
+    double p_value = 1;      // of a value at least this large if the residuals are noise only
+    int n = 0, dof = 0;
+};
+FitTest goodness_of_fit(const std::vector<double>& residual, const NoiseEstimate& noise, int fitted_parameters);
+
+// Structure left in the residuals: for each coordinate (speed, torque, oil temperature, run
+// order) a 1-D smoother in that coordinate (a running mean over the k nearest points in its
+// order, k chosen by leave-one-out cross-validation from a small set), its leave-one-out
+// prediction error compared with that of the mean of the others. The statistic is the best
+// relative gain over the coordinates; its p-value comes from `permutations` random
+// permutations of the residuals over the points (deterministic for a seed), so it holds
+// for any noise distribution and accounts for taking the best of four.
+struct StructureTest {
+    double gain = 0;          // best relative reduction of the LOO error (0: none, 1: all)
+    double p_value = 1;
+    std::string coordinate;   // where it lives: "speed", "torque", "oil temperature", "run order" (empty: none)
+    // The smoother's fitted values for the best coordinate (one per point), for reports.
+    std::vector<double> smooth;
+};
+StructureTest structure(const Channel& c, int permutations = 199, std::uint64_t seed = 20261123);
+
+}  // namespace gearloss::diagnosis::adequacy
