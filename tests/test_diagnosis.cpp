@@ -204,14 +204,16 @@ TEST_CASE("unstabilised points are found and listed as outliers", "[diagnosis]")
     CHECK(flagged == 2);
 }
 
-TEST_CASE("a residual no candidate has the shape of is reported as unexplained", "[diagnosis]") {
+TEST_CASE("a residual no candidate has the shape of is never named with confidence", "[diagnosis]") {
     // +30 W (T/250 N m)(600 rpm/n): falls with speed, grows with torque, does not heat the oil.
     const auto c = transfer();
     auto rec = campaign(c, {}, 5);
     for (auto& p : rec.points) p.loss += 30 * (p.torque_in / 250) * (600 * rpm / p.speed_in);
     const auto d = diagnosis::diagnose(c.model, rec);
-    CHECK(d.verdict == "unexplained_mismatch");
+    // A candidate may take part of it (partly_explained), but what it leaves is not noise.
+    CHECK((d.verdict == "unexplained_mismatch" || d.verdict == "partly_explained"));
     CHECK_THAT(d.summary, Catch::Contains("falls with speed"));
+    CHECK_THAT(d.summary, Catch::Contains("not measurement noise") || Catch::Contains("no candidate effect explains it"));
 }
 
 TEST_CASE("without temperatures, heat-free and heating look-alikes are named together", "[diagnosis]") {

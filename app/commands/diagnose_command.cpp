@@ -1,6 +1,8 @@
 // gearloss diagnose: recordings against the model, the mismatch located and the missing
 // physics named.
+#include <cstdio>
 #include <stdexcept>
+#include <unistd.h>
 
 #include "commands/command.hpp"
 #include "commands/common.hpp"
@@ -8,6 +10,7 @@
 #include "gearloss/diagnosis/diagnose.hpp"
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/output_paths.hpp"
+#include "gearloss/units/units.hpp"
 
 namespace gearloss::app {
 namespace {
@@ -23,6 +26,12 @@ public:
         s->add_option("--residuals", residuals_, "write per-point residuals before/after (CSV, for scripts/plot-residuals.py)");
         s->add_option("--bootstrap", bootstrap_, "bootstrap resamples for the stability check")->check(CLI::Range(4, 1000));
         s->add_option("--threads", threads_, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+        s->add_option("--loss-uncertainty", loss_uncertainty_,
+                      "measurement noise of the loss, one standard deviation (e.g. 1.5%); default: estimated from the "
+                      "recordings (replicates or neighbouring points)");
+        s->add_option("--temp-uncertainty", temp_uncertainty_,
+                      "measurement noise of the oil temperature, one standard deviation (e.g. 0.4K); default: estimated");
+        s->add_flag("--quiet", quiet_, "no progress messages on a terminal");
         s->footer("Example: gearloss diagnose configs/transfer-box.yaml recordings.csv --json diag.json --write-config calibrated.yaml");
         return s;
     }
@@ -38,6 +47,16 @@ public:
         diagnosis::DiagnoseOptions opt;
         opt.bootstrap = bootstrap_;
         opt.threads = threads_;
+        if (!loss_uncertainty_.empty())
+            opt.loss_uncertainty = single_value(loss_uncertainty_, units::dim::none, "--loss-uncertainty", "1.5%");
+        if (!temp_uncertainty_.empty()) opt.temp_uncertainty = temperature_difference(temp_uncertainty_, "--temp-uncertainty");
+        // Progress on a terminal only: scripts and files get the result alone.
+        const bool tty = !quiet_ && ::isatty(STDERR_FILENO);
+        if (tty)
+            opt.progress = [](const std::string& what) {
+                std::fputs(("\r\033[K" + what).c_str(), stderr);
+                std::fflush(stderr);
+            };
         diagnosis::Diagnosis d;
         try {
             d = diagnosis::diagnose(k.model, rec, opt);
@@ -45,6 +64,7 @@ public:
             if (!e.file.empty() || e.where().known()) throw;
             throw InputError(recordings_, 0, 0, e.key, e.message);  // about the recordings as a whole
         }
+        if (tty) std::fputs("\r\033[K", stderr);
         io::write_stdout(diagnosis::diagnosis_text(d));
         write_optional_file(json_, diagnosis::diagnosis_json(d));
         write_optional_file(residuals_, diagnosis::residuals_csv(d));
@@ -55,7 +75,9 @@ public:
 private:
     CommonOptions common_;
     std::string recordings_, json_, write_config_, residuals_;
+    std::string loss_uncertainty_, temp_uncertainty_;
     int bootstrap_ = 24, threads_ = 0;
+    bool quiet_ = false;
 };
 
 }  // namespace

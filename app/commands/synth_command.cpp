@@ -29,7 +29,7 @@ public:
         io::Case k = load_with_options(common_);
         grid_.apply_checked(k, {"600,700rpm", "150,200Nm"});  // a point list with --speed/--torque: as map
         diagnosis::SynthOptions so;
-        for (const auto& e : effects_) so.effects.push_back(diagnosis::parse_effect_assignment(e));
+        for (const auto& e : effects_) so.effects.push_back(diagnosis::parse_effect_assignment(k.model, e));
         so.noise_loss = single_value(noise_loss_, units::dim::none, "--noise-loss", "1.5%");
         so.noise_temp = temperature_difference(noise_temp_, "--noise-temp");
         so.seed = seed_;

@@ -34,7 +34,7 @@ struct NoiseEstimate {
 // The noise of a channel from the recordings themselves, without any model form:
 // 1. replicates: points at the same operating point (speed and torque within `rel_tol`),
 //    pooled within-group variance (dof = sum of (group size - 1));
-// 2. otherwise pseudo-residuals of neighbouring points (Gasser, Sroka & Jennen-Steinmetz 1986):
+// 2. otherwise pseudo-residuals of neighbouring points (Gasser et al. 1986):
 //    along torque within each speed level and along speed within each torque level, each
 //    interior point against the straight line through its two neighbours, normalised to unit
 //    variance; the scale is a robust one (MAD-based, so that a band or step at one level does

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/diagnosis/diagnose_internal.hpp"
+#include "gearloss/diagnosis/diagnose_select.hpp"
 #include "gearloss/io/interrupt.hpp"
 
 namespace gearloss::diagnosis {
@@ -30,6 +30,9 @@ void DiagnoseOptions::validate() const {
     if (!(stability_min >= 0 && stability_min <= 1)) bad("stability_min", "must be a share within 0..1");
     if (!(ambiguity_bic >= 0 && ambiguity_bic <= 1e3)) bad("ambiguity_bic", "must be within 0..1000");
     if (max_findings < 1 || max_findings > 10) bad("max_findings", "give 1 to 10");
+    if (!(loss_uncertainty >= 0 && loss_uncertainty <= 0.5)) bad("--loss-uncertainty", "give 0 to 50 % (0: estimated)");
+    if (!(temp_uncertainty >= 0 && temp_uncertainty <= 20)) bad("--temp-uncertainty", "give 0 to 20 K (0: estimated)");
+    if (!(adequacy_level > 0 && adequacy_level < 0.5)) bad("adequacy_level", "must be within 0..0.5");
 }
 
 Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const DiagnoseOptions& opt) {
@@ -89,7 +92,6 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     d.points = static_cast<int>(E.obs().size());
     d.has_temperature = E.has_temperature();
     const auto& all = E.all();
-    const size_t N = n_observations(E, all);
 
     // The baseline is the case as described, including any calibration it carries.
     const Pred p0 = E.predict_checked(neutral, all);
@@ -100,181 +102,42 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     d.location = baseline.text;
     const std::string& baseline_clause = baseline.clause;
 
-    Hypothesis base = neutral;
-    std::vector<std::string> used;
-    std::string partial;  // a candidate that matched only part of the residual
-    const auto& lib = effect_library();
-    for (int round = 0; round < opt.max_findings; ++round) {
-        const double nll_base = E.score(base, E.predict_checked(base, all), all).nll;
-        std::vector<Fit> fits(lib.size());
-        std::vector<double> dbic(lib.size(), kRejectedBic);
-        // A candidate that cannot be evaluated somewhere in its scan is rejected with the reason;
-        // an interrupt skips the remaining candidates (checked after the region).
-#pragma omp parallel for num_threads(E.threads()) schedule(dynamic, 1)
-        for (long k = 0; k < static_cast<long>(lib.size()); ++k) {
-            if (io::interrupted()) continue;
-            if (std::find(used.begin(), used.end(), lib[k].id) != used.end()) continue;
-            try {
-                fits[k] = E.fit(lib[k], base, all, omp_get_thread_num(), true);
-            } catch (const std::exception& ex) {
-                fits[k] = Fit{};
-                fits[k].failed = ex.what();
-            } catch (...) {
-                fits[k] = Fit{};
-                fits[k].failed = "unknown error";
-            }
-            if (fits[k].failed.empty()) dbic[k] = delta_bic(nll_base, fits[k], N);
-            else fits[k].value = std::nan("");
-        }
-        io::throw_if_interrupted();
-        std::vector<size_t> order(lib.size());
-        std::iota(order.begin(), order.end(), 0);
-        std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dbic[a] > dbic[b]; });
-        if (round == 0)
-            for (size_t k : order)
-                d.candidates.push_back({lib[k].id, fits[k].value, dbic[k], fits[k].failed});
-        else
-            for (size_t k : order)
-                if (!fits[k].failed.empty())
-                    d.warnings.push_back(fmt::format("on top of {}: candidate {} rejected: {}", used.back(), lib[k].id,
-                                                     fits[k].failed));
-        // Candidates that pass the BIC threshold, checked by cross-validation in BIC order.
-        CvResult cv0 = cross_validate(E, nullptr, base, base);
-        if (!cv0.failed.empty()) throw std::runtime_error("diagnose: the current hypothesis failed in " + cv0.failed);
-        int chosen = -1;
-        CvResult cv_chosen;
-        for (size_t r = 0; r < std::min<size_t>(order.size(), 3); ++r) {
-            const size_t k = order[r];
-            if (dbic[k] < opt.bic_threshold) break;
-            const CvResult cv = cross_validate(E, &lib[k], base, fits[k].h);
-            if (!cv.failed.empty()) {
-                // Rejected with the reason, not fatal: the next candidate in BIC order is checked.
-                const std::string why = fmt::format("{} rejected: {}", lib[k].id, cv.failed);
-                if (round == 0)
-                    for (auto& c : d.candidates)
-                        if (c.effect == lib[k].id) c.rejected = cv.failed;
-                d.warnings.push_back("candidate " + why);
-                continue;
-            }
-            if (cv0.nll - cv.nll >= opt.cv_margin) {
-                chosen = static_cast<int>(k);
-                cv_chosen = cv;
-                break;
-            }
-        }
-        if (chosen < 0) break;
-        // Stability: refit the leading candidates on bootstrap resamples.
-        std::vector<size_t> contenders;
-        for (size_t r = 0; r < std::min<size_t>(order.size(), 4); ++r)
-            if (dbic[order[r]] > 0) contenders.push_back(order[r]);
-        if (std::find(contenders.begin(), contenders.end(), static_cast<size_t>(chosen)) == contenders.end())
-            contenders.push_back(static_cast<size_t>(chosen));
-        std::vector<int> wins(lib.size(), 0);
-        RegionErrors errors;
-#pragma omp parallel for num_threads(E.threads()) schedule(dynamic, 1)
-        for (int b = 0; b < opt.bootstrap; ++b) {
-            if (io::interrupted()) continue;  // the remaining resamples are skipped; rethrow() throws
-            try {
-                const int tid = omp_get_thread_num();
-                std::mt19937_64 rng(opt.seed + 7919u * static_cast<unsigned>(b) + 104729u * static_cast<unsigned>(round));
-                std::uniform_int_distribution<int> pick(0, static_cast<int>(all.size()) - 1);
-                std::vector<int> idx(all.size());
-                for (auto& i : idx) i = pick(rng);
-                std::string failure;
-                const double nb = E.nll(base, idx, tid, &failure);
-                if (!failure.empty()) throw std::runtime_error("diagnose: the current hypothesis failed at " + failure);
-                const size_t Nb = n_observations(E, idx);
-                int winner = -1;
-                double best = opt.bic_threshold;
-                for (size_t k : contenders) {
-                    const Fit f = E.fit(lib[k], base, idx, tid, false);
-                    if (!f.failed.empty()) continue;  // cannot be evaluated on this resample: does not win it
-                    const double db = delta_bic(nb, f, Nb);
-                    if (db > best) {
-                        best = db;
-                        winner = static_cast<int>(k);
-                    }
-                }
-#pragma omp critical
-                if (winner >= 0) ++wins[winner];
-            } catch (...) {
-                errors.capture();
-            }
-        }
-        errors.rethrow();
-        const double stability = static_cast<double>(wins[chosen]) / opt.bootstrap;
-        Finding f;
-        const Effect& e = lib[chosen];
-        // Equally good alternatives: within the ambiguity margin in BIC.
-        double shared = stability;
-        // Without temperature evidence, effects that differ only in whether they
-        // heat the oil cannot be told apart by the data (only through second-order
-        // coupling inside the model), whatever their BIC difference.
-        auto unobservable_difference = [&](const Effect& a, const Effect& b) {
-            const Signature &x = a.sig, &y = b.sig;
-            return !E.has_temperature() && x.heats_oil != y.heats_oil && x.thermal_path == y.thermal_path &&
-                   x.load_dependent == y.load_dependent && x.viscosity_dependent == y.viscosity_dependent &&
-                   std::abs(x.speed_exponent - y.speed_exponent) < 0.4 && x.pointwise == y.pointwise;
-        };
-        for (size_t k : order) {
-            if (static_cast<int>(k) == chosen || dbic[k] < opt.bic_threshold) continue;
-            if (dbic[chosen] - dbic[k] <= opt.ambiguity_bic || unobservable_difference(lib[chosen], lib[k])) {
-                f.equivalent.push_back(lib[k].id);
-                shared += static_cast<double>(wins[k]) / opt.bootstrap;
-                if (f.separating_measurement.empty()) f.separating_measurement = separating_measurement(e, lib[k]);
-            }
-        }
-        if (stability < opt.stability_min && (f.equivalent.empty() || shared < 0.8)) break;
-        f.effect = e.id;
-        f.description = e.description;
-        f.parameter = {e.parameter, e.unit, fits[chosen].value, fits[chosen].uncertainty};
-        if (e.id == "unstabilised_test") {
-            f.parameter.uncertainty = 0;
-            for (int i : all)
-                if (fits[chosen].h.unstabilised[i]) f.rows.push_back(E.obs()[i].row);
-        }
-        f.delta_bic = dbic[chosen];
-        f.stability = stability;
-        f.cv_gain = cv0.nll - cv_chosen.nll;
-        const Pred pb = E.predict_checked(base, all), pa = E.predict_checked(fits[chosen].h, all);
-        // A candidate must explain the bulk of the systematic residual: if the
-        // structure it leaves (generic smooth fit, BIC) is more significant than
-        // what it explained, it is only a partial match, not the explanation.
-        const double left = structure_delta_bic(E, pa, fits[chosen].h);
-        if (left > opt.bic_threshold && left >= dbic[chosen]) {
-            partial = fmt::format("{} explains only part of it (delta BIC {:.1f}, loss RMSE {:.3g} -> {:.3g} W) and leaves "
-                                  "a larger systematic residual (delta BIC {:.1f} for a generic fit)",
-                                  e.id, dbic[chosen], channel_rmse(E, pb, base).rmse_loss,
-                                  channel_rmse(E, pa, fits[chosen].h).rmse_loss, left);
-            break;
-        }
-        const ChannelStats sb = channel_rmse(E, pb, base), sa = channel_rmse(E, pa, fits[chosen].h);
-        f.rmse_before = sb.rmse_loss;
-        f.rmse_after = sa.rmse_loss;
-        f.cv_rmse_before = cv0.rmse_loss;
-        f.cv_rmse_after = cv_chosen.rmse_loss;
-        f.temp_rmse_before = sb.rmse_temp;
-        f.temp_rmse_after = sa.rmse_temp;
-        d.findings.push_back(f);
-        used.push_back(e.id);
-        base = fits[chosen].h;
-        d.cv_rmse_after = cv_chosen.rmse_loss;
-    }
+    // Candidates from the model's mechanisms, calibration and the rig's artefacts.
+    const std::vector<Effect> lib = candidate_effects(model);
+    Selection S = select_effects(E, lib, neutral, opt);
+    d.candidates = std::move(S.candidates);
+    d.findings = std::move(S.findings);
+    d.warnings.insert(d.warnings.end(), S.warnings.begin(), S.warnings.end());
+    const Hypothesis& base = S.h;
     d.calibrated = base;
 
     const Pred pf = E.predict_checked(base, all);
     const ChannelStats sf = channel_rmse(E, pf, base);
     d.rmse_after = sf.rmse_loss;
     d.temp_rmse_after = sf.rmse_temp;
-    if (d.findings.empty()) d.cv_rmse_after = d.rmse_before;
+    d.cv_rmse_after = d.findings.empty() ? d.rmse_before : S.cv_rmse_after;
 
+    // Is what is left noise? Declared or estimated noise, goodness of fit and structure.
+    if (opt.progress) opt.progress("diagnose: testing what is left against the noise");
+    const Adequacy ad = assess(E, pf, base, S.fitted, opt);
+    auto channel = [](const adequacy::NoiseEstimate& n, const adequacy::FitTest& f, const adequacy::StructureTest& st) {
+        Diagnosis::Channel c;
+        c.noise = n.sigma;
+        c.noise_source = n.source.empty() ? "none" : n.source;
+        c.fit_p = f.p_value;
+        c.structure_p = st.p_value;
+        c.structure_along = st.coordinate;
+        return c;
+    };
+    d.adequacy_loss = channel(ad.noise_loss, ad.fit_loss, ad.structure_loss);
+    d.adequacy_temp = channel(ad.noise_temp, ad.fit_temp, ad.structure_temp);
     if (!d.findings.empty()) {
-        d.verdict = "missing_physics";
-        if (structure_delta_bic(E, pf, base) > opt.bic_threshold)
-            d.remaining = "a systematic residual remains after the findings:\n" + locate(E, pf, base, model).text;
-    } else if (!partial.empty() || structure_delta_bic(E, p0, neutral) > opt.bic_threshold) {
+        d.verdict = ad.adequate ? "missing_physics" : "partly_explained";
+        if (!ad.adequate)
+            d.remaining = "a systematic residual remains after the findings:\n" + ad.text + "\n" + locate(E, pf, base, model).text;
+    } else if (!ad.adequate) {
         d.verdict = "unexplained_mismatch";
-        d.remaining = d.location;
+        d.remaining = ad.text + "\n" + d.location;
     } else {
         d.verdict = "no_significant_mismatch";
     }
@@ -350,18 +213,19 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     }
 
     // The summary, in one paragraph.
-    if (d.verdict == "missing_physics") {
+    if (d.verdict == "missing_physics" || d.verdict == "partly_explained") {
         std::string s;
         for (size_t k = 0; k < d.findings.size(); ++k) {
             const auto& f = d.findings[k];
             if (k == 0) s += baseline_clause + " -> ";
             else s += "; then ";
+            const char* verb = d.verdict == "missing_physics" ? "was left out" : "explains part of it";
             if (f.equivalent.empty()) {
-                s += fmt::format("{} was left out ({})", f.effect, f.description);
+                s += fmt::format("{} {} ({})", f.effect, verb, f.description);
             } else {
                 std::string eq;
                 for (const auto& x : f.equivalent) eq += " or " + x;
-                s += fmt::format("{}{} was left out — the data cannot tell which ({})", f.effect, eq, f.description);
+                s += fmt::format("{}{} {} — the data cannot tell which ({})", f.effect, eq, verb, f.description);
             }
             if (f.effect == "unstabilised_test") {
                 std::string rows;
@@ -378,19 +242,18 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
                 s += fmt::format(", oil temperature RMSE {:.2f} K -> {:.2f} K", f.temp_rmse_before, f.temp_rmse_after);
             if (!f.equivalent.empty()) s += fmt::format(". To separate them: {}", f.separating_measurement);
         }
+        if (d.verdict == "partly_explained")
+            s += ". But what is left is not measurement noise: " + ad.text +
+                 ". The names above are partial explanations, not the cause of the whole mismatch";
         d.summary = s + ".";
     } else if (d.verdict == "unexplained_mismatch") {
+        const auto& c = d.candidates.front();
         d.summary = fmt::format(
             "the recordings differ systematically from the model, but no candidate effect explains it ({}); the "
-            "unexplained residual: {}",
-            !partial.empty() ? partial
-            : d.candidates.front().rejected.empty()
-                ? fmt::format("best: {} with delta BIC {:.1f}", d.candidates.front().effect, d.candidates.front().delta_bic)
-                : std::string("no candidate could be evaluated"),
-            baseline_clause);
-    } else if (!d.candidates.front().rejected.empty()) {
-        d.verdict = "unexplained_mismatch";
-        d.summary = "no candidate effect could be evaluated on these recordings (see the candidates); " + baseline_clause;
+            "unexplained residual: {}; {}",
+            c.rejected.empty() ? fmt::format("best: {} with delta BIC {:.1f}", c.effect, c.delta_bic)
+                               : std::string("no candidate could be evaluated"),
+            baseline_clause, ad.text);
     } else {
         d.summary = fmt::format("no significant missing physics: the residuals are consistent with measurement noise "
                                 "(loss RMSE {:.3g} W{}); best candidate {} (delta BIC {:.1f}) is below the evidence threshold",

@@ -5,11 +5,17 @@
 // Two observation channels per recorded point: the loss, compared with the
 // model at the measured oil temperature (so a heat-path error cannot pose as
 // a loss error), and the oil temperature, compared with the coupled solve (a
-// real extra loss heats the oil; a sensor artefact does not). Candidates from
-// the effect library are fitted one parameter at a time inside the coupled
-// model; selection needs all three of: BIC gain (per-channel variances
-// profiled out), leave-one-out cross-validated gain, and stability across
-// bootstrap resamples.
+// real extra loss heats the oil; a sensor artefact does not). Candidates come
+// from the model's mechanisms, calibration and the rig's artefacts (effects.hpp),
+// with bounds relative to the campaign. Forward selection of up to three
+// effects needs all three of: BIC gain (per-channel variances profiled out),
+// K-fold cross-validated gain, and stability across bootstrap resamples; each
+// addition is followed by a joint refit and a test of whether every earlier
+// effect is still needed. What the accepted hypothesis leaves is then tested
+// against the measurement noise (adequacy.hpp): a name is confident
+// (missing_physics) only when the remainder is noise; otherwise the verdict is
+// partly_explained and says where the remainder lives.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,8 +33,15 @@ struct DiagnoseOptions {
     double cv_margin = 2.0;        // required cross-validated log-likelihood gain [nats]
     double stability_min = 0.6;    // share of resamples in which the effect wins
     double ambiguity_bic = 2.0;    // candidates this close in BIC are indistinguishable
-    int max_findings = 2;
+    int max_findings = 3;
     int threads = 0;
+    // Declared measurement noise (one standard deviation): the loss as a share of the recorded
+    // loss, the oil temperature in K. 0: estimated from the recordings (adequacy.hpp).
+    double loss_uncertainty = 0, temp_uncertainty = 0;
+    // Level of each adequacy test (goodness of fit and structure, per channel).
+    double adequacy_level = 0.01;
+    // Progress messages (a terminal shows them); called from the calling thread only.
+    std::function<void(const std::string&)> progress;
     // Candidate scans stay where the model is physical at every recorded point (effects.hpp
     // valid_range: heat flow to ambient positive). false scans each parameter's full bounds;
     // a candidate that then cannot be evaluated somewhere is rejected with the reason (tests).
@@ -71,7 +84,10 @@ struct PointResidual {
 };
 
 struct Diagnosis {
-    std::string verdict;            // missing_physics | no_significant_mismatch | unexplained_mismatch
+    // missing_physics: effects named, what they leave is noise; partly_explained: effects named,
+    // a systematic remainder is left (`remaining`); unexplained_mismatch: no candidate helps;
+    // no_significant_mismatch: the recordings agree with the model within the noise.
+    std::string verdict;
     std::string summary;            // one paragraph in the expected voice
     std::string location;           // where the baseline mismatch lives
     std::string remaining;          // where an unexplained residual remains (if any)
@@ -82,6 +98,14 @@ struct Diagnosis {
     std::vector<std::string> warnings;
     double rmse_before = 0, rmse_after = 0, cv_rmse_after = 0, temp_rmse_before = 0, temp_rmse_after = 0;
     bool has_temperature = false;
+    // The adequacy of the final hypothesis: the noise used (declared or estimated, and how)
+    // and the p-values of the goodness-of-fit and structure tests per channel.
+    struct Channel {
+        double noise = 0;          // relative (loss) or K (oil temperature)
+        std::string noise_source;  // declared | replicates | neighbour differences | none
+        double fit_p = 1, structure_p = 1;
+        std::string structure_along;  // speed | torque | oil temperature | run order
+    } adequacy_loss, adequacy_temp;
     Hypothesis calibrated;          // the accepted hypothesis
     int points = 0;
 };

@@ -1,4 +1,6 @@
-// diagnose: hypothesis fitting: the model at the recorded points (Engine), one-parameter fits, cross-validation.
+// diagnose: the model at the recorded points (Engine), parameter ranges relative to the
+// campaign, signatures measured on the model, and the one-parameter fits.
+#include <Eigen/Dense>
 #include <algorithm>
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
@@ -27,6 +29,15 @@ std::string evaluate_point(solver::Model& m, solver::PointState& p, const Hypoth
         const double T_true = (o.torque - h.art.torque_offset) / h.art.torque_gain;
         solver::prepare_point(m, o.w, T_true, p);
         if (!p.fault.empty()) return p.fault;
+        // A fixed-temperature case holds its oil where the case says (a cooler): no heat balance.
+        if (m.thermal.mode == solver::ThermalMode::fixed) {
+            const double T_fixed = m.thermal.oil_temperature;
+            loss = solver::total_loss(m, p, o.has_T ? o.T_oil : T_fixed) + (o.torque - T_true) * o.w;
+            temp = T_fixed;
+            if (std::isfinite(loss)) return {};
+            const std::string f = solver::loss_fault(m, p, o.has_T ? o.T_oil : T_fixed, o.ambient);
+            return f.empty() ? "the model's loss is not a finite number" : f;
+        }
         const auto eq = solver::solve_temperature(m, p, o.ambient);
         if (eq.status == thermal::EquilibriumStatus::iteration_limit)
             return fmt::format("thermal equilibrium: no bracket within {} steps", m.thermal.equilibrium.max_bracket_steps);
@@ -62,14 +73,13 @@ Engine::Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool p
     std::iota(all_.begin(), all_.end(), 0);
     for (const auto& o : obs_) {
         mean_loss_ += std::abs(o.loss) / obs_.size();
-        mean_n29_ += std::pow(o.w * to_rpm / 1000.0, 2.9) / obs_.size();
+        mean_power_ += std::abs(o.torque * o.w) / obs_.size();
+        mean_omega_ += std::abs(o.w) / obs_.size();
         n_T_ += o.T_evidence;
         max_rpm_ = std::max(max_rpm_, std::abs(o.w) * to_rpm);
     }
 }
 
-// Never throws (it runs inside parallel regions): a point that cannot be evaluated, or an
-// interrupt (polled per point), ends the prediction with `out.failure` set.
 void Engine::predict(const Hypothesis& h, const std::vector<int>& idx, Pred& out, int tid) const {
     out.loss.resize(obs_.size());
     out.temp.resize(obs_.size());
@@ -95,8 +105,6 @@ void Engine::predict(const Hypothesis& h, const std::vector<int>& idx, Pred& out
     }
 }
 
-// A prediction outside parallel regions of a hypothesis evaluated before (the case as
-// described, or a fitted one): an interrupt throws io::Interrupted.
 Pred Engine::predict_checked(const Hypothesis& h, const std::vector<int>& idx) const {
     Pred p;
     predict(h, idx, p, 0);
@@ -125,7 +133,6 @@ Score Engine::score(const Hypothesis& h, const Pred& p, const std::vector<int>& 
     return s;
 }
 
-// kFailedNll when the hypothesis cannot be evaluated at a point of idx (why: *failure, if given).
 double Engine::nll(const Hypothesis& h, const std::vector<int>& idx, int tid, std::string* failure) const {
     Pred p;
     predict(h, idx, p, tid);
@@ -136,143 +143,178 @@ double Engine::nll(const Hypothesis& h, const std::vector<int>& idx, int tid, st
     return score(h, p, idx).nll;
 }
 
-// The scan range of a parameter: its bounds, narrowed to where the model stays physical at
-// every point of the campaign (effects.hpp valid_range: heat flow to ambient positive).
-std::pair<double, double> Engine::range(const Effect& e) const {
-    return physical_range_ ? valid_range(e, max_rpm_) : std::make_pair(e.lower, e.upper);
+double Engine::loss_sensitivity(const Effect& e, const Hypothesis& base) const {
+    // At the measured (or a mid) oil temperature, no thermal solve: what a unit of the
+    // parameter adds to the recorded loss on average.
+    solver::Model& m = work_[0];
+    solver::PointState& p = states_[0];
+    const double step = std::max(1e-3, 1e-3 * std::abs(e.neutral));
+    double sum = 0;
+    int n = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        Hypothesis h = base;
+        e.apply(h, e.neutral + (pass ? step : 0.0));
+        h.apply_to(m);
+        for (const auto& o : obs_) {
+            const double T_true = (o.torque - h.art.torque_offset) / h.art.torque_gain;
+            solver::prepare_point(m, o.w, T_true, p);
+            if (!p.fault.empty()) continue;
+            const double T = o.has_T ? o.T_oil : m.thermal.mode == solver::ThermalMode::fixed ? m.thermal.oil_temperature
+                                                                                                 : o.ambient + 40.0;
+            const double L = solver::total_loss(m, p, T) + (o.torque - T_true) * o.w;
+            if (!std::isfinite(L)) continue;
+            sum += pass ? L : -L;
+            n += pass ? 1 : 0;
+        }
+    }
+    return n ? std::abs(sum) / n / step : 0.0;
 }
 
-std::vector<double> Engine::scan_values(const Effect& e) const {
+std::pair<double, double> Engine::range(const Effect& e, const Hypothesis& base) const {
+    auto [lo, hi] = physical_range_ ? valid_range(e, max_rpm_) : std::make_pair(e.lower, e.upper);
+    if (!physical_range_ || e.multiplicative || e.kind == EffectKind::heat_path || e.kind == EffectKind::pointwise)
+        return {lo, hi};
+    // An added (or removed) loss of at most 3x (1.5x) the mean recorded loss: relative to the
+    // gearbox, so a 2.5 MW box and a bench gearbox get bounds of the same meaning.
+    const double s = loss_sensitivity(e, base);
+    if (!(s > 0) || !std::isfinite(s)) return {lo, hi};
+    const double unit = mean_loss_ / s;
+    return {std::max(lo, e.neutral - 1.5 * unit), std::min(hi, e.neutral + 3.0 * unit)};
+}
+
+std::vector<double> Engine::scan_values(const Effect& e, const Hypothesis& base) const {
     std::vector<double> v;
-    auto scaled = [&](double base, std::initializer_list<double> f) {
-        for (double x : f) v.push_back(base * x);
-    };
-    const std::string& id = e.id;
-    if (id == "windage") scaled(mean_loss_ / std::max(mean_n29_, 1e-9), {0, .01, .02, .04, .07, .1, .15, .2, .3, .45, .7, 1, 1.5});
-    else if (id == "constant_parasitic") scaled(mean_loss_, {0, .01, .02, .04, .07, .1, .15, .2, .3, .45, .7, 1, 1.5});
-    else if (id == "churning" || id == "seal_friction")
-        v = {0, .25, .5, .75, 1, 1.5, 2, 3, 4, 6, 8, 12, 16, 24, 36, 50};
-    else if (id == "bearing_drag") v = {0, .25, .5, 1, 1.5, 2, 3, 4, 6, 8, 12, 16, 24, 36, 50};
-    else if (id == "mesh_friction" || id == "oil_viscosity" || id == "thermal_resistance")
-        v = {.2, .35, .5, .65, .8, .9, 1, 1.1, 1.25, 1.5, 2, 2.5, 3.5, 5};
-    else if (id == "speed_dependent_cooling") v = {-.9, -.6, -.3, -.1, 0, .1, .25, .5, 1, 1.5, 2.5, 4, 6, 10};
-    else if (id == "torque_sensor_gain") v = {.8, .85, .9, .93, .96, .98, .99, 1, 1.01, 1.02, 1.04, 1.07, 1.1, 1.15, 1.2};
-    else if (id == "torque_sensor_offset") v = {-100, -50, -25, -12, -6, -3, -1, 0, 1, 3, 6, 12, 25, 50, 100};
-    const auto [lo, hi] = range(e);
+    const auto [lo, hi] = range(e, base);
+    if (e.multiplicative) {
+        for (double x : {.2, .3, .4, .5, .6, .7, .8, .87, .93, 1., 1.07, 1.15, 1.25, 1.4, 1.6, 2., 2.5, 3.2, 4., 5.})
+            v.push_back(e.neutral * x);
+    } else if (e.kind == EffectKind::heat_path) {
+        v = {-.9, -.6, -.4, -.25, -.12, -.05, 0, .05, .12, .25, .4, .6, 1, 1.5, 2.5, 4, 6, 10};
+    } else {
+        const double s = loss_sensitivity(e, base);
+        const double unit = s > 0 && std::isfinite(s) ? mean_loss_ / s : 1.0;
+        for (double x : {-1.5, -1., -.6, -.35, -.2, -.1, -.05, -.02, 0., .02, .05, .1, .2, .35, .6, 1., 1.5, 2.2, 3.})
+            v.push_back(e.neutral + x * unit);
+    }
     for (auto& x : v) x = std::clamp(x, lo, hi);
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
+    v.push_back(std::clamp(e.neutral, lo, hi));
+    auto tidy = [&] {
+        std::sort(v.begin(), v.end());
+        v.erase(std::unique(v.begin(), v.end(), [](double a, double b) { return std::abs(a - b) <= 1e-12 * (1 + std::abs(a)); }),
+                v.end());
+    };
+    tidy();
+    // A parameter that barely moves the loss clamps most values to its bounds: fill the span
+    // evenly so that the response still has knots to interpolate between.
+    if (v.size() < 8 && hi > lo)
+        for (int k = 0; k <= 8; ++k) v.push_back(lo + (hi - lo) * k / 8.0);
+    tidy();
     return v;
 }
 
-// Fits one effect's parameter on top of `base` using the points `idx`.
-Fit Engine::fit(const Effect& e, const Hypothesis& base, const std::vector<int>& idx, int tid, bool with_uncertainty) const {
-    if (e.id == "unstabilised_test") return fit_unstabilised(base, idx, tid);
+Signature Engine::signature(const Effect& e, const Hypothesis& base) const {
+    Signature s;
+    s.pointwise = e.kind == EffectKind::pointwise;
+    s.thermal_path = e.kind == EffectKind::heat_path;
+    s.heats_oil = e.kind == EffectKind::mechanism || e.kind == EffectKind::oil;
+    if (s.pointwise || !e.apply) return s;
+    // The loss the effect adds at each point, at the recorded oil temperature and 15 K
+    // hotter: its powers of speed and load, and whether it follows the oil's viscosity.
+    solver::Model& m = work_[0];
+    solver::PointState& p = states_[0];
+    const double step = e.multiplicative ? 0.1 * e.neutral : [&] {
+        const double sens = loss_sensitivity(e, base);
+        return sens > 0 ? 0.1 * mean_loss_ / sens : 1.0;
+    }();
+    std::vector<double> ln_n, load, ln_d, ratio;
+    double max_torque = 0;
+    for (const auto& o : obs_) max_torque = std::max(max_torque, std::abs(o.torque));
+    // a: at the recorded temperature, b: 15 K hotter; [0] at the base value, [1] one step up.
+    std::vector<double> a[2], b[2];
+    for (int pass = 0; pass < 2; ++pass) {
+        a[pass].assign(obs_.size(), std::nan(""));
+        b[pass].assign(obs_.size(), std::nan(""));
+        Hypothesis h = base;
+        e.apply(h, e.neutral + (pass ? step : 0.0));
+        h.apply_to(m);
+        for (size_t i = 0; i < obs_.size(); ++i) {
+            const auto& o = obs_[i];
+            const double T_true = (o.torque - h.art.torque_offset) / h.art.torque_gain;
+            solver::prepare_point(m, o.w, T_true, p);
+            if (!p.fault.empty()) continue;
+            const double T = o.has_T ? o.T_oil : o.ambient + 40.0;
+            a[pass][i] = solver::total_loss(m, p, T) + (o.torque - T_true) * o.w;
+            b[pass][i] = solver::total_loss(m, p, T + 15.0) + (o.torque - T_true) * o.w;
+        }
+    }
+    std::vector<double> d0(obs_.size()), d1(obs_.size());
+    for (size_t i = 0; i < obs_.size(); ++i) {
+        d0[i] = a[1][i] - a[0][i];
+        d1[i] = b[1][i] - b[0][i];
+    }
+    for (size_t i = 0; i < obs_.size(); ++i) {
+        if (!(std::abs(d0[i]) > 1e-9 * std::max(1.0, obs_[i].scale)) || !std::isfinite(d1[i])) continue;
+        ln_n.push_back(std::log(std::max(std::abs(obs_[i].w) * to_rpm, 1.0)));
+        load.push_back(max_torque > 0 ? std::abs(obs_[i].torque) / max_torque : 0.0);
+        ln_d.push_back(std::log(std::abs(d0[i])));
+        ratio.push_back(d1[i] / d0[i]);
+    }
+    if (ln_d.size() < 3) return s;
+    // ln|dL| = a + b ln n + c load (least squares, normal equations of three unknowns).
+    Eigen::MatrixXd X(ln_d.size(), 3);
+    Eigen::VectorXd y(ln_d.size());
+    for (size_t i = 0; i < ln_d.size(); ++i) {
+        X(i, 0) = 1;
+        X(i, 1) = ln_n[i];
+        X(i, 2) = load[i];
+        y(i) = ln_d[i];
+    }
+    const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(y);
+    s.speed_exponent = std::isfinite(beta(1)) ? beta(1) : 0.0;
+    s.load_dependent = std::isfinite(beta(2)) && beta(2) > std::log(1.5);  // > 1.5x from no load to full load
+    std::sort(ratio.begin(), ratio.end());
+    s.viscosity_dependent = std::abs(ratio[ratio.size() / 2] - 1.0) > 0.08;  // changes > 8 % over 15 K
+    return s;
+}
+
+Fit Engine::fit(const Effect& e, const Hypothesis& base, Response* response) const {
+    if (e.kind == EffectKind::pointwise) return fit_unstabilised(base, all_, 0.0);
     Fit f;
     f.k = 1;
-    std::string failure;  // the first parameter value (and point) the model could not be evaluated at
-    auto at = [&](double x, std::string* why) {
-        Hypothesis h = base;
-        e.apply(h, x);
-        std::string w;
-        const double v = nll(h, idx, tid, &w);
-        if (!w.empty() && why && why->empty()) *why = fmt::format("{} = {:.4g}: {}", e.parameter, x, w);
-        return v;
-    };
-    auto objective = [&](double x) { return at(x, &failure); };
-    auto rejected = [&] {
-        f.failed = failure;
+    Response local;
+    Response& r = response ? *response : local;
+    r = Response(*this, e, base);
+    auto rejected = [&](const std::string& why) {
+        f.failed = why;
         f.nll = kFailedNll;
         f.value = std::nan("");
         f.h = base;
         return f;
     };
-    const auto grid = scan_values(e);
-    std::vector<double> val(grid.size());
-    size_t best = 0;
-    for (size_t i = 0; i < grid.size(); ++i) {
-        val[i] = objective(grid[i]);
-        if (val[i] < val[best]) best = i;
+    if (!r.failed().empty()) return rejected(r.failed());
+    auto [x, fx] = r.minimise(all_);
+    // Two refinements: a knot evaluated with the model at the optimum, then re-minimised.
+    for (int k = 0; k < 2; ++k) {
+        r.refine(x);
+        if (!r.failed().empty()) return rejected(r.failed());
+        const auto [x2, f2] = r.minimise(all_);
+        const bool done = std::abs(x2 - x) <= 1e-4 * (std::abs(x) + (r.hi() - r.lo()) * 1e-3);
+        x = x2;
+        fx = f2;
+        if (done) break;
     }
-    if (!failure.empty()) return rejected();
-    const double lo = grid[best == 0 ? 0 : best - 1], hi = grid[std::min(best + 1, grid.size() - 1)];
-    std::uintmax_t iters = 40;
-    const auto [x, fx] = boost::math::tools::brent_find_minima(objective, lo, hi, 24, iters);
-    if (!failure.empty()) return rejected();
-    f.value = fx <= val[best] ? x : grid[best];
-    f.nll = std::min(fx, val[best]);
+    f.value = x;
+    f.nll = fx;
     f.h = base;
-    e.apply(f.h, f.value);
-    if (with_uncertainty) {
-        // Curvature of the profiled log-likelihood: sigma = 1/sqrt(d2 NLL / d theta2).
-        const auto [lower, upper] = range(e);
-        const double step = std::max(1e-4 * (e.upper - e.lower), 2e-3 * std::abs(f.value));
-        const double a = std::max(lower, f.value - step), b = std::min(upper, f.value + step);
-        const double fa = at(a, nullptr), fb = at(b, nullptr);
-        const double h1 = f.value - a, h2 = b - f.value;
-        double d2 = 0;  // a neighbour that cannot be evaluated leaves the uncertainty unknown
-        if (h1 > 0 && h2 > 0 && fa < kFailedNll && fb < kFailedNll)
-            d2 = 2.0 * (h1 * fb + h2 * fa - (h1 + h2) * f.nll) / (h1 * h2 * (h1 + h2));
-        f.uncertainty = d2 > 0 ? 1.0 / std::sqrt(d2) : std::nan("");
-    }
-    return f;
-}
-
-// Greedy: flag the points whose oil is coldest relative to the model until the BIC stops improving.
-Fit Engine::fit_unstabilised(const Hypothesis& base, const std::vector<int>& idx, int tid) const {
-    Fit f;
-    f.h = base;
-    Pred p;
-    predict(base, idx, p, tid);
-    if (!p.failure.empty()) {
-        f.failed = p.failure;
-        f.nll = kFailedNll;
-        return f;
-    }
-    f.nll = score(base, p, idx).nll;
-    if (!has_temperature()) return f;
-    std::vector<int> uniq(idx);
-    std::sort(uniq.begin(), uniq.end());
-    uniq.erase(std::unique(uniq.begin(), uniq.end()), uniq.end());
-    // Only points far colder than the noise can be "still warming": robust
-    // z-score below -4 against the median/MAD of all temperature residuals.
-    std::vector<std::pair<double, int>> resid;
-    for (int i : uniq)
-        if (obs_[i].T_evidence && (base.unstabilised.empty() || !base.unstabilised[i]))
-            resid.push_back({obs_[i].T_oil - p.temp[i], i});
-    if (resid.size() < 4) return f;
-    std::vector<double> v;
-    for (const auto& r : resid) v.push_back(r.first);
-    std::sort(v.begin(), v.end());
-    const double med = v[v.size() / 2];
-    std::vector<double> dev;
-    for (double x : v) dev.push_back(std::abs(x - med));
-    std::sort(dev.begin(), dev.end());
-    const double scale = std::max(1.4826 * dev[dev.size() / 2], 2.0 * kFloorTemp);
-    // Still warming (colder) or still cooling (hotter) than the heat balance.
-    std::vector<std::pair<double, int>> cold;
-    for (const auto& r : resid)
-        if (std::abs(r.first - med) / scale > 4.0) cold.push_back({-std::abs(r.first - med), r.second});
-    std::sort(cold.begin(), cold.end());
-    // Each flagged point costs a parameter (ln N) and the choice of which point (ln n).
-    const double penalty = std::log(static_cast<double>(idx.size() + n_T_)) + std::log(static_cast<double>(uniq.size()));
-    Hypothesis h = base;
-    if (h.unstabilised.empty()) h.unstabilised.assign(obs_.size(), 0);
-    double best_bic = 2 * f.nll;
-    const size_t max_m = std::min<size_t>(cold.size(), std::max<size_t>(1, uniq.size() / 4));
-    for (size_t m = 1; m <= max_m; ++m) {
-        h.unstabilised[cold[m - 1].second] = 1;
-        const double nll_m = score(h, p, idx).nll;
-        const double bic = 2 * nll_m + static_cast<double>(m) * penalty;
-        if (bic < best_bic) {
-            best_bic = bic;
-            f.nll = nll_m;
-            f.k = static_cast<int>(m);
-            f.extra_penalty = static_cast<double>(m) * std::log(static_cast<double>(uniq.size()));
-            f.h = h;
-        }
-    }
-    f.value = f.k;
+    e.apply(f.h, x);
+    // Curvature of the profiled log-likelihood: sigma = 1/sqrt(d2 NLL / d theta2).
+    const double step = std::max(1e-4 * (r.hi() - r.lo()), 2e-3 * std::abs(x));
+    const double a = std::max(r.lo(), x - step), b = std::min(r.hi(), x + step);
+    const double fa = r.nll(a, all_), fb = r.nll(b, all_);
+    const double h1 = x - a, h2 = b - x;
+    double d2 = 0;
+    if (h1 > 0 && h2 > 0) d2 = 2.0 * (h1 * fb + h2 * fa - (h1 + h2) * fx) / (h1 * h2 * (h1 + h2));
+    f.uncertainty = d2 > 0 ? 1.0 / std::sqrt(d2) : std::nan("");
     return f;
 }
 
@@ -284,77 +326,6 @@ size_t n_observations(const Engine& E, const std::vector<int>& idx) {
     size_t n = idx.size();
     for (int i : idx) n += E.obs()[i].T_evidence;
     return n;
-}
-
-// Leave-one-out: refit on all other points, predict the held-out one.
-CvResult cross_validate(const Engine& E, const Effect* e, const Hypothesis& base, const Hypothesis& full_fit) {
-    const size_t n = E.obs().size();
-    std::vector<double> eP(n, 0), eL(n, 0), eT(n, 0);
-    std::vector<char> hasT(n, 0);
-    std::vector<std::string> failed(n);
-    RegionErrors errors;
-#pragma omp parallel for num_threads(E.threads()) schedule(dynamic, 1)
-    for (long jl = 0; jl < static_cast<long>(n); ++jl) {
-        if (io::interrupted()) continue;  // the remaining folds are skipped; rethrow() throws after the region
-        try {
-            const int j = static_cast<int>(jl);
-            const int tid = omp_get_thread_num();
-            Hypothesis h = base;
-            if (e) {
-                std::vector<int> train;
-                for (int i : E.all())
-                    if (i != j) train.push_back(i);
-                Fit f = E.fit(*e, base, train, tid, false);
-                if (!f.failed.empty()) {
-                    failed[j] = "fit without " + point_name(E.obs()[j]) + ": " + f.failed;
-                    continue;
-                }
-                h = std::move(f.h);
-            }
-            Pred p;
-            E.predict(h, {j}, p, tid);
-            if (!p.failure.empty()) {
-                failed[j] = p.failure;
-                continue;
-            }
-            const auto& o = E.obs()[j];
-            eL[j] = o.loss - p.loss[j];
-            eP[j] = eL[j] / o.scale;
-            // A point the full fit calls unstabilised carries no temperature evidence.
-            const bool flagged = !full_fit.unstabilised.empty() && full_fit.unstabilised[j];
-            if (o.T_evidence && !flagged) {
-                eT[j] = o.T_oil - p.temp[j];
-                hasT[j] = 1;
-            }
-        } catch (...) {
-            errors.capture();
-        }
-    }
-    errors.rethrow();
-    CvResult r;
-    for (const auto& f : failed)
-        if (!f.empty()) {
-            r.failed = "cross-validation: " + f;
-            r.nll = kFailedNll;
-            return r;
-        }
-    double rP = 0, rT = 0;
-    int nT = 0;
-    for (size_t j = 0; j < n; ++j) {
-        rP += eP[j] * eP[j];
-        r.rmse_loss += eL[j] * eL[j];
-        if (hasT[j]) {
-            rT += eT[j] * eT[j];
-            ++nT;
-        }
-    }
-    // Flagged points keep their (zero) residual in the count so both sides compare like with like.
-    int nT_all = 0;
-    for (const auto& o : E.obs()) nT_all += o.T_evidence;
-    r.nll = profiled(rP, static_cast<int>(n), kFloorLoss) + profiled(rT, nT_all, kFloorTemp);
-    r.rmse_loss = std::sqrt(r.rmse_loss / n);
-    r.rmse_temp = nT ? std::sqrt(rT / nT) : 0.0;
-    return r;
 }
 
 }  // namespace gearloss::diagnosis::detail

@@ -1,11 +1,14 @@
 #pragma once
-// Internals shared by diagnose.cpp, diagnose_engine.cpp and diagnose_residuals.cpp (Engine, fits, statistics).
+// Internals shared by the diagnosis files (Engine, responses, fits, statistics).
+#include <boost/math/interpolators/pchip.hpp>
 #include <exception>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "gearloss/diagnosis/adequacy.hpp"
 #include "gearloss/diagnosis/diagnose.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/solver/operating_point.hpp"
@@ -34,6 +37,12 @@ struct Pred {
 struct Score {
     double nll = 0;
     int nP = 0, nT = 0;
+};
+
+// One accepted or candidate effect with its value (a hypothesis is the case plus these).
+struct Term {
+    const Effect* effect = nullptr;
+    double value = 0;
 };
 
 struct Fit {
@@ -76,6 +85,47 @@ private:
 // Negative log-likelihood of n residuals with their variance profiled out (floored).
 double profiled(double rss, int n, double floor);
 
+class Engine;
+
+// The per-point predictions of one effect along its parameter, everything else held at
+// `base`: knots evaluated with the coupled model, a monotone cubic (Fritsch & Carlson 1980,
+// Boost.Math's pchip) in between. Fits on any subset of the points (cross-validation folds,
+// bootstrap resamples) then need no model evaluation at all: this is what keeps a
+// diagnosis linear in the number of points.
+class Response {
+public:
+    Response() = default;
+    // Evaluates the knots (in parallel over them); `failed` says why none could be.
+    Response(const Engine& E, const Effect& e, const Hypothesis& base);
+    const std::string& failed() const { return failed_; }
+    // Why the scan stops short of the parameter's range (a value the model cannot be evaluated at), or empty.
+    const std::string& narrowed() const { return narrowed_; }
+    bool flat() const { return flat_; }  // the parameter changes neither channel at any point
+    // Negative log-likelihood on idx (with repeats) at x, from the interpolants.
+    double nll(double x, const std::vector<int>& idx) const;
+    // Minimises nll over the knots' span on idx: value and nll.
+    std::pair<double, double> minimise(const std::vector<int>& idx) const;
+    void predict(double x, int i, double& loss, double& temp) const;
+    // Adds a knot evaluated with the model (near an optimum, where interpolation matters most).
+    void refine(double x);
+    double lo() const { return knots_.front(); }
+    double hi() const { return knots_.back(); }
+    const std::vector<double>& loss_at_knot(size_t k) const { return loss_[k]; }
+    const std::vector<double>& knots() const { return knots_; }
+
+private:
+    void build();
+    const Engine* E_ = nullptr;
+    const Effect* e_ = nullptr;
+    std::shared_ptr<const Hypothesis> base_;
+    std::vector<double> knots_;
+    using Interpolant = boost::math::interpolators::pchip<std::vector<double>>;
+    std::vector<std::vector<double>> loss_, temp_;  // [knot][point]
+    std::vector<Interpolant> iloss_, itemp_;        // per point
+    std::string failed_, narrowed_;
+    bool flat_ = false;
+};
+
 // The recorded points, and one working copy of the model per thread (diagnose_engine.cpp).
 class Engine {
 public:
@@ -84,6 +134,7 @@ public:
     const std::vector<Obs>& obs() const { return obs_; }
     const std::vector<int>& all() const { return all_; }
     bool has_temperature() const { return n_T_ > 0; }
+    double mean_loss() const { return mean_loss_; }
 
     // Never throws (it runs inside parallel regions): a point that cannot be evaluated, or an
     // interrupt (polled per point), ends the prediction with `out.failure` set.
@@ -93,20 +144,26 @@ public:
     Score score(const Hypothesis& h, const Pred& p, const std::vector<int>& idx) const;
     // kFailedNll when the hypothesis cannot be evaluated at a point of idx (why: *failure, if given).
     double nll(const Hypothesis& h, const std::vector<int>& idx, int tid, std::string* failure = nullptr) const;
-    // The scan range of a parameter (its bounds, narrowed to where the model stays physical).
-    std::pair<double, double> range(const Effect& e) const;
-    std::vector<double> scan_values(const Effect& e) const;
-    // Fits one effect's parameter on top of `base` using the points `idx`.
-    Fit fit(const Effect& e, const Hypothesis& base, const std::vector<int>& idx, int tid, bool with_uncertainty) const;
-    Fit fit_unstabilised(const Hypothesis& base, const std::vector<int>& idx, int tid) const;
+    // The scan range of a parameter for this campaign: its physical bounds, narrowed to where
+    // the model stays physical and to an added loss of at most a few times the recorded one
+    // (the bounds scale with the gearbox, never absolute numbers).
+    std::pair<double, double> range(const Effect& e, const Hypothesis& base) const;
+    std::vector<double> scan_values(const Effect& e, const Hypothesis& base) const;
+    // How the effect shows at this campaign's points (measured on the model).
+    Signature signature(const Effect& e, const Hypothesis& base) const;
+    // Fits one effect's parameter on top of `base` using all points, with its response.
+    Fit fit(const Effect& e, const Hypothesis& base, Response* response = nullptr) const;
+    Fit fit_unstabilised(const Hypothesis& base, const std::vector<int>& idx, double loss_noise) const;
 
 private:
+    // The mean |dL/dtheta| over the points at the base value (finite difference), W per unit.
+    double loss_sensitivity(const Effect& e, const Hypothesis& base) const;
     std::vector<Obs> obs_;
     std::vector<int> all_;
     int threads_ = 1;
     mutable std::vector<solver::Model> work_;
     mutable std::vector<solver::PointState> states_;
-    double mean_loss_ = 0, mean_n29_ = 0, max_rpm_ = 0;
+    double mean_loss_ = 0, mean_power_ = 0, mean_omega_ = 0, max_rpm_ = 0;
     bool physical_range_ = true;
     int n_T_ = 0;
 };
@@ -115,13 +172,12 @@ private:
 double delta_bic(double nll_base, const Fit& f, size_t n_obs);
 size_t n_observations(const Engine& E, const std::vector<int>& idx);
 
-// Leave-one-out: refit on all other points, predict the held-out one.
+// K-fold cross-validation (K = min(n, 10), folds interleaved in row order): refit on the
+// other folds through the response, predict the held-out points.
 struct CvResult {
     double nll = 0, rmse_loss = 0, rmse_temp = 0;
-    std::string failed;  // a fold whose fit or prediction could not be evaluated (the candidate is rejected)
 };
-
-CvResult cross_validate(const Engine& E, const Effect* e, const Hypothesis& base, const Hypothesis& full_fit);
+CvResult cross_validate(const Engine& E, const Response* r, const Pred& base_pred, const Hypothesis& base);
 
 // diagnose_residuals.cpp
 struct ChannelStats {
@@ -130,8 +186,15 @@ struct ChannelStats {
 
 ChannelStats channel_rmse(const Engine& E, const Pred& p, const Hypothesis& h);
 
-// Is there structure a generic smooth model of the operating point explains? (delta BIC)
-double structure_delta_bic(const Engine& E, const Pred& p, const Hypothesis& h);
+// The adequacy of a hypothesis' residuals against the noise (adequacy.hpp), per channel.
+struct Adequacy {
+    adequacy::NoiseEstimate noise_loss, noise_temp;   // relative; K
+    adequacy::FitTest fit_loss, fit_temp;
+    adequacy::StructureTest structure_loss, structure_temp;
+    bool adequate = true;
+    std::string text;  // what is left and where, when not adequate
+};
+Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted, const DiagnoseOptions& opt);
 
 // Where the mismatch lives: per channel, mean, RMSE, and its dependence on
 // speed, torque and oil viscosity.

@@ -1,8 +1,8 @@
 // diagnose: residual analysis: channel RMSE, structure left for a generic fit, where the mismatch lives.
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 #include <numeric>
 
 #include "gearloss/diagnosis/diagnose_internal.hpp"
@@ -26,61 +26,67 @@ ChannelStats channel_rmse(const Engine& E, const Pred& p, const Hypothesis& h) {
     return s;
 }
 
-// Is there structure a generic smooth model of the operating point explains?
-// Residuals regressed on [1, ln n, torque, oil temperature] per channel (OLS, Eigen).
-double structure_delta_bic(const Engine& E, const Pred& p, const Hypothesis& h) {
-    const auto& obs = E.obs();
-    const int n = static_cast<int>(obs.size());
-    auto design = [&](bool temp_only) {
-        std::vector<int> rows;
-        for (int i = 0; i < n; ++i)
-            if (!temp_only || (obs[i].T_evidence && (h.unstabilised.empty() || !h.unstabilised[i]))) rows.push_back(i);
-        Eigen::MatrixXd X(rows.size(), 4);
-        double mT = 0, mQ = 0, mO = 0;
-        for (int i : rows) {
-            mT += std::log(std::max(obs[i].w, 1e-3)) / rows.size();
-            mQ += obs[i].torque / rows.size();
-            mO += (obs[i].has_T ? obs[i].T_oil : p.temp[i]) / rows.size();
+// What the hypothesis leaves, per channel, against the noise: declared, or estimated from
+// the recordings (replicates, neighbour differences); goodness of fit and structure.
+Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted, const DiagnoseOptions& opt) {
+    Adequacy A;
+    adequacy::Channel cl, ct;
+    for (int i : E.all()) {
+        const auto& o = E.obs()[i];
+        const double T = o.has_T ? o.T_oil : p.temp[i];
+        // Coordinates rounded far below any recorded resolution: the same campaign in other
+        // units (rad/s instead of rpm) gives the same ties, so the same test.
+        auto q = [](double x, double step) { return std::round(x / step) * step; };
+        auto add = [&](adequacy::Channel& c, double r) {
+            c.residual.push_back(r);
+            c.speed.push_back(q(std::abs(o.w) * to_rpm, 1e-4));
+            c.torque.push_back(q(o.torque, 1e-6));
+            c.oil_temp.push_back(q(T, 1e-6));
+            c.order.push_back(o.row);
+        };
+        add(cl, (o.loss - p.loss[i]) / o.scale);
+        if (o.T_evidence && (h.unstabilised.empty() || !h.unstabilised[i])) add(ct, o.T_oil - p.temp[i]);
+    }
+    auto noise = [](const adequacy::Channel& c, double declared, double floor) {
+        adequacy::NoiseEstimate n;
+        if (declared > 0) {
+            n.sigma = declared;
+            n.dof = std::numeric_limits<double>::infinity();
+            n.source = "declared";
+        } else {
+            n = adequacy::estimate_noise(c);
+            if (n.known()) n.sigma = std::max(n.sigma, floor);
         }
-        for (size_t r = 0; r < rows.size(); ++r) {
-            const auto& o = obs[rows[r]];
-            X(r, 0) = 1;
-            X(r, 1) = std::log(std::max(o.w, 1e-3)) - mT;
-            X(r, 2) = (o.torque - mQ) / 100.0;
-            X(r, 3) = ((o.has_T ? o.T_oil : p.temp[rows[r]]) - mO) / 10.0;
-        }
-        return std::make_pair(rows, X);
+        return n;
     };
-    double dnll = 0;
-    int k = 0;
-    size_t nobs = 0;
-    {
-        auto [rows, X] = design(false);
-        Eigen::VectorXd y(rows.size());
-        for (size_t r = 0; r < rows.size(); ++r) y(r) = (obs[rows[r]].loss - p.loss[rows[r]]) / obs[rows[r]].scale;
-        if (rows.size() > 6) {
-            const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(y);
-            const double rss0 = y.squaredNorm(), rss1 = (y - X * beta).squaredNorm();
-            const int m = static_cast<int>(rows.size());
-            dnll += profiled(rss0, m, kFloorLoss) - profiled(rss1, m, kFloorLoss);
-            k += 4;
-            nobs += rows.size();
-        }
-    }
-    if (E.has_temperature()) {
-        auto [rows, X] = design(true);
-        Eigen::VectorXd y(rows.size());
-        for (size_t r = 0; r < rows.size(); ++r) y(r) = obs[rows[r]].T_oil - p.temp[rows[r]];
-        if (rows.size() > 6) {
-            const Eigen::VectorXd beta = X.colPivHouseholderQr().solve(y);
-            const double rss0 = y.squaredNorm(), rss1 = (y - X * beta).squaredNorm();
-            const int m = static_cast<int>(rows.size());
-            dnll += profiled(rss0, m, kFloorTemp) - profiled(rss1, m, kFloorTemp);
-            k += 4;
-            nobs += rows.size();
-        }
-    }
-    return 2.0 * dnll - k * std::log(static_cast<double>(std::max<size_t>(nobs, 2)));
+    const double level = opt.adequacy_level;
+    std::vector<std::string> left;
+    auto test = [&](const adequacy::Channel& c, adequacy::NoiseEstimate& n, adequacy::FitTest& fit,
+                    adequacy::StructureTest& st, double declared, double floor, const char* what, double unit_scale,
+                    const char* unit) {
+        if (c.residual.size() < 6) return;
+        n = noise(c, declared, floor);
+        if (n.known()) fit = adequacy::goodness_of_fit(c.residual, n, fitted);
+        st = adequacy::structure(c, 999);
+        double ms = 0;
+        for (double r : c.residual) ms += r * r / c.residual.size();
+        const bool bad_fit = n.known() && fit.p_value < level, bad_structure = st.p_value < level;
+        if (!bad_fit && !bad_structure) return;
+        A.adequate = false;
+        std::string s = fmt::format("{} residual RMS {:.3g} {} against a noise of {}", what, std::sqrt(ms) * unit_scale, unit,
+                                    n.known() ? fmt::format("{:.3g} {} ({})", n.sigma * unit_scale, unit, n.source)
+                                              : std::string("unknown"));
+        if (bad_fit) s += fmt::format(", p = {:.2g}", fit.p_value);
+        if (bad_structure)
+            s += fmt::format("; systematic along {} (a smoother explains {:.0f} % of it, p = {:.2g})", st.coordinate,
+                             100 * st.gain, st.p_value);
+        left.push_back(s);
+    };
+    test(cl, A.noise_loss, A.fit_loss, A.structure_loss, opt.loss_uncertainty, kFloorLoss, "loss", 100.0, "%");
+    if (E.has_temperature())
+        test(ct, A.noise_temp, A.fit_temp, A.structure_temp, opt.temp_uncertainty, kFloorTemp, "oil temperature", 1.0, "K");
+    for (const auto& s : left) A.text += (A.text.empty() ? "" : "\n") + s;
+    return A;
 }
 
 namespace {

@@ -35,7 +35,15 @@ std::string diagnosis_text(const Diagnosis& d) {
         for (const auto& e : f.equivalent)
             s += fmt::format("  equally good: {} — to separate them: {}\n", e, f.separating_measurement);
     }
-    if (!d.remaining.empty() && d.verdict == "missing_physics") s += "\n" + d.remaining + "\n";
+    if (!d.remaining.empty() && d.verdict != "unexplained_mismatch") s += "\n" + d.remaining + "\n";
+    s += fmt::format("\nnoise: loss {:.3g} % ({}), test of what is left: fit p = {:.2g}, structure p = {:.2g}{}\n",
+                     100 * d.adequacy_loss.noise, d.adequacy_loss.noise_source, d.adequacy_loss.fit_p,
+                     d.adequacy_loss.structure_p,
+                     d.adequacy_loss.structure_along.empty() ? "" : " (along " + d.adequacy_loss.structure_along + ")");
+    if (d.has_temperature)
+        s += fmt::format("       oil temperature {:.3g} K ({}), fit p = {:.2g}, structure p = {:.2g}{}\n", d.adequacy_temp.noise,
+                         d.adequacy_temp.noise_source, d.adequacy_temp.fit_p, d.adequacy_temp.structure_p,
+                         d.adequacy_temp.structure_along.empty() ? "" : " (along " + d.adequacy_temp.structure_along + ")");
     s += "\ncandidates (delta BIC, > 10 is very strong evidence):\n";
     for (const auto& c : d.candidates) {
         if (c.rejected.empty()) s += fmt::format("  {:<24} {:8.1f}   fitted {:.4g}\n", c.effect, c.delta_bic, c.value);
@@ -64,6 +72,20 @@ std::string diagnosis_json(const Diagnosis& d) {
         j.key("temp_rmse_before").value(d.temp_rmse_before);
         j.key("temp_rmse_after").value(d.temp_rmse_after);
     }
+    // The noise the remainder was tested against, and the tests' p-values.
+    j.key("adequacy").begin_object();
+    auto channel = [&](const char* key, const Diagnosis::Channel& c) {
+        j.key(key).begin_object();
+        j.key("noise").value(c.noise);
+        j.key("noise_source").value(c.noise_source);
+        j.key("fit_p").value(c.fit_p);
+        j.key("structure_p").value(c.structure_p);
+        j.key("structure_along").value(c.structure_along);
+        j.end_object();
+    };
+    channel("loss_relative", d.adequacy_loss);
+    if (d.has_temperature) channel("oil_temperature_K", d.adequacy_temp);
+    j.end_object();
     j.key("findings").begin_array();
     for (const auto& f : d.findings) {
         j.begin_object();

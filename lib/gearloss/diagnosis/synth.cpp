@@ -20,16 +20,14 @@ namespace {
 constexpr double to_rpm = 30.0 / std::numbers::pi;
 }
 
-std::pair<std::string, double> parse_effect_assignment(const std::string& text) {
+std::pair<std::string, double> parse_effect_assignment(const solver::Model& model, const std::string& text) {
     const auto eq = text.find('=');
     if (eq == std::string::npos) throw InputError("", 0, 0, "--effect", "expected NAME=VALUE, got '" + text + "'");
     const std::string name = text.substr(0, eq), value = text.substr(eq + 1);
-    const Effect* e = find_effect(name);
-    if (!e) {
-        std::string all;
-        for (const auto& x : effect_library()) all += (all.empty() ? "" : ", ") + x.id;
-        throw InputError("", 0, 0, "--effect", "unknown effect '" + io::excerpt(name) + "'; known: " + all);
-    }
+    const auto e = find_effect(model, name);
+    if (!e)
+        throw InputError("", 0, 0, "--effect",
+                         "unknown effect '" + io::excerpt(name) + "'; known for this case: " + effect_names(model));
     units::Quantity q;
     try {
         q = units::parse_quantity(value);
@@ -73,7 +71,7 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
     Hypothesis h = Hypothesis::of(model_in);  // concealed effects come on top of the case as described
     int unstabilised = 0;
     for (const auto& [id, v] : opt.effects) {
-        const Effect* e = find_effect(id);
+        const auto e = find_effect(model_in, id);
         if (!e) throw InputError("", 0, 0, "--effect", "unknown effect '" + io::excerpt(id) + "'");
         if (id == "unstabilised_test") unstabilised = static_cast<int>(v);
         else e->apply(h, v);
@@ -90,7 +88,7 @@ std::string synthesize(const solver::Model& model_in, const io::OperatingGrid& g
     double max_rpm = 0;
     for (size_t i = 0; i < n; ++i) max_rpm = std::max(max_rpm, std::abs(grid.at(i).first) * to_rpm);
     for (const auto& [id, v] : opt.effects) {
-        const Effect* e = find_effect(id);
+        const auto e = find_effect(model_in, id);
         const auto [lo, hi] = valid_range(*e, max_rpm);
         if (id != "unstabilised_test" && !(v >= lo && v <= hi))
             throw InputError("", 0, 0, "--effect " + id,

@@ -26,7 +26,7 @@ struct SynthOptions {
 // outside the effect's bounds.
 std::string synthesize(const solver::Model& model, const io::OperatingGrid& grid, const SynthOptions& opt);
 
-// Parses "NAME=VALUE[unit]" for --effect.
-std::pair<std::string, double> parse_effect_assignment(const std::string& text);
+// Parses "NAME=VALUE[unit]" for --effect (NAME a candidate of the model: effects.hpp).
+std::pair<std::string, double> parse_effect_assignment(const solver::Model& model, const std::string& text);
 
 }  // namespace gearloss::diagnosis

@@ -90,6 +90,12 @@ struct Parameter {
     double nominal = 0;          // the value that leaves the published model unchanged
     double lower = 0, upper = 0; // physical bounds (inclusive)
     bool calibration = true;     // read under `calibration:` (else under `mechanisms:`)
+    // The diagnosis fits a calibration parameter that names an effect as a candidate: the
+    // name it reports ("windage") and what a departure from nominal means physically. Its
+    // bounds for a campaign are relative (an added loss up to a few times the recorded one),
+    // within [lower, upper].
+    std::string effect;          // empty: not a candidate
+    std::string left_out;        // "air/oil-mist drag of the rotating gears, ..."
 };
 
 // A choice between published forms of the same physics ("friction": schlenk, iso_6336_20, ...).

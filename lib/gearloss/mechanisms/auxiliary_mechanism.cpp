@@ -20,7 +20,8 @@ public:
     std::string_view label() const override { return "auxiliary"; }
     std::string_view column() const override { return "P_aux_W"; }
     std::vector<Parameter> parameters() const override {
-        return {{"power", "constant parasitic loss while the input turns", &units::dim::power, "20 W", 0.0, 0.0, 1e9, true}};
+        return {{"power", "constant parasitic loss while the input turns", &units::dim::power, "20 W", 0.0, 0.0, 1e9, true, "constant_parasitic",
+                 "a constant parasitic loss (oil pump, drag of an auxiliary part), heating the oil"}};
     }
     std::unique_ptr<MechanismPoint> make_point() const override { return std::make_unique<AuxiliaryPoint>(); }
     void prepare(const solver::Model&, const PointInput& in, MechanismPoint& out) const override {

@@ -37,7 +37,8 @@ public:
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_bearing_{}_W", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {
         // Palmgren (1959) no-load moment M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm] per bearing.
-        return {{"drag_f0", "Palmgren no-load factor f0 of an added bearing drag", nullptr, "1.5", 0.0, 0.0, 100.0, true}};
+        return {{"drag_f0", "Palmgren no-load factor f0 of an added bearing drag", nullptr, "1.5", 0.0, 0.0, 100.0, true,
+                 "bearing_drag", "load-independent viscous drag in the bearings (oil bath), Palmgren M0 = 1e-7 f0 (nu n)^(2/3) d_m^3"}};
     }
     std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<BearingPoint>(); }
 

@@ -31,7 +31,8 @@ public:
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_churn_{}_W", 1.0}, {"", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {
-        return {{"factor", "scales every churning loss", nullptr, "1.3", 1.0, 0.0, 100.0, true}};
+        return {{"factor", "scales every churning loss", nullptr, "1.3", 1.0, 0.0, 100.0, true, "churning",
+                 "churning level of the dipping gears (immersion or oil level) differs from the description"}};
     }
     std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<ChurningPoint>(); }
 

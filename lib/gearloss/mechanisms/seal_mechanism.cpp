@@ -27,7 +27,8 @@ public:
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_seal_{}_W", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {
-        return {{"factor", "scales every seal loss", nullptr, "1.2", 1.0, 0.0, 100.0, true}};
+        return {{"factor", "scales every seal loss", nullptr, "1.2", 1.0, 0.0, 100.0, true, "seal_friction",
+                 "radial lip seal friction differs from the standard estimate (P ~ d^2 n)"}};
     }
     std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<SealPoint>(); }
 

@@ -63,7 +63,8 @@ public:
                 {"pressure", "gas pressure in the housing (free_disk)", &units::dim::pressure, "101325 Pa", 101325.0, 1e3,
                  1e7, false},
                 {"empirical_W_at_1000rpm", "empirical drag of the whole box at 1000 rpm input speed (n^2.9)",
-                 &units::dim::power, "12 W", 0.0, 0.0, 1e9, true}};
+                 &units::dim::power, "12 W", 0.0, 0.0, 1e9, true, "windage",
+                 "air/oil-mist drag of the rotating gears, P = C (n/1000 rpm)^2.9, independent of oil viscosity and load"}};
     }
     std::vector<losses::FormAxis> forms(const solver::Model&) const override {
         return {{"form", {kFormNames[0], kFormNames[1], kFormNames[2]}}};

@@ -1,0 +1,440 @@
+// The absolute adequacy test: noise of a residual channel, goodness of fit against it, and a
+// permutation test for structure left over the campaign's coordinates (see adequacy.hpp).
+#include "gearloss/diagnosis/adequacy.hpp"
+
+#include <algorithm>
+#include <array>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/fisher_f.hpp>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+namespace gearloss::diagnosis::adequacy {
+namespace {
+
+using Index = std::vector<std::size_t>;
+
+// 1 / Phi^-1(3/4): makes the median of |e| a consistent estimate of sigma for Gaussian e.
+constexpr double mad_consistency = 1.4826;
+// Gaussian efficiency of the MAD (Rousseeuw & Croux (1993)): the scale is worth as much as a
+// standard deviation from 37 % as many values, which is what its dof has to say.
+constexpr double mad_efficiency = 0.37;
+
+// A coordinate is either absent (empty) or one value per point; anything else is a caller
+// error. Non-finite values would make the sorts and medians below undefined, so they are too.
+void check_vector(const std::vector<double>& v, std::size_t n, const char* what, bool may_be_empty) {
+    if (v.empty() && may_be_empty) return;
+    if (v.size() != n)
+        throw std::invalid_argument(std::string("adequacy: ") + what + " has " + std::to_string(v.size()) +
+                                    " values for " + std::to_string(n) + " residuals");
+    for (double x : v)
+        if (!std::isfinite(x)) throw std::invalid_argument(std::string("adequacy: non-finite value in ") + what);
+}
+
+void check_channel(const Channel& c) {
+    const std::size_t n = c.residual.size();
+    check_vector(c.residual, n, "residual", false);
+    check_vector(c.speed, n, "speed", true);
+    check_vector(c.torque, n, "torque", true);
+    check_vector(c.oil_temp, n, "oil temperature", true);
+    check_vector(c.order, n, "run order", true);
+}
+
+double median_of(std::vector<double> v) {
+    const std::size_t m = v.size() / 2;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end());
+    const double hi = v[m];
+    if (v.size() % 2 == 1) return hi;
+    return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m)));
+}
+
+// Robust scale of values that have zero mean under the null: about zero, not about their
+// median, since a common shift is structure and not noise.
+double robust_scale(const std::vector<double>& e) {
+    std::vector<double> a(e.size());
+    std::transform(e.begin(), e.end(), a.begin(), [](double x) { return std::abs(x); });
+    return mad_consistency * median_of(std::move(a));
+}
+
+// `idx` sorted by x, ties by index (a stable order, so results do not depend on the sort).
+void sort_by(Index& idx, const std::vector<double>& x) {
+    std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
+}
+
+// Levels of a coordinate among the points `idx`: sorted by x, a new level where the gap to the
+// previous value exceeds rel_tol of their magnitude. The magnitude has a floor (a thousandth
+// of the coordinate's largest) so that set points at zero jittering around it stay one level.
+// An absent coordinate is one level.
+std::vector<Index> split_levels(const std::vector<double>& x, Index idx, double rel_tol) {
+    if (x.empty() || idx.empty()) return {std::move(idx)};
+    sort_by(idx, x);
+    double largest = 0;
+    for (double v : x) largest = std::max(largest, std::abs(v));
+    std::vector<Index> out(1);
+    out.back().push_back(idx[0]);
+    for (std::size_t j = 1; j < idx.size(); ++j) {
+        const double a = x[idx[j - 1]], b = x[idx[j]];
+        const double scale = std::max({std::abs(a), std::abs(b), 1e-3 * largest});
+        if (b - a > rel_tol * scale) out.emplace_back();
+        out.back().push_back(idx[j]);
+    }
+    return out;
+}
+
+Index all_points(std::size_t n) {
+    Index idx(n);
+    std::iota(idx.begin(), idx.end(), std::size_t{0});
+    return idx;
+}
+
+// Level number of each point in a coordinate (all 0 when it is absent).
+std::vector<int> level_ids(const std::vector<double>& x, std::size_t n, double rel_tol) {
+    std::vector<int> id(n, 0);
+    const auto levels = split_levels(x, all_points(n), rel_tol);
+    for (std::size_t l = 0; l < levels.size(); ++l)
+        for (std::size_t i : levels[l]) id[i] = static_cast<int>(l);
+    return id;
+}
+
+// 1. Replicates: pooled within-group variance over operating points recorded more than once.
+// Needs both speed and torque, since an absent one cannot tell two operating points apart.
+bool replicate_noise(const Channel& c, double rel_tol, NoiseEstimate& out) {
+    const std::size_t n = c.residual.size();
+    if (c.speed.empty() || c.torque.empty()) return false;
+    double ss = 0;
+    int dof = 0, groups = 0;
+    for (const Index& level : split_levels(c.speed, all_points(n), rel_tol))
+        for (const Index& g : split_levels(c.torque, level, rel_tol)) {
+            if (g.size() < 2) continue;
+            double mean = 0;
+            for (std::size_t i : g) mean += c.residual[i];
+            mean /= static_cast<double>(g.size());
+            for (std::size_t i : g) ss += (c.residual[i] - mean) * (c.residual[i] - mean);
+            dof += static_cast<int>(g.size()) - 1;
+            ++groups;
+        }
+    // Two groups, or three dof in one: fewer is too little to be worth more than the
+    // neighbour differences of the whole grid.
+    if (groups < 2 && dof < 3) return false;
+    out.sigma = std::sqrt(ss / dof);
+    out.dof = dof;
+    out.source = "replicates";
+    out.pairs = groups;
+    return true;
+}
+
+// One pseudo-residual and the contrast it belongs to (see grid_pseudo_residuals).
+struct Pseudo {
+    double value;
+    std::array<int, 4> key;  // axis, level ids of the left, centre and right points
+};
+
+// 2. Pseudo-residuals of Gasser et al. (1986) along one axis: within each line (a level of the
+// other coordinate) the points sorted by x, each interior point against the straight line
+// through its two neighbours, normalised so that it has the noise's variance when the truth
+// is locally linear.
+void line_pseudo_residuals(const Channel& c, const std::vector<double>& x, const std::vector<double>& across,
+                           const std::vector<int>& x_level, int axis, double rel_tol, std::vector<Pseudo>& out) {
+    for (Index line : split_levels(across, all_points(c.residual.size()), rel_tol)) {
+        sort_by(line, x);
+        for (std::size_t j = 1; j + 1 < line.size(); ++j) {
+            const std::size_t a = line[j - 1], i = line[j], b = line[j + 1];
+            const double span = x[b] - x[a];
+            // Zero spread (three points at one x): the line through the neighbours is their mean.
+            double wa = 0.5, wb = 0.5;
+            if (span > 0) {
+                wa = (x[b] - x[i]) / span;
+                wb = (x[i] - x[a]) / span;
+            }
+            const double e = (wa * c.residual[a] + wb * c.residual[b] - c.residual[i]) / std::sqrt(wa * wa + wb * wb + 1);
+            out.push_back({e, {axis, x_level[a], x_level[i], x_level[b]}});
+        }
+    }
+}
+
+std::vector<Pseudo> grid_pseudo_residuals(const Channel& c, double rel_tol) {
+    const std::size_t n = c.residual.size();
+    const auto speed_level = level_ids(c.speed, n, rel_tol);
+    const auto torque_level = level_ids(c.torque, n, rel_tol);
+    std::vector<Pseudo> p;
+    if (!c.torque.empty()) line_pseudo_residuals(c, c.torque, c.speed, torque_level, 0, rel_tol, p);
+    if (!c.speed.empty()) line_pseudo_residuals(c, c.speed, c.torque, speed_level, 1, rel_tol, p);
+    return p;
+}
+
+// The same contrast (same axis, same three levels) in several lines: on a grid, a step of
+// one speed level (an offset of the whole level) enters every torque line's contrast around
+// that level by the same amount, and that is structure in speed, not noise. Its mean over the
+// lines is removed, each value rescaled by sqrt(m / (m - 1)) so that it keeps the noise's
+// variance (the lines share no point). Without this, a 3-sigma step at a middle level of 5
+// puts 18 of the 38 pseudo-residuals of a 5 x 6 grid off zero, and a median cannot stand
+// half of them (+50 % on sigma). Likewise for a step of one torque level. An offset of only
+// part of a level's torques is not common to all lines and stays a (bounded) contamination.
+// Returns the number of contrasts removed (each costs one dof).
+int remove_common_contrasts(std::vector<Pseudo>& p) {
+    std::map<std::array<int, 4>, std::vector<std::size_t>> groups;
+    for (std::size_t j = 0; j < p.size(); ++j) groups[p[j].key].push_back(j);
+    int removed = 0;
+    for (const auto& [key, members] : groups) {
+        if (members.size() < 2) continue;
+        const double m = static_cast<double>(members.size());
+        double mean = 0;
+        for (std::size_t j : members) mean += p[j].value;
+        mean /= m;
+        for (std::size_t j : members) p[j].value = (p[j].value - mean) * std::sqrt(m / (m - 1));
+        ++removed;
+    }
+    return removed;
+}
+
+// Average ranks of x scaled to [0, 1] (all 0 when absent or constant): the plane in which
+// nearest neighbours are found, so that neither coordinate's unit weighs more.
+std::vector<double> normalised_ranks(const std::vector<double>& x, std::size_t n) {
+    std::vector<double> rank(n, 0);
+    if (x.empty() || n < 2) return rank;
+    Index idx = all_points(n);
+    sort_by(idx, x);
+    for (std::size_t j = 0; j < n;) {
+        std::size_t k = j;
+        while (k + 1 < n && x[idx[k + 1]] == x[idx[j]]) ++k;
+        for (std::size_t m = j; m <= k; ++m) rank[idx[m]] = 0.5 * static_cast<double>(j + k);
+        j = k + 1;
+    }
+    for (double& r : rank) r /= static_cast<double>(n - 1);
+    return rank;
+}
+
+// 2b. Scattered points (no level holds three): the difference of each point and its nearest
+// other point in the (speed, torque) rank plane, each unordered pair once.
+std::vector<double> nearest_neighbour_pseudo_residuals(const Channel& c) {
+    const std::size_t n = c.residual.size();
+    std::vector<double> e;
+    if (c.speed.empty() && c.torque.empty()) return e;
+    const auto u = normalised_ranks(c.speed, n), v = normalised_ranks(c.torque, n);
+    std::set<std::pair<std::size_t, std::size_t>> pairs;
+    for (std::size_t i = 0; i < n; ++i) {
+        std::size_t best = n;
+        double best_d = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < n; ++j) {
+            if (j == i) continue;
+            const double d = (u[i] - u[j]) * (u[i] - u[j]) + (v[i] - v[j]) * (v[i] - v[j]);
+            if (d < best_d) best_d = d, best = j;
+        }
+        if (best < n) pairs.insert({std::min(i, best), std::max(i, best)});
+    }
+    for (const auto& [i, j] : pairs) e.push_back((c.residual[i] - c.residual[j]) / std::sqrt(2.0));
+    return e;
+}
+
+NoiseEstimate from_pseudo_residuals(const std::vector<double>& e, int effective) {
+    NoiseEstimate out;
+    out.sigma = robust_scale(e);
+    out.dof = std::max(1.0, mad_efficiency * effective);
+    out.source = "neighbour differences";
+    out.pairs = static_cast<int>(e.size());
+    return out;
+}
+
+}  // namespace
+
+NoiseEstimate estimate_noise(const Channel& c, double rel_tol) {
+    check_channel(c);
+    NoiseEstimate out;
+    out.source = "none";
+    if (replicate_noise(c, rel_tol, out)) return out;
+
+    auto grid = grid_pseudo_residuals(c, rel_tol);
+    if (grid.size() >= 3) {
+        const int removed = remove_common_contrasts(grid);
+        std::vector<double> e;
+        for (const Pseudo& p : grid) e.push_back(p.value);
+        return from_pseudo_residuals(e, static_cast<int>(e.size()) - removed);
+    }
+    const auto e = nearest_neighbour_pseudo_residuals(c);
+    if (e.size() >= 3) return from_pseudo_residuals(e, static_cast<int>(e.size()));
+    return out;
+}
+
+FitTest goodness_of_fit(const std::vector<double>& residual, const NoiseEstimate& noise, int fitted_parameters) {
+    check_vector(residual, residual.size(), "residual", false);
+    if (fitted_parameters < 0) throw std::invalid_argument("adequacy: negative number of fitted parameters");
+    FitTest t;
+    t.n = static_cast<int>(residual.size());
+    const int dof = t.n - fitted_parameters;
+    // Nothing left to test: the model can pass through every point.
+    if (dof <= 0) return t;
+    t.dof = dof;
+    if (!noise.known() || !std::isfinite(noise.sigma)) return t;
+    double rss = 0;
+    for (double r : residual) rss += r * r;
+    const double chi2 = rss / (noise.sigma * noise.sigma);
+    t.statistic = chi2 / dof;
+    // A declared noise is known exactly: RSS / sigma^2 is chi-squared. An estimated one has
+    // its own chi-squared of noise.dof in the denominator: the ratio is Fisher's F.
+    if (std::isinf(noise.dof))
+        t.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(dof), chi2));
+    else
+        t.p_value = boost::math::cdf(boost::math::complement(boost::math::fisher_f(dof, noise.dof), t.statistic));
+    return t;
+}
+
+namespace {
+
+// One coordinate of the structure test: the points in its order (sorted once) and, for each
+// window size, where each position's window starts in that order.
+struct Axis {
+    const char* name;
+    Index order;
+    std::vector<Index> start;  // start[w][j]: first position of the window of size ks[w] around j
+};
+
+// The window of position j: the k points nearest to it in the coordinate, the point itself
+// included. In a sorted order they are consecutive, grown one point at a time towards the
+// nearer value. Tied values are at distance zero, so the points of one speed level fill
+// each other's windows before any point of the next level comes in: a step of one level is
+// then seen by whole windows and not smeared over the level's edges. Between candidates at
+// equal distance (inside a level, or equal spacing such as the run order) the side with
+// fewer positions so far is taken, which centres the window.
+Index window_starts(const std::vector<double>& x, const Index& order, std::size_t k) {
+    const std::size_t n = order.size();
+    Index start(n);
+    for (std::size_t j = 0; j < n; ++j) {
+        const double xj = x[order[j]];
+        std::size_t lo = j, hi = j + 1;  // [lo, hi)
+        while (hi - lo < k) {
+            if (lo == 0) { ++hi; continue; }
+            if (hi == n) { --lo; continue; }
+            const double left = xj - x[order[lo - 1]], right = x[order[hi]] - xj;
+            if (left < right || (left == right && j - lo <= hi - 1 - j)) --lo;
+            else ++hi;
+        }
+        start[j] = lo;
+    }
+    return start;
+}
+
+struct Best {
+    double gain = 0;
+    int axis = -1;
+    std::size_t w = 0;  // index into the window sizes
+};
+
+// The best relative LOO gain over the axes and window sizes for residuals r (centred).
+// err_mean is that of the mean of the others, the same for every ordering of r. Only sums
+// over the precomputed windows: O(n) per axis and window size.
+Best best_gain(const std::vector<double>& r, const std::vector<Axis>& axes, const std::vector<std::size_t>& ks,
+               double err_mean, std::vector<double>& prefix) {
+    const std::size_t n = r.size();
+    Best best;
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+        const Index& order = axes[a].order;
+        prefix.assign(n + 1, 0.0);
+        for (std::size_t j = 0; j < n; ++j) prefix[j + 1] = prefix[j] + r[order[j]];
+        for (std::size_t w = 0; w < ks.size(); ++w) {
+            const std::size_t k = ks[w];
+            const Index& start = axes[a].start[w];
+            double err = 0;
+            for (std::size_t j = 0; j < n; ++j) {
+                const double y = r[order[j]];
+                // Leave-one-out: the point's own value is not in its prediction.
+                const double loo = (prefix[start[j] + k] - prefix[start[j]] - y) / static_cast<double>(k - 1);
+                err += (y - loo) * (y - loo);
+            }
+            const double gain = 1 - err / err_mean;
+            // Strictly better only: on a tie the earlier coordinate (speed first) is named.
+            if (gain > best.gain) best = {gain, static_cast<int>(a), w};
+        }
+    }
+    return best;
+}
+
+// The coordinates to test: given, one value per point, more than one distinct value.
+std::vector<Axis> structure_axes(const Channel& c, const std::vector<std::size_t>& ks) {
+    const std::size_t n = c.residual.size();
+    const std::pair<const char*, const std::vector<double>*> all[] = {
+        {"speed", &c.speed}, {"torque", &c.torque}, {"oil temperature", &c.oil_temp}, {"run order", &c.order}};
+    std::vector<Axis> axes;
+    for (const auto& [name, x] : all) {
+        if (x->empty()) continue;
+        const auto [lo, hi] = std::minmax_element(x->begin(), x->end());
+        if (*lo == *hi) continue;
+        Axis axis{name, all_points(n), {}};
+        sort_by(axis.order, *x);
+        for (std::size_t k : ks) axis.start.push_back(window_starts(*x, axis.order, k));
+        axes.push_back(std::move(axis));
+    }
+    return axes;
+}
+
+}  // namespace
+
+StructureTest structure(const Channel& c, int permutations, std::uint64_t seed) {
+    check_channel(c);
+    StructureTest t;
+    const std::size_t n = c.residual.size();
+    if (n == 0) return t;
+    const double mean = std::accumulate(c.residual.begin(), c.residual.end(), 0.0) / static_cast<double>(n);
+    t.smooth.assign(n, mean);
+    // Below 6 points a window of 2..5 is nearly the whole campaign: nothing to compare.
+    if (n < 6) return t;
+
+    // Both the smoother and the mean of the others follow an added constant: centring first
+    // only keeps the sums of large channels (temperatures in K) accurate.
+    std::vector<double> r(n);
+    for (std::size_t i = 0; i < n; ++i) r[i] = c.residual[i] - mean;
+    double err_mean = 0;
+    const double total = std::accumulate(r.begin(), r.end(), 0.0);
+    for (double y : r) {
+        const double loo = (total - y) / static_cast<double>(n - 1);
+        err_mean += (y - loo) * (y - loo);
+    }
+    if (!(err_mean > 0)) return t;
+
+    // Narrow windows for a step, wide ones for a drift; a quarter of the points for large
+    // campaigns. Clipped so that a window holds one other point at least and not all.
+    std::vector<std::size_t> ks;
+    for (std::size_t k : {std::size_t{3}, std::size_t{5}, std::size_t{9}, n / 4}) ks.push_back(std::clamp(k, std::size_t{2}, n - 1));
+    std::sort(ks.begin(), ks.end());
+    ks.erase(std::unique(ks.begin(), ks.end()), ks.end());
+    const auto axes = structure_axes(c, ks);
+    if (axes.empty()) return t;
+
+    std::vector<double> prefix;
+    const Best observed = best_gain(r, axes, ks, err_mean, prefix);
+    if (observed.axis < 0) return t;
+    const Axis& winner = axes[static_cast<std::size_t>(observed.axis)];
+    t.gain = observed.gain;
+    t.coordinate = winner.name;
+
+    // In-sample fit of the winner, for reports: the window mean including the point itself.
+    const std::size_t k = ks[observed.w];
+    prefix.assign(n + 1, 0.0);
+    for (std::size_t j = 0; j < n; ++j) prefix[j + 1] = prefix[j] + r[winner.order[j]];
+    for (std::size_t j = 0; j < n; ++j) {
+        const std::size_t lo = winner.start[observed.w][j];
+        t.smooth[winner.order[j]] = mean + (prefix[lo + k] - prefix[lo]) / static_cast<double>(k);
+    }
+
+    // The permutation distribution of the whole statistic (best of the coordinates and the
+    // windows), so that choosing the best is paid for: the p-value holds for any exchangeable
+    // noise. Counting the observed one among them keeps it above zero and the test exact.
+    const int perms = std::max(permutations, 0);
+    std::mt19937_64 rng(seed);
+    std::vector<double> shuffled = r;
+    int at_least = 0;
+    for (int p = 0; p < perms; ++p) {
+        std::shuffle(shuffled.begin(), shuffled.end(), rng);
+        if (best_gain(shuffled, axes, ks, err_mean, prefix).gain >= observed.gain) ++at_least;
+    }
+    t.p_value = (1.0 + at_least) / (1.0 + perms);
+    return t;
+}
+
+}  // namespace gearloss::diagnosis::adequacy

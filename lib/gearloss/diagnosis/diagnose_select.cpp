@@ -1,0 +1,271 @@
+// diagnose: which effects, jointly. Forward selection (BIC, cross-validated gain, bootstrap
+// stability), each addition followed by a joint refit of every accepted parameter and a
+// test of whether each earlier effect is still needed (backward elimination).
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <numeric>
+#include <random>
+
+#include "gearloss/diagnosis/diagnose_select.hpp"
+#include "gearloss/io/interrupt.hpp"
+
+namespace gearloss::diagnosis::detail {
+namespace {
+
+// The case with the accepted terms (and the flagged points of an unstabilised-test term).
+Hypothesis with_terms(const Hypothesis& neutral, const std::vector<Term>& terms, const std::vector<char>& flags,
+                      int skip = -1) {
+    Hypothesis h = neutral;
+    for (size_t j = 0; j < terms.size(); ++j)
+        if (static_cast<int>(j) != skip && terms[j].effect->apply) terms[j].effect->apply(h, terms[j].value);
+    if (!flags.empty() && (skip < 0 || terms[static_cast<size_t>(skip)].effect->kind != EffectKind::pointwise)) {
+        bool any = false;
+        for (const auto& t : terms) any |= t.effect->kind == EffectKind::pointwise;
+        if (any) h.unstabilised = flags;
+    }
+    return h;
+}
+
+// Coordinate descent over the accepted parameters: each refitted with the others held,
+// until the likelihood stops improving (a few sweeps; every step is a one-parameter fit).
+double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
+                     int skip = -1) {
+    double last = kFailedNll;
+    for (int sweep = 0; sweep < 4; ++sweep) {
+        for (size_t j = 0; j < terms.size(); ++j) {
+            if (static_cast<int>(j) == skip) continue;
+            const Hypothesis h = with_terms(neutral, terms, flags, skip);
+            if (terms[j].effect->kind == EffectKind::pointwise) {
+                Hypothesis clean = h;
+                clean.unstabilised.clear();
+                const Fit f = E.fit_unstabilised(clean, E.all(), 0.0);
+                if (f.failed.empty()) flags = f.h.unstabilised;
+                continue;
+            }
+            const Fit f = E.fit(*terms[j].effect, h);
+            if (f.failed.empty()) terms[j].value = f.value;
+        }
+        const Hypothesis h = with_terms(neutral, terms, flags, skip);
+        const double now = E.score(h, E.predict_checked(h, E.all()), E.all()).nll;
+        if (terms.size() - (skip >= 0) <= 1 || last - now < 0.01) return now;
+        last = now;
+    }
+    return last;
+}
+
+int parameters_of(const std::vector<Term>& terms, const std::vector<char>& flags) {
+    int k = 0;
+    for (const auto& t : terms)
+        k += t.effect->kind == EffectKind::pointwise ? static_cast<int>(std::count(flags.begin(), flags.end(), 1)) : 1;
+    return k;
+}
+
+}  // namespace
+
+Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const Hypothesis& neutral,
+                         const DiagnoseOptions& opt) {
+    Selection S;
+    const auto& all = E.all();
+    const size_t N = n_observations(E, all);
+    std::vector<Term> terms;
+    std::vector<char> flags;
+    Hypothesis base = neutral;
+    auto report = [&](const std::string& what) {
+        if (opt.progress) opt.progress(what);
+    };
+    for (int round = 0; round < opt.max_findings; ++round) {
+        const Pred pb = E.predict_checked(base, all);
+        const double nll_base = E.score(base, pb, all).nll;
+        std::vector<Fit> fits(lib.size());
+        std::vector<Response> resp(lib.size());
+        std::vector<double> dbic(lib.size(), kRejectedBic);
+        for (size_t k = 0; k < lib.size(); ++k) {
+            io::throw_if_interrupted();
+            const bool used = std::any_of(terms.begin(), terms.end(), [&](const Term& t) { return t.effect == &lib[k]; });
+            if (used) continue;
+            report(fmt::format("diagnose: finding {}: candidate {} of {} ({})", round + 1, k + 1, lib.size(), lib[k].id));
+            fits[k] = lib[k].kind == EffectKind::pointwise ? E.fit_unstabilised(base, all, opt.loss_uncertainty)
+                                                           : E.fit(lib[k], base, &resp[k]);
+            if (fits[k].failed.empty() && lib[k].kind != EffectKind::pointwise && resp[k].flat())
+                fits[k].failed = "not applicable: it changes neither the loss nor the oil temperature at these points";
+            if (round == 0 && !resp[k].narrowed().empty())
+                S.warnings.push_back(fmt::format("candidate {} scanned only where the model can be evaluated; beyond: {}",
+                                                 lib[k].id, resp[k].narrowed()));
+            if (fits[k].failed.empty()) dbic[k] = delta_bic(nll_base, fits[k], N);
+            else fits[k].value = std::nan("");
+        }
+        std::vector<size_t> order(lib.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dbic[a] > dbic[b]; });
+        // Beyond the first effect, the leading candidates are fitted jointly with the accepted
+        // ones: an effect fitted alone absorbs part of a second one (mesh friction taking some
+        // windage), which a candidate held against it cannot win back. Each is then judged on
+        // top of the refitted others (its response, cross-validation and resamples).
+        if (!terms.empty()) {
+            for (size_t r = 0; r < std::min<size_t>(order.size(), 4); ++r) {
+                const size_t k = order[r];
+                if (dbic[k] <= 0 || lib[k].kind == EffectKind::pointwise) continue;
+                report(fmt::format("diagnose: finding {}: {} fitted jointly with {} accepted", round + 1, lib[k].id,
+                                   terms.size()));
+                std::vector<Term> joint = terms;
+                joint.push_back({&lib[k], fits[k].value});
+                std::vector<char> fl = flags;
+                refit_jointly(E, neutral, joint, fl);
+                const Hypothesis others = with_terms(neutral, joint, fl, static_cast<int>(joint.size() - 1));
+                Response rk;
+                Fit fk = E.fit(lib[k], others, &rk);
+                if (!fk.failed.empty()) continue;
+                const double dk = delta_bic(nll_base, fk, N);
+                if (dk > dbic[k]) {
+                    dbic[k] = dk;
+                    fits[k] = std::move(fk);
+                    resp[k] = std::move(rk);
+                }
+            }
+            std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dbic[a] > dbic[b]; });
+        }
+        if (round == 0)
+            for (size_t k : order) S.candidates.push_back({lib[k].id, fits[k].value, dbic[k], fits[k].failed});
+        // Candidates over the BIC threshold, gated by cross-validation in BIC order.
+        const CvResult cv0 = cross_validate(E, nullptr, pb, base);
+        int chosen = -1;
+        CvResult cv_chosen;
+        for (size_t r = 0; r < std::min<size_t>(order.size(), 3); ++r) {
+            const size_t k = order[r];
+            if (dbic[k] < opt.bic_threshold) break;
+            // The pointwise candidate has no response: its cross-validated gain is its BIC gain's.
+            const CvResult cv = lib[k].kind == EffectKind::pointwise
+                                    ? CvResult{cv0.nll - 0.5 * dbic[k], cv0.rmse_loss, cv0.rmse_temp}
+                                    : cross_validate(E, &resp[k], pb, base);
+            if (cv0.nll - cv.nll >= opt.cv_margin) {
+                chosen = static_cast<int>(k);
+                cv_chosen = cv;
+                break;
+            }
+        }
+        if (chosen < 0) break;
+        // Stability: the leading candidates refitted on bootstrap resamples through their responses.
+        std::vector<size_t> contenders;
+        for (size_t r = 0; r < std::min<size_t>(order.size(), 4); ++r)
+            if (dbic[order[r]] > 0) contenders.push_back(order[r]);
+        std::vector<int> wins(lib.size(), 0);
+        for (int b = 0; b < opt.bootstrap; ++b) {
+            io::throw_if_interrupted();
+            std::mt19937_64 rng(opt.seed + 7919u * static_cast<unsigned>(b) + 104729u * static_cast<unsigned>(round));
+            std::uniform_int_distribution<int> pick(0, static_cast<int>(all.size()) - 1);
+            std::vector<int> idx(all.size());
+            for (auto& i : idx) i = pick(rng);
+            const double nb = E.score(base, pb, idx).nll;
+            const size_t Nb = n_observations(E, idx);
+            int winner = -1;
+            double best = opt.bic_threshold;
+            for (size_t k : contenders) {
+                Fit f;
+                if (lib[k].kind == EffectKind::pointwise) f = E.fit_unstabilised(base, idx, opt.loss_uncertainty);
+                else {
+                    f.k = 1;
+                    f.nll = resp[k].minimise(idx).second;
+                }
+                if (!f.failed.empty()) continue;
+                const double db = delta_bic(nb, f, Nb);
+                if (db > best) {
+                    best = db;
+                    winner = static_cast<int>(k);
+                }
+            }
+            if (winner >= 0) ++wins[winner];
+        }
+        const double stability = static_cast<double>(wins[chosen]) / opt.bootstrap;
+        const Effect& e = lib[chosen];
+        Finding f;
+        const Signature sig = E.signature(e, base);
+        // Equally good alternatives: within the ambiguity margin in BIC; and, when the resamples
+        // split between near-tied candidates, those that together win them.
+        double shared = stability;
+        auto unobservable_difference = [&](const Signature& x, const Signature& y) {
+            return !E.has_temperature() && x.heats_oil != y.heats_oil && x.thermal_path == y.thermal_path &&
+                   x.load_dependent == y.load_dependent && x.viscosity_dependent == y.viscosity_dependent &&
+                   std::abs(x.speed_exponent - y.speed_exponent) < 0.4 && x.pointwise == y.pointwise;
+        };
+        for (size_t k : order) {
+            if (static_cast<int>(k) == chosen || dbic[k] < opt.bic_threshold) continue;
+            const Signature sk = E.signature(lib[k], base);
+            const bool near_tie = dbic[chosen] - dbic[k] <= opt.ambiguity_bic ||
+                                  (stability < opt.stability_min && dbic[chosen] - dbic[k] <= 3 * opt.ambiguity_bic &&
+                                   wins[k] > 0);
+            if (near_tie || unobservable_difference(sig, sk)) {
+                f.equivalent.push_back(lib[k].id);
+                shared += static_cast<double>(wins[k]) / opt.bootstrap;
+                if (f.separating_measurement.empty()) f.separating_measurement = separating_measurement(sig, sk);
+            }
+        }
+        if (stability < opt.stability_min && (f.equivalent.empty() || shared < 0.8)) break;
+        f.effect = e.id;
+        f.description = e.description;
+        f.parameter = {e.parameter, e.unit, fits[chosen].value, fits[chosen].uncertainty};
+        f.delta_bic = dbic[chosen];
+        f.stability = stability;
+        f.cv_gain = cv0.nll - cv_chosen.nll;
+        const ChannelStats sb = channel_rmse(E, pb, base);
+        const ChannelStats sa = channel_rmse(E, E.predict_checked(fits[chosen].h, all), fits[chosen].h);
+        f.rmse_before = sb.rmse_loss;
+        f.rmse_after = sa.rmse_loss;
+        f.cv_rmse_before = cv0.rmse_loss;
+        f.cv_rmse_after = cv_chosen.rmse_loss;
+        f.temp_rmse_before = sb.rmse_temp;
+        f.temp_rmse_after = sa.rmse_temp;
+        S.findings.push_back(f);
+        S.cv_rmse_after = cv_chosen.rmse_loss;
+        terms.push_back({&e, fits[chosen].value});
+        if (e.kind == EffectKind::pointwise) flags = fits[chosen].h.unstabilised;
+        // Joint refit, then: is every earlier effect still needed?
+        report(fmt::format("diagnose: finding {}: {} — refitting {} effect(s) jointly", round + 1, e.id, terms.size()));
+        double nll_full = refit_jointly(E, neutral, terms, flags);
+        for (bool dropped = true; dropped && terms.size() >= 2;) {
+            dropped = false;
+            for (size_t j = 0; j + 1 < terms.size(); ++j) {
+                std::vector<Term> without = terms;
+                std::vector<char> fl = flags;
+                const double nll_wo = refit_jointly(E, neutral, without, fl, static_cast<int>(j));
+                const int kj = parameters_of({terms[j]}, flags);
+                const double need = 2.0 * (nll_wo - nll_full) - kj * std::log(static_cast<double>(N));
+                if (need < opt.bic_threshold) {
+                    S.warnings.push_back(fmt::format("{} is no longer needed once {} is fitted with it (delta BIC {:.1f}); "
+                                                     "dropped",
+                                                     terms[j].effect->id, e.id, need));
+                    const std::string id = terms[j].effect->id;
+                    terms.erase(terms.begin() + static_cast<long>(j));
+                    S.findings.erase(std::remove_if(S.findings.begin(), S.findings.end(),
+                                                    [&](const Finding& x) { return x.effect == id; }),
+                                     S.findings.end());
+                    if (std::none_of(terms.begin(), terms.end(),
+                                     [](const Term& t) { return t.effect->kind == EffectKind::pointwise; }))
+                        flags.clear();
+                    nll_full = refit_jointly(E, neutral, terms, flags);
+                    dropped = true;
+                    break;
+                }
+            }
+        }
+        base = with_terms(neutral, terms, flags);
+    }
+    // The findings carry the jointly refitted values (uncertainty: conditional on the others).
+    for (auto& f : S.findings)
+        for (size_t j = 0; j < terms.size(); ++j)
+            if (terms[j].effect->id == f.effect && terms[j].effect->kind != EffectKind::pointwise) {
+                const Fit g = E.fit(*terms[j].effect, with_terms(neutral, terms, flags));
+                if (g.failed.empty()) f.parameter.value = g.value, f.parameter.uncertainty = g.uncertainty;
+            } else if (terms[j].effect->id == f.effect) {
+                f.rows.clear();
+                for (int i : all)
+                    if (!flags.empty() && flags[i]) f.rows.push_back(E.obs()[i].row);
+                f.parameter.value = static_cast<double>(f.rows.size());
+                f.parameter.uncertainty = 0;
+            }
+    S.h = with_terms(neutral, terms, flags);
+    S.fitted = parameters_of(terms, flags);
+    return S;
+}
+
+}  // namespace gearloss::diagnosis::detail
