@@ -123,6 +123,12 @@ TEST_CASE("a loss in one speed band that heats the oil is neither confident nor 
     CHECK((d.verdict == "partly_explained" || d.verdict == "unexplained_mismatch"));
     for (const auto& f : d.findings) CHECK(f.effect != "unstabilised_test");
     CHECK_THAT(d.remaining, Catch::Contains("not") || Catch::Contains("systematic"));
+    // What is left, proposed as a formula: the band at 1150 rpm, growing with torque squared.
+    REQUIRE(d.remainder);
+    CHECK_THAT(d.remainder->formula, Catch::Contains("^2 [n = 1150 rpm]"));
+    CHECK(d.remainder->cv_rmse_after < 0.6 * d.remainder->cv_rmse_before);
+    CHECK_THAT(diagnosis::diagnosis_text(d), Catch::Contains("hypothesis for what is left (not a finding)"));
+    CHECK_THAT(diagnosis::diagnosis_json(d), Catch::Contains("\"remainder_hypothesis\""));
 }
 
 TEST_CASE("bounds scale with the gearbox: a 2.5 MW box's torque-sensor offset is within reach", "[diagnose_joint]") {

@@ -141,6 +141,24 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     } else {
         d.verdict = "no_significant_mismatch";
     }
+    if (d.verdict == "partly_explained" || d.verdict == "unexplained_mismatch") {
+        // What is left, as a formula over the operating point (a hypothesis for the engineer).
+        std::vector<double> resid, scale;
+        hypothesis::Features f;
+        for (int i : all) {
+            const auto& o = E.obs()[i];
+            const double T = o.has_T ? o.T_oil : pf.temp[i];
+            resid.push_back(o.loss - pf.loss[i]);
+            scale.push_back(o.scale);
+            f.speed_rpm.push_back(std::abs(o.w) * to_rpm);
+            f.torque_Nm.push_back(o.torque);
+            f.oil_temp_C.push_back(T - 273.15);
+            f.viscosity_cSt.push_back(model.oil.nu_mm2s(T));
+            f.order.push_back(o.row);
+        }
+        auto p = hypothesis::propose(resid, scale, f);
+        if (p.found) d.remainder = std::move(p);
+    }
 
     // Outliers against the final model (robust z-scores), plus tests the log criterion flagged.
     {

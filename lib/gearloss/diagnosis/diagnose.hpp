@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "gearloss/diagnosis/effects.hpp"
+#include "gearloss/diagnosis/hypothesis.hpp"
 #include "gearloss/diagnosis/recordings.hpp"
 #include "gearloss/model/model.hpp"
 
@@ -106,6 +107,9 @@ struct Diagnosis {
         double fit_p = 1, structure_p = 1;
         std::string structure_along;  // speed | torque | oil temperature | run order
     } adequacy_loss, adequacy_temp;
+    // For a remainder no candidate explains (partly_explained, unexplained_mismatch): a compact
+    // formula by sparse regression over the operating point, a hypothesis, never a finding.
+    std::optional<hypothesis::Proposal> remainder;
     Hypothesis calibrated;          // the accepted hypothesis
     int points = 0;
 };

@@ -54,11 +54,99 @@ double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Ter
     return last;
 }
 
+// A finding's before/after figures: the hypothesis without it (predictions pb) and with it (h).
+void record_fit(Finding& f, const Engine& E, const Pred& pb, const Hypothesis& without, const Hypothesis& h,
+                const CvResult& cv_without, const CvResult& cv_with) {
+    const ChannelStats sb = channel_rmse(E, pb, without);
+    const ChannelStats sa = channel_rmse(E, E.predict_checked(h, E.all()), h);
+    f.rmse_before = sb.rmse_loss;
+    f.rmse_after = sa.rmse_loss;
+    f.cv_rmse_before = cv_without.rmse_loss;
+    f.cv_rmse_after = cv_with.rmse_loss;
+    f.temp_rmse_before = sb.rmse_temp;
+    f.temp_rmse_after = sa.rmse_temp;
+}
+
 int parameters_of(const std::vector<Term>& terms, const std::vector<char>& flags) {
     int k = 0;
     for (const auto& t : terms)
         k += t.effect->kind == EffectKind::pointwise ? static_cast<int>(std::count(flags.begin(), flags.end(), 1)) : 1;
     return k;
+}
+
+// Exchange: an earlier effect, chosen when it stood alone, may have been a substitute that
+// absorbed part of a later one (windage taking churning's share). Each earlier effect is
+// replaced in turn by the first round's strong alternatives and everything refitted jointly;
+// a replacement with a clearly better likelihood (same number of parameters: > 1 nat, i.e.
+// BIC better by > 2) is taken, and its finding carries its own evidence on top of the others.
+double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesis& neutral, std::vector<Term>& terms,
+                std::vector<char>& flags, double nll_full, Selection& S, const DiagnoseOptions& opt) {
+    const size_t N = n_observations(E, E.all());
+    for (size_t j = 0; j + 1 < terms.size(); ++j) {
+        if (terms[j].effect->kind == EffectKind::pointwise) continue;
+        const Effect* best = nullptr;
+        std::vector<Term> best_terms;
+        std::vector<char> best_flags;
+        double best_nll = nll_full - 1.0;
+        int tried = 0;
+        for (const auto& c : S.candidates) {
+            if (tried >= 4 || !c.rejected.empty() || c.delta_bic < 0.5 * opt.bic_threshold) continue;
+            const auto it = std::find_if(lib.begin(), lib.end(), [&](const Effect& x) { return x.id == c.effect; });
+            if (it == lib.end() || it->kind == EffectKind::pointwise) continue;
+            if (std::any_of(terms.begin(), terms.end(), [&](const Term& t) { return t.effect == &*it; })) continue;
+            ++tried;
+            std::vector<Term> swapped = terms;
+            swapped[j] = {&*it, c.value};
+            std::vector<char> fl = flags;
+            const double nll = refit_jointly(E, neutral, swapped, fl);
+            if (nll < best_nll) {
+                best_nll = nll;
+                best = &*it;
+                best_terms = swapped;
+                best_flags = fl;
+            }
+        }
+        if (!best) continue;
+        const std::string old = terms[j].effect->id;
+        const double gain = nll_full - best_nll;
+        terms = best_terms;
+        flags = best_flags;
+        nll_full = best_nll;
+        // The exchanged finding's evidence, on top of the other accepted effects.
+        const Hypothesis others = with_terms(neutral, terms, flags, static_cast<int>(j));
+        const Pred po = E.predict_checked(others, E.all());
+        const double nll_o = E.score(others, po, E.all()).nll;
+        Response rc, rj;
+        const Fit fc = E.fit(*best, others, &rc);
+        const Effect* replaced = nullptr;
+        for (const auto& x : lib)
+            if (x.id == old) replaced = &x;
+        if (replaced) E.fit(*replaced, others, &rj);
+        const CvResult cv0 = cross_validate(E, nullptr, po, others), cvc = cross_validate(E, &rc, po, others);
+        int wins = 0;
+        for (int b = 0; b < opt.bootstrap; ++b) {
+            std::mt19937_64 rng(opt.seed + 31u * static_cast<unsigned>(b) + 7u);
+            std::uniform_int_distribution<int> pick(0, static_cast<int>(E.all().size()) - 1);
+            std::vector<int> idx(E.all().size());
+            for (auto& i : idx) i = pick(rng);
+            wins += rj.failed().empty() && !rj.knots().empty() ? rc.minimise(idx).second < rj.minimise(idx).second : 1;
+        }
+        for (auto& f : S.findings) {
+            if (f.effect != old) continue;
+            f.effect = best->id;
+            f.description = best->description + "; chosen over " + old + " when fitted jointly with the other findings";
+            f.parameter = {best->parameter, best->unit, fc.value, fc.uncertainty};
+            f.delta_bic = delta_bic(nll_o, fc, N);
+            f.cv_gain = cv0.nll - cvc.nll;
+            f.stability = static_cast<double>(wins) / opt.bootstrap;
+            record_fit(f, E, po, others, fc.h, cv0, cvc);
+            f.equivalent.clear();
+            f.separating_measurement.clear();
+        }
+        S.warnings.push_back(
+            fmt::format("{} replaced {} in the joint fit (log-likelihood better by {:.1f})", best->id, old, gain));
+    }
+    return nll_full;
 }
 
 }  // namespace
@@ -207,14 +295,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         f.delta_bic = dbic[chosen];
         f.stability = stability;
         f.cv_gain = cv0.nll - cv_chosen.nll;
-        const ChannelStats sb = channel_rmse(E, pb, base);
-        const ChannelStats sa = channel_rmse(E, E.predict_checked(fits[chosen].h, all), fits[chosen].h);
-        f.rmse_before = sb.rmse_loss;
-        f.rmse_after = sa.rmse_loss;
-        f.cv_rmse_before = cv0.rmse_loss;
-        f.cv_rmse_after = cv_chosen.rmse_loss;
-        f.temp_rmse_before = sb.rmse_temp;
-        f.temp_rmse_after = sa.rmse_temp;
+        record_fit(f, E, pb, base, fits[chosen].h, cv0, cv_chosen);
         S.findings.push_back(f);
         S.cv_rmse_after = cv_chosen.rmse_loss;
         terms.push_back({&e, fits[chosen].value});
@@ -248,6 +329,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 }
             }
         }
+        if (terms.size() >= 2) nll_full = exchange(E, lib, neutral, terms, flags, nll_full, S, opt);
         base = with_terms(neutral, terms, flags);
     }
     // The findings carry the jointly refitted values (uncertainty: conditional on the others).

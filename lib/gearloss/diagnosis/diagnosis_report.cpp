@@ -36,6 +36,11 @@ std::string diagnosis_text(const Diagnosis& d) {
             s += fmt::format("  equally good: {} — to separate them: {}\n", e, f.separating_measurement);
     }
     if (!d.remaining.empty() && d.verdict != "unexplained_mismatch") s += "\n" + d.remaining + "\n";
+    if (d.remainder) {
+        s += fmt::format("\nhypothesis for what is left (not a finding): {}\n  cross-validated loss RMSE {:.3g} W -> {:.3g} W\n",
+                         d.remainder->formula, d.remainder->cv_rmse_before, d.remainder->cv_rmse_after);
+        for (const auto& n : d.remainder->nearest) s += "  resembles: " + n + "\n";
+    }
     s += fmt::format("\nnoise: loss {:.3g} % ({}), test of what is left: fit p = {:.2g}, structure p = {:.2g}{}\n",
                      100 * d.adequacy_loss.noise, d.adequacy_loss.noise_source, d.adequacy_loss.fit_p,
                      d.adequacy_loss.structure_p,
@@ -86,6 +91,25 @@ std::string diagnosis_json(const Diagnosis& d) {
     channel("loss_relative", d.adequacy_loss);
     if (d.has_temperature) channel("oil_temperature_K", d.adequacy_temp);
     j.end_object();
+    if (d.remainder) {
+        j.key("remainder_hypothesis").begin_object();
+        j.key("formula").value(d.remainder->formula);
+        j.key("cv_rmse_before").value(d.remainder->cv_rmse_before);
+        j.key("cv_rmse_after").value(d.remainder->cv_rmse_after);
+        j.key("terms").begin_array();
+        for (const auto& t : d.remainder->terms) {
+            j.begin_object();
+            j.key("basis").value(t.basis);
+            j.key("coefficient_W").value(t.coefficient);
+            j.key("uncertainty_W").value(t.uncertainty);
+            j.end_object();
+        }
+        j.end_array();
+        j.key("nearest").begin_array();
+        for (const auto& n : d.remainder->nearest) j.value(n);
+        j.end_array();
+        j.end_object();
+    }
     j.key("findings").begin_array();
     for (const auto& f : d.findings) {
         j.begin_object();
