@@ -90,6 +90,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         d.warnings.push_back("the case is in fixed-temperature mode: oil temperatures are not used as evidence");
     Engine E(model, std::move(obs), opt.threads, opt.physical_scan_range);
     d.points = static_cast<int>(E.obs().size());
+    d.bootstrap = opt.bootstrap;
     d.has_temperature = E.has_temperature();
     const auto& all = E.all();
 
@@ -272,6 +273,11 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             c.rejected.empty() ? fmt::format("best: {} with delta BIC {:.1f}", c.effect, c.delta_bic)
                                : std::string("no candidate could be evaluated"),
             baseline_clause, ad.text);
+    } else if (!d.candidates.front().rejected.empty()) {
+        d.summary = fmt::format("no significant missing physics: the residuals are consistent with measurement noise "
+                                "(loss RMSE {:.3g} W); no candidate could be evaluated on these recordings (see the "
+                                "candidates)",
+                                d.rmse_before);
     } else {
         d.summary = fmt::format("no significant missing physics: the residuals are consistent with measurement noise "
                                 "(loss RMSE {:.3g} W{}); best candidate {} (delta BIC {:.1f}) is below the evidence threshold",

@@ -112,6 +112,7 @@ struct Diagnosis {
     std::optional<hypothesis::Proposal> remainder;
     Hypothesis calibrated;          // the accepted hypothesis
     int points = 0;
+    int bootstrap = 24;             // resamples of the stability check
 };
 
 Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const DiagnoseOptions& opt = {});

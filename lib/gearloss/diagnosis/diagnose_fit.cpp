@@ -15,13 +15,18 @@ Response::Response(const Engine& E, const Effect& e, const Hypothesis& base)
     : E_(&E), e_(&e), base_(std::make_shared<const Hypothesis>(base)) {
     const std::vector<double> grid = E.scan_values(e, base);
     std::vector<Pred> pred(grid.size());
+    RegionErrors errors;
 #pragma omp parallel for num_threads(E.threads()) schedule(dynamic, 1)
     for (long k = 0; k < static_cast<long>(grid.size()); ++k) {
-        Hypothesis h = base;
-        e.apply(h, grid[k]);
-        E.predict(h, E.all(), pred[k], omp_get_thread_num());
+        try {
+            Hypothesis h = base;
+            e.apply(h, grid[k]);
+            E.predict(h, E.all(), pred[k], omp_get_thread_num());
+        } catch (...) {
+            errors.capture();  // an exception must not leave the region (std::terminate)
+        }
     }
-    io::throw_if_interrupted();
+    errors.rethrow();
     // The knots that can be evaluated, contiguous around the value of the case.
     size_t c = 0;
     for (size_t k = 0; k < grid.size(); ++k)
@@ -109,6 +114,7 @@ double Response::nll(double x, const std::vector<int>& idx) const {
 }
 
 std::pair<double, double> Response::minimise(const std::vector<int>& idx) const {
+    if (knots_.empty()) return {std::nan(""), kFailedNll};  // a response that could not be built
     size_t best = 0;
     std::vector<double> v(knots_.size());
     for (size_t k = 0; k < knots_.size(); ++k) {

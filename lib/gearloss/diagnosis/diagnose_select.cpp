@@ -29,17 +29,21 @@ Hypothesis with_terms(const Hypothesis& neutral, const std::vector<Term>& terms,
 
 // Coordinate descent over the accepted parameters: each refitted with the others held,
 // until the likelihood stops improving (a few sweeps; every step is a one-parameter fit).
+// The flagged points of an unstabilised-test term are chosen again only when `refit_flags`
+// (after an addition); trial fits keep them, so that no trial gains flags it does not pay for.
+// kFailedNll when the combination cannot be evaluated (a trial is then rejected, not fatal).
 double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
-                     int skip = -1) {
+                     const DiagnoseOptions& opt, bool refit_flags, int skip = -1) {
     double last = kFailedNll;
     for (int sweep = 0; sweep < 4; ++sweep) {
         for (size_t j = 0; j < terms.size(); ++j) {
             if (static_cast<int>(j) == skip) continue;
             const Hypothesis h = with_terms(neutral, terms, flags, skip);
             if (terms[j].effect->kind == EffectKind::pointwise) {
+                if (!refit_flags) continue;
                 Hypothesis clean = h;
                 clean.unstabilised.clear();
-                const Fit f = E.fit_unstabilised(clean, E.all(), 0.0);
+                const Fit f = E.fit_unstabilised(clean, E.all(), opt.loss_uncertainty);
                 if (f.failed.empty()) flags = f.h.unstabilised;
                 continue;
             }
@@ -47,7 +51,8 @@ double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Ter
             if (f.failed.empty()) terms[j].value = f.value;
         }
         const Hypothesis h = with_terms(neutral, terms, flags, skip);
-        const double now = E.score(h, E.predict_checked(h, E.all()), E.all()).nll;
+        const double now = E.nll(h, E.all(), 0);
+        if (now >= kFailedNll) return kFailedNll;
         if (terms.size() - (skip >= 0) <= 1 || last - now < 0.01) return now;
         last = now;
     }
@@ -74,6 +79,13 @@ int parameters_of(const std::vector<Term>& terms, const std::vector<char>& flags
     return k;
 }
 
+// Parameters of the laws (the flagged points excluded: they only remove their own temperature
+// evidence, which the adequacy test does not count).
+int law_parameters(const std::vector<Term>& terms) {
+    return static_cast<int>(
+        std::count_if(terms.begin(), terms.end(), [](const Term& t) { return t.effect->kind != EffectKind::pointwise; }));
+}
+
 // Exchange: an earlier effect, chosen when it stood alone, may have been a substitute that
 // absorbed part of a later one (windage taking churning's share). Each earlier effect is
 // replaced in turn by the first round's strong alternatives and everything refitted jointly;
@@ -98,7 +110,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
             std::vector<Term> swapped = terms;
             swapped[j] = {&*it, c.value};
             std::vector<char> fl = flags;
-            const double nll = refit_jointly(E, neutral, swapped, fl);
+            const double nll = refit_jointly(E, neutral, swapped, fl, opt, false);
             if (nll < best_nll) {
                 best_nll = nll;
                 best = &*it;
@@ -109,19 +121,23 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
         if (!best) continue;
         const std::string old = terms[j].effect->id;
         const double gain = nll_full - best_nll;
-        terms = best_terms;
-        flags = best_flags;
-        nll_full = best_nll;
         // The exchanged finding's evidence, on top of the other accepted effects.
-        const Hypothesis others = with_terms(neutral, terms, flags, static_cast<int>(j));
-        const Pred po = E.predict_checked(others, E.all());
+        const Hypothesis others = with_terms(neutral, best_terms, best_flags, static_cast<int>(j));
+        Pred po;
+        E.predict(others, E.all(), po, 0);
+        io::throw_if_interrupted();
+        if (!po.failure.empty()) continue;
         const double nll_o = E.score(others, po, E.all()).nll;
         Response rc, rj;
         const Fit fc = E.fit(*best, others, &rc);
+        if (!fc.failed.empty()) continue;  // cannot be evaluated on its own on top of the others: keep the old one
         const Effect* replaced = nullptr;
         for (const auto& x : lib)
             if (x.id == old) replaced = &x;
         if (replaced) E.fit(*replaced, others, &rj);
+        terms = best_terms;
+        flags = best_flags;
+        nll_full = best_nll;
         const CvResult cv0 = cross_validate(E, nullptr, po, others), cvc = cross_validate(E, &rc, po, others);
         int wins = 0;
         for (int b = 0; b < opt.bootstrap; ++b) {
@@ -199,7 +215,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 std::vector<Term> joint = terms;
                 joint.push_back({&lib[k], fits[k].value});
                 std::vector<char> fl = flags;
-                refit_jointly(E, neutral, joint, fl);
+                if (refit_jointly(E, neutral, joint, fl, opt, false) >= kFailedNll) continue;
                 const Hypothesis others = with_terms(neutral, joint, fl, static_cast<int>(joint.size() - 1));
                 Response rk;
                 Fit fk = E.fit(lib[k], others, &rk);
@@ -302,15 +318,42 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         if (e.kind == EffectKind::pointwise) flags = fits[chosen].h.unstabilised;
         // Joint refit, then: is every earlier effect still needed?
         report(fmt::format("diagnose: finding {}: {} — refitting {} effect(s) jointly", round + 1, e.id, terms.size()));
-        double nll_full = refit_jointly(E, neutral, terms, flags);
+        {
+            const std::vector<Term> before = terms;
+            const std::vector<char> flags_before = flags;
+            if (refit_jointly(E, neutral, terms, flags, opt, true) >= kFailedNll) {
+                terms = before;  // the joint optimum left the model's range: keep the values fitted in turn
+                flags = flags_before;
+                S.warnings.push_back("the joint refit of " + e.id + " with the earlier findings could not be evaluated; "
+                                     "the values fitted one at a time are kept");
+            }
+        }
+        // An unstabilised-test term whose points the joint refit no longer flags is gone.
+        if (std::none_of(flags.begin(), flags.end(), [](char c) { return c != 0; })) {
+            const auto pw = std::find_if(terms.begin(), terms.end(),
+                                         [](const Term& t) { return t.effect->kind == EffectKind::pointwise; });
+            if (pw != terms.end()) {
+                const std::string id = pw->effect->id;
+                terms.erase(pw);
+                S.findings.erase(std::remove_if(S.findings.begin(), S.findings.end(),
+                                                [&](const Finding& x) { return x.effect == id; }),
+                                 S.findings.end());
+            }
+            flags.clear();
+        }
+        double nll_full = E.nll(with_terms(neutral, terms, flags), all, 0);
         for (bool dropped = true; dropped && terms.size() >= 2;) {
             dropped = false;
             for (size_t j = 0; j + 1 < terms.size(); ++j) {
                 std::vector<Term> without = terms;
                 std::vector<char> fl = flags;
-                const double nll_wo = refit_jointly(E, neutral, without, fl, static_cast<int>(j));
+                const double nll_wo = refit_jointly(E, neutral, without, fl, opt, false, static_cast<int>(j));
+                if (nll_wo >= kFailedNll) continue;  // needed: without it the model cannot be evaluated
                 const int kj = parameters_of({terms[j]}, flags);
-                const double need = 2.0 * (nll_wo - nll_full) - kj * std::log(static_cast<double>(N));
+                const double penalty = terms[j].effect->kind == EffectKind::pointwise
+                                           ? kj * (std::log(static_cast<double>(N)) + std::log(static_cast<double>(all.size())))
+                                           : kj * std::log(static_cast<double>(N));
+                const double need = 2.0 * (nll_wo - nll_full) - penalty;
                 if (need < opt.bic_threshold) {
                     S.warnings.push_back(fmt::format("{} is no longer needed once {} is fitted with it (delta BIC {:.1f}); "
                                                      "dropped",
@@ -323,7 +366,8 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                     if (std::none_of(terms.begin(), terms.end(),
                                      [](const Term& t) { return t.effect->kind == EffectKind::pointwise; }))
                         flags.clear();
-                    nll_full = refit_jointly(E, neutral, terms, flags);
+                    const double again = refit_jointly(E, neutral, terms, flags, opt, true);
+                    nll_full = again < kFailedNll ? again : E.nll(with_terms(neutral, terms, flags), all, 0);
                     dropped = true;
                     break;
                 }
@@ -336,8 +380,11 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
     for (auto& f : S.findings)
         for (size_t j = 0; j < terms.size(); ++j)
             if (terms[j].effect->id == f.effect && terms[j].effect->kind != EffectKind::pointwise) {
+                // The value is the jointly refitted one (the calibrated case carries it); the
+                // uncertainty is conditional on the others.
+                f.parameter.value = terms[j].value;
                 const Fit g = E.fit(*terms[j].effect, with_terms(neutral, terms, flags));
-                if (g.failed.empty()) f.parameter.value = g.value, f.parameter.uncertainty = g.uncertainty;
+                f.parameter.uncertainty = g.failed.empty() ? g.uncertainty : std::nan("");
             } else if (terms[j].effect->id == f.effect) {
                 f.rows.clear();
                 for (int i : all)
@@ -346,7 +393,15 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 f.parameter.uncertainty = 0;
             }
     S.h = with_terms(neutral, terms, flags);
-    S.fitted = parameters_of(terms, flags);
+    S.fitted = law_parameters(terms);
+    // Cross-validated error of the final hypothesis: the last law refitted per fold on top of the others.
+    if (!terms.empty() && terms.back().effect->kind != EffectKind::pointwise) {
+        const int last = static_cast<int>(terms.size()) - 1;
+        const Hypothesis others = with_terms(neutral, terms, flags, last);
+        Response r;
+        if (E.fit(*terms.back().effect, others, &r).failed.empty())
+            S.cv_rmse_after = cross_validate(E, &r, E.predict_checked(others, all), others).rmse_loss;
+    }
     return S;
 }
 

@@ -27,7 +27,7 @@ std::string diagnosis_text(const Diagnosis& d) {
         }
         s += fmt::format("  evidence: delta BIC {:.1f}, cross-validated log-likelihood gain {:.1f}, chosen in {:.0f} % of {} "
                          "bootstrap resamples\n",
-                         f.delta_bic, f.cv_gain, 100 * f.stability, 24);
+                         f.delta_bic, f.cv_gain, 100 * f.stability, d.bootstrap);
         s += fmt::format("  loss RMSE {:.3g} -> {:.3g} W, cross-validated {:.3g} -> {:.3g} W\n", f.rmse_before, f.rmse_after,
                          f.cv_rmse_before, f.cv_rmse_after);
         if (d.has_temperature)
