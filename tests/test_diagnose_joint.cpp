@@ -19,14 +19,8 @@ constexpr double rpm = std::numbers::pi / 30;
 
 namespace {
 
-io::Case load(const std::string& config) { return io::load_case(test_support::source_path(config)); }
-
-io::OperatingGrid grid(const std::vector<double>& speeds_rpm, const std::vector<double>& torques) {
-    io::OperatingGrid g;
-    for (double n : speeds_rpm) g.speeds.push_back(n * rpm);
-    g.torques = torques;
-    return g;
-}
+using test_support::rpm_grid;
+io::Case load(const std::string& config) { return test_support::load_shipped(config); }
 
 diagnosis::Recordings synth(const io::Case& c, std::vector<std::pair<std::string, double>> effects, unsigned seed,
                             double noise_loss = 0.01) {
@@ -36,7 +30,7 @@ diagnosis::Recordings synth(const io::Case& c, std::vector<std::pair<std::string
     so.noise_loss = noise_loss;
     so.noise_temp = 0.3;
     return diagnosis::read_recordings_text(
-        diagnosis::synthesize(c.model, grid({400, 650, 900, 1150, 1400, 1650}, {60, 120, 180, 240, 300}), so), "rec.csv");
+        diagnosis::synthesize(c.model, rpm_grid({400, 650, 900, 1150, 1400, 1650}, {60, 120, 180, 240, 300}), so), "rec.csv");
 }
 
 bool named(const diagnosis::Diagnosis& d, const std::string& id, size_t within) {

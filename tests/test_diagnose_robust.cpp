@@ -27,20 +27,14 @@ using Approx = Catch::Detail::Approx;
 namespace {
 constexpr double rpm = std::numbers::pi / 30;
 
-io::Case load(const std::string& config) { return io::load_case(test_support::source_path(config)); }
-
-io::OperatingGrid grid(const std::vector<double>& speeds_rpm, const std::vector<double>& torques) {
-    io::OperatingGrid g;
-    for (double n : speeds_rpm) g.speeds.push_back(n * rpm);
-    g.torques = torques;
-    return g;
-}
+using test_support::rpm_grid;
+io::Case load(const std::string& config) { return test_support::load_shipped(config); }
 
 // The issue's campaign: 800-2000 rpm x 50-150 N m (points above ~1100 rpm made the scan of
 // speed_dependent_cooling drive the heat flow negative: exit 134).
 std::string six_speed_campaign(const io::Case& c) {
     diagnosis::SynthOptions so;
-    return diagnosis::synthesize(c.model, grid({800, 1200, 1600, 2000}, {50, 100, 150}), so);
+    return diagnosis::synthesize(c.model, rpm_grid({800, 1200, 1600, 2000}, {50, 100, 150}), so);
 }
 
 bool finite_diagnosis(const diagnosis::Diagnosis& d) {
@@ -95,7 +89,7 @@ TEST_CASE("diagnose finds a concealed speed-dependent cooling in a campaign up t
     diagnosis::SynthOptions so;
     so.effects = {{"speed_dependent_cooling", -0.3}};  // hotter oil: 150 N m at 2000 rpm has no equilibrium
     const auto rec = diagnosis::read_recordings_text(
-        diagnosis::synthesize(c.model, grid({800, 1100, 1400, 1700, 2000}, {40, 70, 100}), so), "c.csv");
+        diagnosis::synthesize(c.model, rpm_grid({800, 1100, 1400, 1700, 2000}, {40, 70, 100}), so), "c.csv");
     const auto d = diagnosis::diagnose(c.model, rec);
     REQUIRE(d.verdict == "missing_physics");
     REQUIRE(!d.findings.empty());
@@ -118,7 +112,7 @@ TEST_CASE("the physical scan range keeps the heat flow to ambient positive at th
     const auto c = load("configs/manual-6speed.yaml");
     diagnosis::SynthOptions so;
     so.effects = {{"speed_dependent_cooling", -0.5}};
-    CHECK_THROWS_AS(diagnosis::synthesize(c.model, grid({800, 2400}, {50, 100}), so), InputError);
+    CHECK_THROWS_AS(diagnosis::synthesize(c.model, rpm_grid({800, 2400}, {50, 100}), so), InputError);
 }
 
 TEST_CASE("a candidate the model cannot be evaluated at everywhere is scanned where it can, with the reason", "[diagnose_robust]") {
@@ -147,7 +141,7 @@ TEST_CASE("a candidate that changes nothing on a campaign is rejected as not app
     // temperature) nor any temperature evidence.
     auto c = load("configs/transfer-box.yaml");
     const auto rec = diagnosis::read_recordings_text(
-        diagnosis::synthesize(c.model, grid({600, 900, 1200, 1500}, {100, 175, 250}), {}), "campaign.csv");
+        diagnosis::synthesize(c.model, rpm_grid({600, 900, 1200, 1500}, {100, 175, 250}), {}), "campaign.csv");
     c.model.thermal.mode = solver::ThermalMode::fixed;
     const auto d = diagnosis::diagnose(c.model, rec);
     const diagnosis::Candidate* tr = nullptr;
@@ -164,7 +158,7 @@ TEST_CASE("a candidate that changes nothing on a campaign is rejected as not app
 TEST_CASE("a recording with oil_temp_C = 9999 is not used, with the reason; never a NaN RMSE", "[diagnose_robust]") {
     const auto c = load("configs/transfer-box.yaml");
     diagnosis::SynthOptions so;
-    const std::string csv = diagnosis::synthesize(c.model, grid({600, 700, 800}, {150, 200, 250}), so);
+    const std::string csv = diagnosis::synthesize(c.model, rpm_grid({600, 700, 800}, {150, 200, 250}), so);
     // Columns: speed_in_rpm, torque_in_Nm, P_loss_W, oil_temp_C, ...
     const auto rec = diagnosis::read_recordings_text(with_cell(csv, 2, 3, "9999"), "rec.csv");
     diagnosis::Diagnosis d;
@@ -182,7 +176,7 @@ TEST_CASE("a recording with oil_temp_C = 9999 is not used, with the reason; neve
     for (const auto& r : d.residuals) CHECK(r.row != 2);
 
     // Too few usable points left: an input error naming why, not a diagnosis of 3 points.
-    std::string few = diagnosis::synthesize(c.model, grid({600, 700}, {150, 200, 250}), so);
+    std::string few = diagnosis::synthesize(c.model, rpm_grid({600, 700}, {150, 200, 250}), so);
     few = with_cell(with_cell(with_cell(few, 1, 3, "9999"), 3, 3, "9999"), 5, 4, "5000");  // oil, oil, ambient
     try {
         diagnosis::diagnose(c.model, diagnosis::read_recordings_text(few, "few.csv"));
@@ -202,15 +196,15 @@ TEST_CASE("an interrupt stops diagnose, synth and a cycle with io::Interrupted; 
     const auto c = load("configs/transfer-box.yaml");
     diagnosis::SynthOptions so;
     so.effects = {{"windage", 25}};
-    const std::string csv = diagnosis::synthesize(c.model, grid({400, 600, 800, 1000, 1200}, {100, 175, 250, 325}), so);
+    const std::string csv = diagnosis::synthesize(c.model, rpm_grid({400, 600, 800, 1000, 1200}, {100, 175, 250, 325}), so);
     const auto rec = diagnosis::read_recordings_text(csv, "rec.csv");
     {
         InterruptGuard g(SIGTERM);
         CHECK(io::interrupt_exit_code() == 143);
         CHECK_THROWS_AS(diagnosis::diagnose(c.model, rec), io::Interrupted);
-        CHECK_THROWS_AS(diagnosis::synthesize(c.model, grid({600}, {150}), so), io::Interrupted);
+        CHECK_THROWS_AS(diagnosis::synthesize(c.model, rpm_grid({600}, {150}), so), io::Interrupted);
         so.raw_log = true;
-        CHECK_THROWS_AS(diagnosis::synthesize(c.model, grid({600}, {150}), so), io::Interrupted);
+        CHECK_THROWS_AS(diagnosis::synthesize(c.model, rpm_grid({600}, {150}), so), io::Interrupted);
         so.raw_log = false;
         const auto a = load("configs/automatic-6speed.yaml");
         const auto pt = io::load_powertrain(a, std::nullopt);
@@ -230,7 +224,7 @@ TEST_CASE("an interrupt stops diagnose, synth and a cycle with io::Interrupted; 
     std::vector<double> speeds, torques;
     for (int i = 0; i < 20; ++i) speeds.push_back(400 + 80 * i);
     for (int i = 0; i < 15; ++i) torques.push_back(25 + 20 * i);
-    const auto big = diagnosis::read_recordings_text(diagnosis::synthesize(c.model, grid(speeds, torques), so), "big.csv");
+    const auto big = diagnosis::read_recordings_text(diagnosis::synthesize(c.model, rpm_grid(speeds, torques), so), "big.csv");
     for (int delay_ms : {20, 200, 400}) {
         INFO("interrupt after " << delay_ms << " ms");
         std::thread t([delay_ms] {

@@ -9,10 +9,24 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include "gearloss/io/config.hpp"
 
 namespace test_support {
 
 inline std::string source_path(const std::string& rel) { return std::string(GEARLOSS_SOURCE_DIR) + "/" + rel; }
+
+// A shipped case by its path under the source tree ("configs/transfer-box.yaml").
+inline gearloss::io::Case load_shipped(const std::string& config) { return gearloss::io::load_case(source_path(config)); }
+
+// An operating grid from input speeds in rpm and torques in N m.
+inline gearloss::io::OperatingGrid rpm_grid(const std::vector<double>& speeds_rpm, const std::vector<double>& torques) {
+    gearloss::io::OperatingGrid g;
+    for (double n : speeds_rpm) g.speeds.push_back(n * 3.14159265358979323846 / 30.0);
+    g.torques = torques;
+    return g;
+}
 
 inline std::string read_file(const std::string& path) {
     std::ifstream in(path);

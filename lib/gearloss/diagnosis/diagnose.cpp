@@ -169,17 +169,8 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             eP.push_back((o.loss - pf.loss[i]) / o.scale);
             if (o.T_evidence && (base.unstabilised.empty() || !base.unstabilised[i])) eT.push_back(o.T_oil - pf.temp[i]);
         }
-        auto robust = [](std::vector<double> v, double floor) {
-            if (v.empty()) return std::make_pair(0.0, floor);
-            std::sort(v.begin(), v.end());
-            const double med = v[v.size() / 2];
-            std::vector<double> dev;
-            for (double x : v) dev.push_back(std::abs(x - med));
-            std::sort(dev.begin(), dev.end());
-            return std::make_pair(med, std::max(1.4826 * dev[dev.size() / 2], floor));
-        };
-        const auto [mP, sP] = robust(eP, 0.004);
-        const auto [mT, sT] = robust(eT, 0.15);
+        const auto [mP, sP] = robust_centre_scale(eP, 0.004);
+        const auto [mT, sT] = robust_centre_scale(eT, 0.15);
         for (int i : all) {
             const auto& o = E.obs()[i];
             std::vector<std::string> why;

@@ -170,28 +170,36 @@ double Engine::loss_sensitivity(const Effect& e, const Hypothesis& base) const {
     return n ? std::abs(sum) / n / step : 0.0;
 }
 
-std::pair<double, double> Engine::range(const Effect& e, const Hypothesis& base) const {
+// Loss parameters get bounds relative to the recorded losses; factors on a property, the heat
+// path and the pointwise candidate keep their physical bounds.
+bool Engine::relative_bounds(const Effect& e) const {
+    return physical_range_ && !e.multiplicative && e.kind != EffectKind::heat_path && e.kind != EffectKind::pointwise;
+}
+
+std::pair<double, double> Engine::range_for(const Effect& e, double s) const {
     auto [lo, hi] = physical_range_ ? valid_range(e, max_rpm_) : std::make_pair(e.lower, e.upper);
-    if (!physical_range_ || e.multiplicative || e.kind == EffectKind::heat_path || e.kind == EffectKind::pointwise)
-        return {lo, hi};
+    if (!relative_bounds(e) || !(s > 0) || !std::isfinite(s)) return {lo, hi};
     // An added (or removed) loss of at most 3x (1.5x) the mean recorded loss: relative to the
     // gearbox, so a 2.5 MW box and a bench gearbox get bounds of the same meaning.
-    const double s = loss_sensitivity(e, base);
-    if (!(s > 0) || !std::isfinite(s)) return {lo, hi};
     const double unit = mean_loss_ / s;
     return {std::max(lo, e.neutral - 1.5 * unit), std::min(hi, e.neutral + 3.0 * unit)};
 }
 
+std::pair<double, double> Engine::range(const Effect& e, const Hypothesis& base) const {
+    return range_for(e, relative_bounds(e) ? loss_sensitivity(e, base) : 0.0);
+}
+
 std::vector<double> Engine::scan_values(const Effect& e, const Hypothesis& base) const {
     std::vector<double> v;
-    const auto [lo, hi] = range(e, base);
+    const bool additive = !e.multiplicative && e.kind != EffectKind::heat_path;
+    const double s = additive ? loss_sensitivity(e, base) : 0.0;
+    const auto [lo, hi] = range_for(e, s);
     if (e.multiplicative) {
         for (double x : {.2, .3, .4, .5, .6, .7, .8, .87, .93, 1., 1.07, 1.15, 1.25, 1.4, 1.6, 2., 2.5, 3.2, 4., 5.})
             v.push_back(e.neutral * x);
     } else if (e.kind == EffectKind::heat_path) {
         v = {-.9, -.6, -.4, -.25, -.12, -.05, 0, .05, .12, .25, .4, .6, 1, 1.5, 2.5, 4, 6, 10};
     } else {
-        const double s = loss_sensitivity(e, base);
         const double unit = s > 0 && std::isfinite(s) ? mean_loss_ / s : 1.0;
         for (double x : {-1.5, -1., -.6, -.35, -.2, -.1, -.05, -.02, 0., .02, .05, .1, .2, .35, .6, 1., 1.5, 2.2, 3.})
             v.push_back(e.neutral + x * unit);

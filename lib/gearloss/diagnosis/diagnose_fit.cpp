@@ -210,13 +210,6 @@ Fit Engine::fit_unstabilised(const Hypothesis& base, const std::vector<int>& idx
     std::vector<int> uniq(idx);
     std::sort(uniq.begin(), uniq.end());
     uniq.erase(std::unique(uniq.begin(), uniq.end()), uniq.end());
-    auto robust_scale = [](std::vector<double> v, double floor) {
-        std::sort(v.begin(), v.end());
-        const double med = v[v.size() / 2];
-        for (double& x : v) x = std::abs(x - med);
-        std::sort(v.begin(), v.end());
-        return std::make_pair(med, std::max(1.4826 * v[v.size() / 2], floor));
-    };
     std::vector<std::pair<double, int>> resid;
     std::vector<double> lossres;
     for (int i : uniq) {
@@ -227,8 +220,8 @@ Fit Engine::fit_unstabilised(const Hypothesis& base, const std::vector<int>& idx
     if (resid.size() < 4) return f;
     std::vector<double> v;
     for (const auto& r : resid) v.push_back(r.first);
-    const auto [med, scale] = robust_scale(v, 2.0 * kFloorTemp);
-    const double sP = loss_noise > 0 ? loss_noise : robust_scale(lossres, 0.01).second;
+    const auto [med, scale] = robust_centre_scale(v, 2.0 * kFloorTemp);
+    const double sP = loss_noise > 0 ? loss_noise : robust_centre_scale(lossres, 0.01).second;
     solver::Model& m = work_[0];
     base.apply_to(m);
     std::vector<std::pair<double, int>> cold;

@@ -82,6 +82,10 @@ private:
     std::exception_ptr first_;
 };
 
+// Median and robust scale (1.4826 x median absolute deviation, at least `floor`) of v;
+// (0, floor) for an empty v (diagnose_residuals.cpp).
+std::pair<double, double> robust_centre_scale(std::vector<double> v, double floor);
+
 // Negative log-likelihood of n residuals with their variance profiled out (floored).
 double profiled(double rss, int n, double floor);
 
@@ -158,6 +162,9 @@ public:
 private:
     // The mean |dL/dtheta| over the points at the base value (finite difference), W per unit.
     double loss_sensitivity(const Effect& e, const Hypothesis& base) const;
+    // range() for a known loss sensitivity (scan_values computes it once for both).
+    std::pair<double, double> range_for(const Effect& e, double sensitivity) const;
+    bool relative_bounds(const Effect& e) const;
     std::vector<Obs> obs_;
     std::vector<int> all_;
     int threads_ = 1;

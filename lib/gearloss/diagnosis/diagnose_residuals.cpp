@@ -10,6 +10,15 @@
 
 namespace gearloss::diagnosis::detail {
 
+std::pair<double, double> robust_centre_scale(std::vector<double> v, double floor) {
+    if (v.empty()) return {0.0, floor};
+    std::sort(v.begin(), v.end());
+    const double med = v[v.size() / 2];
+    for (double& x : v) x = std::abs(x - med);
+    std::sort(v.begin(), v.end());
+    return {med, std::max(1.4826 * v[v.size() / 2], floor)};
+}
+
 ChannelStats channel_rmse(const Engine& E, const Pred& p, const Hypothesis& h) {
     ChannelStats s;
     int nT = 0;
