@@ -141,7 +141,7 @@ for c in manual-6speed automatic-6speed; do
     check "$c diagnose above 1100 rpm: exit 0 (got $rc)" test $rc -eq 0
     check "$c diagnose: verdict" grep -q '^verdict: ' "$c.txt"
     check "$c diagnose: JSON with a verdict" python3 -c "import json; assert json.load(open('$c.json'))['verdict']"
-    check "$c diagnose: no nan" bash -c "! grep -qi nan '$c.txt'"
+    check "$c diagnose: no nan" bash -c "! grep -qiw nan '$c.txt'"
 done
 
 # One recording with oil_temp_C = 9999: the row is not used (an outlier with its reason),
@@ -151,7 +151,7 @@ awk -F, 'BEGIN { OFS = "," } NR == 3 { $4 = 9999 } { print }' rec9.csv > rec9999
 "$bin" diagnose "$tb" rec9999.csv --json d9999.json > d9999.txt 2> d9999.err
 rc=$?
 check "9999 degC row: exit 0 (got $rc)" test $rc -eq 0
-check "9999 degC row: no nan" bash -c "! grep -qi nan d9999.txt"
+check "9999 degC row: no nan" bash -c "! grep -qiw nan d9999.txt"
 check "9999 degC row: outlier with the reason" grep -q "row 2: not used: recorded oil temperature 9999.0 degC" d9999.txt
 check "9999 degC row: JSON outlier" python3 -c "
 import json; d = json.load(open('d9999.json'))

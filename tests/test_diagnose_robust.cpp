@@ -5,6 +5,7 @@
 #include <cmath>
 #include <csignal>
 #include <numbers>
+#include <regex>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -77,10 +78,12 @@ TEST_CASE("diagnose on the six-speed manual and automatic above 1100 rpm: a verd
         CHECK(d.outliers.empty());
         // The scan stayed where the heat flow is positive at 2000 rpm: 1 + a * 2 > 0.
         for (const auto& cand : d.candidates) {
-            CHECK(cand.rejected.empty());
+            // A form may not apply here (a film correction under a friction law without films).
+            const bool form = cand.effect.find(':') != std::string::npos;
+            CHECK((cand.rejected.empty() || (form && cand.rejected.rfind("not applicable", 0) == 0)));
             if (cand.effect == "speed_dependent_cooling") CHECK(cand.value >= -0.45 - 1e-12);
         }
-        CHECK(diagnosis::diagnosis_text(d).find("nan") == std::string::npos);
+        CHECK_FALSE(std::regex_search(diagnosis::diagnosis_text(d), std::regex(R"(\bnan\b)", std::regex::icase)));
     }
 }
 

@@ -43,12 +43,17 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     Hypothesis neutral = Hypothesis::of(model);
     std::vector<Obs> obs;
     std::vector<Outlier> unused;  // rows the model cannot be compared with: listed, not used
+    const CampaignOils oils = campaign_oils(model, rec);
     {
-        solver::Model m = model;
+        std::vector<solver::Model> per_oil(oils.oils.size(), model);
+        for (size_t j = 0; j < oils.oils.size(); ++j) per_oil[j].oil = oils.oils[j];
         solver::PointState ps;
-        for (const auto& r : rec.points) {
+        for (size_t k = 0; k < rec.points.size(); ++k) {
+            const auto& r = rec.points[k];
             io::throw_if_interrupted();
             Obs o;
+            o.oil = oils.of_point[k];
+            solver::Model& m = per_oil[static_cast<size_t>(o.oil)];
             o.row = r.row;
             o.w = r.speed_in;
             o.torque = r.torque_in;
@@ -88,7 +93,10 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     }
     if (model.thermal.mode != solver::ThermalMode::stabilised)
         d.warnings.push_back("the case is in fixed-temperature mode: oil temperatures are not used as evidence");
-    Engine E(model, std::move(obs), opt.threads, opt.physical_scan_range);
+    Engine E(model, std::move(obs), opt.threads, opt.physical_scan_range, oils.oils);
+    if (oils.count_tested() >= 2)
+        for (size_t j = 0; j < oils.oils.size(); ++j)
+            if (oils.tested[j]) d.oils.push_back(oils.names[j]);
     d.points = static_cast<int>(E.obs().size());
     d.bootstrap = opt.bootstrap;
     d.has_temperature = E.has_temperature();
@@ -104,10 +112,12 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     const std::string& baseline_clause = baseline.clause;
 
     // Candidates from the model's mechanisms, calibration and the rig's artefacts.
-    const std::vector<Effect> lib = candidate_effects(model);
+    std::vector<Effect> lib = candidate_effects(model);
+    add_per_oil_candidates(lib, oils);
     Selection S = select_effects(E, lib, neutral, opt);
     d.candidates = std::move(S.candidates);
     d.findings = std::move(S.findings);
+    name_oil_findings(d.findings, lib);
     d.warnings.insert(d.warnings.end(), S.warnings.begin(), S.warnings.end());
     const Hypothesis& base = S.h;
     d.calibrated = base;
@@ -117,6 +127,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     d.rmse_after = sf.rmse_loss;
     d.temp_rmse_after = sf.rmse_temp;
     d.cv_rmse_after = d.findings.empty() ? d.rmse_before : S.cv_rmse_after;
+    d.oil_differences = oil_differences(E, p0, pf, oils);
 
     // Is what is left noise? Declared or estimated noise, goodness of fit and structure.
     if (opt.progress) opt.progress("diagnose: testing what is left against the noise");
@@ -213,7 +224,8 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     // Per-point residuals before and after.
     for (int i : all) {
         const auto& o = E.obs()[i];
-        PointResidual r{o.row, o.w * to_rpm, o.torque, o.loss, p0.loss[i], pf.loss[i], {}, {}, {}};
+        PointResidual r{o.row, o.w * to_rpm, o.torque, o.loss, p0.loss[i], pf.loss[i], {}, {}, {}, {}};
+        if (!d.oils.empty()) r.oil = oils.names[static_cast<size_t>(o.oil)];
         if (o.has_T) {
             r.temp = o.T_oil - 273.15;
             r.temp_before = p0.temp[i] - 273.15;
@@ -230,17 +242,20 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             if (k == 0) s += baseline_clause + " -> ";
             else s += "; then ";
             const char* verb = d.verdict == "missing_physics" ? "was left out" : "explains part of it";
+            const std::string name = f.oil.empty() ? f.effect : f.effect + " of oil " + f.oil;
             if (f.equivalent.empty()) {
-                s += fmt::format("{} {} ({})", f.effect, verb, f.description);
+                s += fmt::format("{} {} ({})", name, verb, f.description);
             } else {
                 std::string eq;
                 for (const auto& x : f.equivalent) eq += " or " + x;
-                s += fmt::format("{}{} {} — the data cannot tell which ({})", f.effect, eq, verb, f.description);
+                s += fmt::format("{}{} {} — the data cannot tell which ({})", name, eq, verb, f.description);
             }
             if (f.effect == "unstabilised_test") {
                 std::string rows;
                 for (int r : f.rows) rows += (rows.empty() ? "" : ", ") + std::to_string(r);
                 s += fmt::format("; rows {} excluded from the temperature evidence", rows);
+            } else if (!f.parameter.form.empty()) {
+                s += fmt::format("; {} = {} instead of {}", f.parameter.name, f.parameter.form, f.parameter.case_form);
             } else {
                 s += fmt::format("; added {} = {}", f.parameter.name, fmt_value(f.parameter.value, f.parameter.unit));
                 if (std::isfinite(f.parameter.uncertainty))

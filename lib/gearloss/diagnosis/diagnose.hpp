@@ -54,6 +54,7 @@ struct DiagnoseOptions {
 struct Estimate {
     std::string name, unit;
     double value = 0, uncertainty = 0;
+    std::string form, case_form;  // a model-form finding: the form named and the case's (value 1)
 };
 
 struct Finding {
@@ -63,6 +64,7 @@ struct Finding {
     double delta_bic = 0, stability = 0, cv_gain = 0;
     double rmse_before = 0, rmse_after = 0, cv_rmse_before = 0, cv_rmse_after = 0;  // loss, W
     double temp_rmse_before = 0, temp_rmse_after = 0;                              // K (0 without temperatures)
+    std::string oil;                // multi-oil campaigns: the oil it concerns alone (empty: every oil)
     std::vector<std::string> equivalent;  // candidates that explain the data equally well
     std::string separating_measurement;
 };
@@ -82,6 +84,15 @@ struct PointResidual {
     int row;
     double speed_rpm, torque, loss, loss_before, loss_after;
     std::optional<double> temp, temp_before, temp_after;  // degC
+    std::string oil;  // multi-oil campaigns: the oil of the test
+};
+
+// Multi-oil campaigns: at one operating point, the loss of oil B minus that of oil A, as
+// recorded and as the model gives it before and after the findings (W).
+struct OilDifference {
+    double speed_rpm = 0, torque = 0;
+    std::string oil_a, oil_b;
+    double recorded = 0, model_before = 0, model_after = 0;
 };
 
 struct Diagnosis {
@@ -110,6 +121,8 @@ struct Diagnosis {
     // For a remainder no candidate explains (partly_explained, unexplained_mismatch): a compact
     // formula by sparse regression over the operating point, a hypothesis, never a finding.
     std::optional<hypothesis::Proposal> remainder;
+    std::vector<std::string> oils;  // multi-oil campaigns: the oils tested (as in the recordings)
+    std::vector<OilDifference> oil_differences;
     Hypothesis calibrated;          // the accepted hypothesis
     int points = 0;
     int bootstrap = 24;             // resamples of the stability check

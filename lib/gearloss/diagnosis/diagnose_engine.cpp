@@ -64,10 +64,18 @@ double profiled(double rss, int n, double floor) {
     return 0.5 * n * std::log(std::max(rss / n, floor * floor));
 }
 
-Engine::Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool physical_range)
+Engine::Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool physical_range,
+               std::vector<lubricant::Oil> oils)
     : obs_(std::move(obs)), physical_range_(physical_range) {
     threads_ = threads > 0 ? threads : omp_get_max_threads();
-    work_.assign(static_cast<size_t>(threads_), m);
+    if (oils.empty()) oils.push_back(m.oil);
+    n_oils_ = static_cast<int>(oils.size());
+    work_.reserve(static_cast<size_t>(threads_ * n_oils_));
+    for (int t = 0; t < threads_; ++t)
+        for (const auto& oil : oils) {
+            work_.push_back(m);
+            work_.back().oil = oil;
+        }
     states_.resize(static_cast<size_t>(threads_));
     all_.resize(obs_.size());
     std::iota(all_.begin(), all_.end(), 0);
@@ -84,8 +92,7 @@ void Engine::predict(const Hypothesis& h, const std::vector<int>& idx, Pred& out
     out.loss.resize(obs_.size());
     out.temp.resize(obs_.size());
     out.failure.clear();
-    solver::Model& m = work_[static_cast<size_t>(tid)];
-    h.apply_to(m);
+    apply(h, tid);
     solver::PointState& p = states_[static_cast<size_t>(tid)];
     std::vector<char> done(obs_.size(), 0);
     for (int i : idx) {
@@ -96,13 +103,17 @@ void Engine::predict(const Hypothesis& h, const std::vector<int>& idx, Pred& out
             return;
         }
         const Obs& o = obs_[i];
-        const std::string why = evaluate_point(m, p, h, o, out.loss[i], out.temp[i]);
+        const std::string why = evaluate_point(model(tid, o.oil), p, h, o, out.loss[i], out.temp[i]);
         if (!why.empty()) {
             out.loss[i] = out.temp[i] = std::nan("");
             out.failure = point_name(o) + ": " + why;
             return;
         }
     }
+}
+
+void Engine::apply(const Hypothesis& h, int tid) const {
+    for (int j = 0; j < n_oils_; ++j) h.apply_to(model(tid, j), j);
 }
 
 Pred Engine::predict_checked(const Hypothesis& h, const std::vector<int>& idx) const {
@@ -146,7 +157,6 @@ double Engine::nll(const Hypothesis& h, const std::vector<int>& idx, int tid, st
 double Engine::loss_sensitivity(const Effect& e, const Hypothesis& base) const {
     // At the measured (or a mid) oil temperature, no thermal solve: what a unit of the
     // parameter adds to the recorded loss on average.
-    solver::Model& m = work_[0];
     solver::PointState& p = states_[0];
     const double step = std::max(1e-3, 1e-3 * std::abs(e.neutral));
     double sum = 0;
@@ -154,8 +164,9 @@ double Engine::loss_sensitivity(const Effect& e, const Hypothesis& base) const {
     for (int pass = 0; pass < 2; ++pass) {
         Hypothesis h = base;
         e.apply(h, e.neutral + (pass ? step : 0.0));
-        h.apply_to(m);
+        apply(h, 0);
         for (const auto& o : obs_) {
+            solver::Model& m = model(0, o.oil);
             const double T_true = (o.torque - h.art.torque_offset) / h.art.torque_gain;
             solver::prepare_point(m, o.w, T_true, p);
             if (!p.fault.empty()) continue;
@@ -173,7 +184,8 @@ double Engine::loss_sensitivity(const Effect& e, const Hypothesis& base) const {
 // Loss parameters get bounds relative to the recorded losses; factors on a property, the heat
 // path and the pointwise candidate keep their physical bounds.
 bool Engine::relative_bounds(const Effect& e) const {
-    return physical_range_ && !e.multiplicative && e.kind != EffectKind::heat_path && e.kind != EffectKind::pointwise;
+    return physical_range_ && !e.multiplicative && e.kind != EffectKind::heat_path && e.kind != EffectKind::pointwise &&
+           !e.discrete();
 }
 
 std::pair<double, double> Engine::range_for(const Effect& e, double s) const {
@@ -190,6 +202,7 @@ std::pair<double, double> Engine::range(const Effect& e, const Hypothesis& base)
 }
 
 std::vector<double> Engine::scan_values(const Effect& e, const Hypothesis& base) const {
+    if (e.discrete()) return {e.lower, e.upper};  // the case's form and the alternative
     std::vector<double> v;
     const bool additive = !e.multiplicative && e.kind != EffectKind::heat_path;
     const double s = additive ? loss_sensitivity(e, base) : 0.0;
@@ -224,13 +237,13 @@ Signature Engine::signature(const Effect& e, const Hypothesis& base) const {
     Signature s;
     s.pointwise = e.kind == EffectKind::pointwise;
     s.thermal_path = e.kind == EffectKind::heat_path;
-    s.heats_oil = e.kind == EffectKind::mechanism || e.kind == EffectKind::oil;
+    s.heats_oil = e.kind == EffectKind::mechanism || e.kind == EffectKind::oil || e.discrete();
+    s.form = e.discrete();
     if (s.pointwise || !e.apply) return s;
     // The loss the effect adds at each point, at the recorded oil temperature and 15 K
     // hotter: its powers of speed and load, and whether it follows the oil's viscosity.
-    solver::Model& m = work_[0];
     solver::PointState& p = states_[0];
-    const double step = e.multiplicative ? 0.1 * e.neutral : [&] {
+    const double step = e.discrete() ? 1.0 : e.multiplicative ? 0.1 * e.neutral : [&] {
         const double sens = loss_sensitivity(e, base);
         return sens > 0 ? 0.1 * mean_loss_ / sens : 1.0;
     }();
@@ -244,9 +257,10 @@ Signature Engine::signature(const Effect& e, const Hypothesis& base) const {
         b[pass].assign(obs_.size(), std::nan(""));
         Hypothesis h = base;
         e.apply(h, e.neutral + (pass ? step : 0.0));
-        h.apply_to(m);
+        apply(h, 0);
         for (size_t i = 0; i < obs_.size(); ++i) {
             const auto& o = obs_[i];
+            solver::Model& m = model(0, o.oil);
             const double T_true = (o.torque - h.art.torque_offset) / h.art.torque_gain;
             solver::prepare_point(m, o.w, T_true, p);
             if (!p.fault.empty()) continue;
@@ -288,7 +302,9 @@ Signature Engine::signature(const Effect& e, const Hypothesis& base) const {
 Fit Engine::fit(const Effect& e, const Hypothesis& base, Response* response) const {
     if (e.kind == EffectKind::pointwise) return fit_unstabilised(base, all_, 0.0);
     Fit f;
-    f.k = 1;
+    // A published form has no fitted parameter: which candidate it is, is the choice every
+    // candidate pays for alike (BIC of a model with none).
+    f.k = e.discrete() ? 0 : 1;
     Response local;
     Response& r = response ? *response : local;
     r = Response(*this, e, base);
@@ -301,6 +317,14 @@ Fit Engine::fit(const Effect& e, const Hypothesis& base, Response* response) con
     };
     if (!r.failed().empty()) return rejected(r.failed());
     auto [x, fx] = r.minimise(all_);
+    f.h = base;
+    if (e.discrete()) {  // a choice between two forms: nothing to refine, no curvature
+        f.value = x;
+        f.nll = fx;
+        e.apply(f.h, x);
+        f.uncertainty = std::nan("");
+        return f;
+    }
     // Two refinements: a knot evaluated with the model at the optimum, then re-minimised.
     for (int k = 0; k < 2; ++k) {
         r.refine(x);

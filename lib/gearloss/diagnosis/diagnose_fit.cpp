@@ -35,10 +35,20 @@ Response::Response(const Engine& E, const Effect& e, const Hypothesis& base)
         failed_ = fmt::format("{} = {:.4g}: {}", e.parameter, grid[c], pred[c].failure);
         return;
     }
+    if (e.discrete()) {
+        // A form: the case's (knot 0) and the alternative (knot 1), nothing in between.
+        const size_t alt = c == 0 ? 1 : 0;
+        if (!pred[alt].failure.empty()) {
+            failed_ = fmt::format("{} = {}: {}", e.parameter, e.form, pred[alt].failure);
+            return;
+        }
+        discrete_ = true;
+    }
     size_t a = c, b = c;
+    if (discrete_) a = 0, b = grid.size() - 1;
     while (a > 0 && pred[a - 1].failure.empty()) --a;
     while (b + 1 < grid.size() && pred[b + 1].failure.empty()) ++b;
-    if (b - a + 1 < 4) {
+    if (!discrete_ && b - a + 1 < 4) {
         if (a == 0 && b + 1 == grid.size()) {
             failed_ = fmt::format("{}: fewer than 4 distinct values to scan within its bounds", e.parameter);
             return;
@@ -70,6 +80,7 @@ Response::Response(const Engine& E, const Effect& e, const Hypothesis& base)
 }
 
 void Response::build() {
+    if (discrete_) return;  // no interpolation between two forms
     const size_t n = E_->obs().size();
     iloss_.clear();
     itemp_.clear();
@@ -87,6 +98,12 @@ void Response::build() {
 }
 
 void Response::predict(double x, int i, double& loss, double& temp) const {
+    if (discrete_) {
+        const size_t k = x >= 0.5 * (knots_.front() + knots_.back()) ? knots_.size() - 1 : 0;
+        loss = loss_[k][i];
+        temp = temp_[k][i];
+        return;
+    }
     x = std::clamp(x, knots_.front(), knots_.back());
     loss = iloss_[i](x);
     temp = itemp_[i](x);
@@ -121,6 +138,8 @@ std::pair<double, double> Response::minimise(const std::vector<int>& idx) const 
         v[k] = nll(knots_[k], idx);
         if (v[k] < v[best]) best = k;
     }
+    // A form candidate is the alternative form itself (worse than the case's: a negative gain).
+    if (discrete_) return {knots_.back(), v.back()};
     const double lo = knots_[best == 0 ? 0 : best - 1], hi = knots_[std::min(best + 1, knots_.size() - 1)];
     std::uintmax_t iters = 50;
     const auto [x, fx] = boost::math::tools::brent_find_minima([&](double t) { return nll(t, idx); }, lo, hi, 30, iters);
@@ -128,6 +147,7 @@ std::pair<double, double> Response::minimise(const std::vector<int>& idx) const 
 }
 
 void Response::refine(double x) {
+    if (discrete_) return;
     for (double k : knots_)
         if (std::abs(k - x) <= 1e-7 * (std::abs(k) + (knots_.back() - knots_.front()))) return;
     Hypothesis h = *base_;
@@ -222,15 +242,14 @@ Fit Engine::fit_unstabilised(const Hypothesis& base, const std::vector<int>& idx
     for (const auto& r : resid) v.push_back(r.first);
     const auto [med, scale] = robust_centre_scale(v, 2.0 * kFloorTemp);
     const double sP = loss_noise > 0 ? loss_noise : robust_centre_scale(lossres, 0.01).second;
-    solver::Model& m = work_[0];
-    base.apply_to(m);
+    apply(base, 0);
     std::vector<std::pair<double, int>> cold;
     for (const auto& [r, i] : resid) {
         if (std::abs(r - med) / scale <= 4.0) continue;
         const Obs& o = obs_[i];
         const double T_true = (o.torque - base.art.torque_offset) / base.art.torque_gain;
         const double heat = o.loss - (o.torque - T_true) * o.w;  // what the rig really dissipated
-        const double gap = heat - m.heat_flow(o.T_oil, o.ambient, o.w);
+        const double gap = heat - model(0, o.oil).heat_flow(o.T_oil, o.ambient, o.w);
         if (std::isfinite(gap) && std::abs(gap) <= std::max(4.0 * sP, 0.03) * o.scale) continue;
         cold.push_back({-std::abs(r - med), i});
     }

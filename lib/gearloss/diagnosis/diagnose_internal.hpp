@@ -27,6 +27,7 @@ struct Obs {
     double T_oil;
     bool stabilised;
     double drift;
+    int oil = 0;       // index into the campaign's oils (0: the case's oil)
 };
 
 struct Pred {
@@ -105,6 +106,7 @@ public:
     // Why the scan stops short of the parameter's range (a value the model cannot be evaluated at), or empty.
     const std::string& narrowed() const { return narrowed_; }
     bool flat() const { return flat_; }  // the parameter changes neither channel at any point
+    bool discrete() const { return discrete_; }  // two forms: predictions at the knots only
     // Negative log-likelihood on idx (with repeats) at x, from the interpolants.
     double nll(double x, const std::vector<int>& idx) const;
     // Minimises nll over the knots' span on idx: value and nll.
@@ -127,13 +129,16 @@ private:
     std::vector<std::vector<double>> loss_, temp_;  // [knot][point]
     std::vector<Interpolant> iloss_, itemp_;        // per point
     std::string failed_, narrowed_;
-    bool flat_ = false;
+    bool flat_ = false, discrete_ = false;
 };
 
 // The recorded points, and one working copy of the model per thread (diagnose_engine.cpp).
 class Engine {
 public:
-    Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool physical_range);
+    // `oils`: the campaign's oils by Obs::oil (empty: the case's oil alone).
+    Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool physical_range,
+           std::vector<lubricant::Oil> oils = {});
+    int oils() const { return n_oils_; }
     int threads() const { return threads_; }
     const std::vector<Obs>& obs() const { return obs_; }
     const std::vector<int>& all() const { return all_; }
@@ -160,6 +165,10 @@ public:
     Fit fit_unstabilised(const Hypothesis& base, const std::vector<int>& idx, double loss_noise) const;
 
 private:
+    // The working model of thread `tid` for the tests of oil `oil`, and a hypothesis written
+    // into every oil's model of that thread.
+    solver::Model& model(int tid, int oil) const { return work_[static_cast<size_t>(tid * n_oils_ + oil)]; }
+    void apply(const Hypothesis& h, int tid) const;
     // The mean |dL/dtheta| over the points at the base value (finite difference), W per unit.
     double loss_sensitivity(const Effect& e, const Hypothesis& base) const;
     // range() for a known loss sensitivity (scan_values computes it once for both).
@@ -172,7 +181,7 @@ private:
     mutable std::vector<solver::PointState> states_;
     double mean_loss_ = 0, mean_power_ = 0, mean_omega_ = 0, max_rpm_ = 0;
     bool physical_range_ = true;
-    int n_T_ = 0;
+    int n_T_ = 0, n_oils_ = 1;
 };
 
 // diagnose_engine.cpp
@@ -210,6 +219,24 @@ struct Location {
 };
 
 Location locate(const Engine& E, const Pred& p, const Hypothesis& h, const solver::Model& model);
+
+// diagnose_oils.cpp: multi-oil campaigns. The oils of a campaign: [0] the case's, then each
+// oil file of the recordings' `oil` column (paths relative to the recordings file).
+struct CampaignOils {
+    std::vector<lubricant::Oil> oils;
+    std::vector<std::string> names;  // as written in the column
+    std::vector<int> of_point;       // per recorded point
+    std::vector<char> tested;        // per oil: some point was recorded with it
+    int count_tested() const;
+};
+CampaignOils campaign_oils(const solver::Model& model, const Recordings& rec);
+// Per-oil copies of the oil-dependent candidates, when two or more oils were tested.
+void add_per_oil_candidates(std::vector<Effect>& lib, const CampaignOils& oils);
+// Recorded vs model loss differences between oils at the operating points tested with several.
+std::vector<OilDifference> oil_differences(const Engine& E, const Pred& before, const Pred& after,
+                                           const CampaignOils& oils);
+// Findings of a per-oil candidate report the effect's own id and the oil.
+void name_oil_findings(std::vector<Finding>& findings, const std::vector<Effect>& lib);
 
 // Why a recorded point cannot be compared with the model (empty: it can).
 std::string recorded_fault(const solver::Model& model, const Obs& o);

@@ -40,6 +40,7 @@ ChannelStats channel_rmse(const Engine& E, const Pred& p, const Hypothesis& h) {
 Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted, const DiagnoseOptions& opt) {
     Adequacy A;
     adequacy::Channel cl, ct;
+    std::vector<int> oil_l, oil_t;  // the oil of each channel entry (multi-oil campaigns)
     for (int i : E.all()) {
         const auto& o = E.obs()[i];
         const double T = o.has_T ? o.T_oil : p.temp[i];
@@ -54,27 +55,60 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
             c.order.push_back(o.row);
         };
         add(cl, (o.loss - p.loss[i]) / o.scale);
-        if (o.T_evidence && (h.unstabilised.empty() || !h.unstabilised[i])) add(ct, o.T_oil - p.temp[i]);
+        oil_l.push_back(o.oil);
+        if (o.T_evidence && (h.unstabilised.empty() || !h.unstabilised[i])) {
+            add(ct, o.T_oil - p.temp[i]);
+            oil_t.push_back(o.oil);
+        }
     }
-    auto noise = [](const adequacy::Channel& c, double declared, double floor) {
+    // Replicates and neighbours are points of one oil: with several oils the noise is
+    // estimated per oil and pooled (variances weighted by their degrees of freedom).
+    auto estimate = [&](const adequacy::Channel& c, const std::vector<int>& oil) {
+        if (E.oils() < 2) return adequacy::estimate_noise(c);
+        adequacy::NoiseEstimate pooled;
+        double ss = 0;
+        for (int j = 0; j < E.oils(); ++j) {
+            adequacy::Channel cj;
+            for (size_t k = 0; k < c.residual.size(); ++k)
+                if (oil[k] == j) {
+                    cj.residual.push_back(c.residual[k]);
+                    cj.speed.push_back(c.speed[k]);
+                    cj.torque.push_back(c.torque[k]);
+                    cj.oil_temp.push_back(c.oil_temp[k]);
+                    cj.order.push_back(c.order[k]);
+                }
+            if (cj.residual.empty()) continue;
+            const adequacy::NoiseEstimate n = adequacy::estimate_noise(cj);
+            if (!n.known()) continue;
+            ss += n.dof * n.sigma * n.sigma;
+            pooled.dof += n.dof;
+            pooled.pairs += n.pairs;
+            if (pooled.source.empty() || pooled.source == n.source) pooled.source = n.source;
+            else pooled.source = "replicates and neighbour differences";
+        }
+        if (pooled.dof > 0) pooled.sigma = std::sqrt(ss / pooled.dof);
+        else pooled.source = "none";
+        return pooled;
+    };
+    auto noise = [&](const adequacy::Channel& c, const std::vector<int>& oil, double declared, double floor) {
         adequacy::NoiseEstimate n;
         if (declared > 0) {
             n.sigma = declared;
             n.dof = std::numeric_limits<double>::infinity();
             n.source = "declared";
         } else {
-            n = adequacy::estimate_noise(c);
+            n = estimate(c, oil);
             if (n.known()) n.sigma = std::max(n.sigma, floor);
         }
         return n;
     };
     const double level = opt.adequacy_level;
     std::vector<std::string> left;
-    auto test = [&](const adequacy::Channel& c, adequacy::NoiseEstimate& n, adequacy::FitTest& fit,
+    auto test = [&](const adequacy::Channel& c, const std::vector<int>& oil, adequacy::NoiseEstimate& n, adequacy::FitTest& fit,
                     adequacy::StructureTest& st, double declared, double floor, const char* what, double unit_scale,
                     const char* unit) {
         if (c.residual.size() < 6) return;
-        n = noise(c, declared, floor);
+        n = noise(c, oil, declared, floor);
         if (n.known()) fit = adequacy::goodness_of_fit(c.residual, n, fitted);
         st = adequacy::structure(c, 999);
         double ms = 0;
@@ -91,9 +125,9 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
                              100 * st.gain, st.p_value);
         left.push_back(s);
     };
-    test(cl, A.noise_loss, A.fit_loss, A.structure_loss, opt.loss_uncertainty, kFloorLoss, "loss", 100.0, "%");
+    test(cl, oil_l, A.noise_loss, A.fit_loss, A.structure_loss, opt.loss_uncertainty, kFloorLoss, "loss", 100.0, "%");
     if (E.has_temperature())
-        test(ct, A.noise_temp, A.fit_temp, A.structure_temp, opt.temp_uncertainty, kFloorTemp, "oil temperature", 1.0, "K");
+        test(ct, oil_t, A.noise_temp, A.fit_temp, A.structure_temp, opt.temp_uncertainty, kFloorTemp, "oil temperature", 1.0, "K");
     for (const auto& s : left) A.text += (A.text.empty() ? "" : "\n") + s;
     return A;
 }

@@ -27,6 +27,19 @@ Hypothesis with_terms(const Hypothesis& neutral, const std::vector<Term>& terms,
     return h;
 }
 
+// Whether e is already among the terms or excluded by one of them: another form of the same
+// axis, or the same effect for every oil and for one (per-oil copies of different oils
+// coexist); `skip`: a term being replaced.
+bool taken(const std::vector<Term>& terms, const Effect& e, int skip = -1) {
+    for (size_t j = 0; j < terms.size(); ++j) {
+        if (static_cast<int>(j) == skip) continue;
+        const Effect& t = *terms[j].effect;
+        if (&t == &e) return true;
+        if (!e.group.empty() && t.group == e.group && (t.oil < 0 || e.oil < 0 || t.oil == e.oil)) return true;
+    }
+    return false;
+}
+
 // Coordinate descent over the accepted parameters: each refitted with the others held,
 // until the likelihood stops improving (a few sweeps; every step is a one-parameter fit).
 // The flagged points of an unstabilised-test term are chosen again only when `refit_flags`
@@ -75,15 +88,17 @@ void record_fit(Finding& f, const Engine& E, const Pred& pb, const Hypothesis& w
 int parameters_of(const std::vector<Term>& terms, const std::vector<char>& flags) {
     int k = 0;
     for (const auto& t : terms)
-        k += t.effect->kind == EffectKind::pointwise ? static_cast<int>(std::count(flags.begin(), flags.end(), 1)) : 1;
+        k += t.effect->kind == EffectKind::pointwise ? static_cast<int>(std::count(flags.begin(), flags.end(), 1))
+             : t.effect->discrete()                ? 0
+                                                   : 1;
     return k;
 }
 
 // Parameters of the laws (the flagged points excluded: they only remove their own temperature
-// evidence, which the adequacy test does not count).
+// evidence, which the adequacy test does not count; a published form has none).
 int law_parameters(const std::vector<Term>& terms) {
     return static_cast<int>(
-        std::count_if(terms.begin(), terms.end(), [](const Term& t) { return t.effect->kind != EffectKind::pointwise; }));
+        std::count_if(terms.begin(), terms.end(), [](const Term& t) { return t.effect->kind != EffectKind::pointwise && !t.effect->discrete(); }));
 }
 
 // Exchange: an earlier effect, chosen when it stood alone, may have been a substitute that
@@ -105,7 +120,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
             if (tried >= 4 || !c.rejected.empty() || c.delta_bic < 0.5 * opt.bic_threshold) continue;
             const auto it = std::find_if(lib.begin(), lib.end(), [&](const Effect& x) { return x.id == c.effect; });
             if (it == lib.end() || it->kind == EffectKind::pointwise) continue;
-            if (std::any_of(terms.begin(), terms.end(), [&](const Term& t) { return t.effect == &*it; })) continue;
+            if (taken(terms, *it, static_cast<int>(j))) continue;
             ++tried;
             std::vector<Term> swapped = terms;
             swapped[j] = {&*it, c.value};
@@ -151,7 +166,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
             if (f.effect != old) continue;
             f.effect = best->id;
             f.description = best->description + "; chosen over " + old + " when fitted jointly with the other findings";
-            f.parameter = {best->parameter, best->unit, fc.value, fc.uncertainty};
+            f.parameter = {best->parameter, best->unit, fc.value, fc.uncertainty, best->form, best->case_form};
             f.delta_bic = delta_bic(nll_o, fc, N);
             f.cv_gain = cv0.nll - cvc.nll;
             f.stability = static_cast<double>(wins) / opt.bootstrap;
@@ -186,8 +201,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         std::vector<double> dbic(lib.size(), kRejectedBic);
         for (size_t k = 0; k < lib.size(); ++k) {
             io::throw_if_interrupted();
-            const bool used = std::any_of(terms.begin(), terms.end(), [&](const Term& t) { return t.effect == &lib[k]; });
-            if (used) continue;
+            if (taken(terms, lib[k])) continue;
             report(fmt::format("diagnose: finding {}: candidate {} of {} ({})", round + 1, k + 1, lib.size(), lib[k].id));
             fits[k] = lib[k].kind == EffectKind::pointwise ? E.fit_unstabilised(base, all, opt.loss_uncertainty)
                                                            : E.fit(lib[k], base, &resp[k]);
@@ -268,7 +282,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 Fit f;
                 if (lib[k].kind == EffectKind::pointwise) f = E.fit_unstabilised(base, idx, opt.loss_uncertainty);
                 else {
-                    f.k = 1;
+                    f.k = lib[k].discrete() ? 0 : 1;
                     f.nll = resp[k].minimise(idx).second;
                 }
                 if (!f.failed.empty()) continue;
@@ -307,7 +321,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         if (stability < opt.stability_min && (f.equivalent.empty() || shared < 0.8)) break;
         f.effect = e.id;
         f.description = e.description;
-        f.parameter = {e.parameter, e.unit, fits[chosen].value, fits[chosen].uncertainty};
+        f.parameter = {e.parameter, e.unit, fits[chosen].value, fits[chosen].uncertainty, e.form, e.case_form};
         f.delta_bic = dbic[chosen];
         f.stability = stability;
         f.cv_gain = cv0.nll - cv_chosen.nll;

@@ -12,15 +12,38 @@
 
 namespace gearloss::diagnosis {
 
+namespace {
+// Multi-oil campaigns: which findings depend on the oil, and the recorded differences between
+// oils against the model's (as `compare` gives them), before and after the findings.
+std::string oils_text(const Diagnosis& d) {
+    std::string s = "\noils tested: ";
+    for (size_t j = 0; j < d.oils.size(); ++j) s += (j ? ", " : "") + d.oils[j];
+    s += "\n";
+    for (const auto& f : d.findings)
+        s += fmt::format("  {}: {}\n", f.effect, f.oil.empty() ? "common to every oil" : "depends on the oil (" + f.oil + ")");
+    if (d.oil_differences.empty()) return s + "  no operating point was recorded with two oils\n";
+    s += "  loss difference between oils, B - A [W]:\n";
+    s += fmt::format("  {:>9} {:>10}  {:<22} {:>10} {:>12} {:>12}\n", "speed_rpm", "torque_Nm", "B (A: first oil)", "recorded",
+                     "model before", "model after");
+    for (const auto& x : d.oil_differences)
+        s += fmt::format("  {:>9.1f} {:>10.4g}  {:<22} {:>10.1f} {:>12.1f} {:>12.1f}\n", x.speed_rpm, x.torque, x.oil_b,
+                         x.recorded, x.model_before, x.model_after);
+    return s;
+}
+}  // namespace
+
 std::string diagnosis_text(const Diagnosis& d) {
     std::string s = fmt::format("verdict: {}\n\n{}\n\nwhere the model and the recordings differ ({} points):\n{}\n", d.verdict,
                                 d.summary, d.points, d.location);
     for (const auto& f : d.findings) {
-        s += fmt::format("\nfinding: {} — {}\n", f.effect, f.description);
+        s += fmt::format("\nfinding: {}{} — {}\n", f.effect, f.oil.empty() ? "" : " (oil " + f.oil + " only)",
+                         f.description);
         if (f.effect == "unstabilised_test") {
             std::string rows;
             for (int r : f.rows) rows += (rows.empty() ? "" : ", ") + std::to_string(r);
             s += fmt::format("  rows still warming: {}\n", rows);
+        } else if (!f.parameter.form.empty()) {
+            s += fmt::format("  {} = {} (the case: {})\n", f.parameter.name, f.parameter.form, f.parameter.case_form);
         } else {
             s += fmt::format("  {} = {} +/- {}\n", f.parameter.name, fmt_value(f.parameter.value, f.parameter.unit),
                              fmt_value(f.parameter.uncertainty, f.parameter.unit));
@@ -35,6 +58,7 @@ std::string diagnosis_text(const Diagnosis& d) {
         for (const auto& e : f.equivalent)
             s += fmt::format("  equally good: {} — to separate them: {}\n", e, f.separating_measurement);
     }
+    if (!d.oils.empty()) s += oils_text(d);
     if (!d.remaining.empty() && d.verdict != "unexplained_mismatch") s += "\n" + d.remaining + "\n";
     if (d.remainder) {
         s += fmt::format("\nhypothesis for what is left (not a finding): {}\n  cross-validated loss RMSE {:.3g} W -> {:.3g} W\n",
@@ -110,16 +134,41 @@ std::string diagnosis_json(const Diagnosis& d) {
         j.end_array();
         j.end_object();
     }
+    if (!d.oils.empty()) {
+        j.key("oils").begin_array();
+        for (const auto& o : d.oils) j.value(o);
+        j.end_array();
+        j.key("oil_differences").begin_array();
+        for (const auto& x : d.oil_differences) {
+            j.begin_object();
+            j.key("speed_rpm").value(x.speed_rpm);
+            j.key("torque_Nm").value(x.torque);
+            j.key("oil_a").value(x.oil_a);
+            j.key("oil_b").value(x.oil_b);
+            j.key("recorded_W").value(x.recorded);
+            j.key("model_before_W").value(x.model_before);
+            j.key("model_after_W").value(x.model_after);
+            j.end_object();
+        }
+        j.end_array();
+    }
     j.key("findings").begin_array();
     for (const auto& f : d.findings) {
         j.begin_object();
         j.key("effect").value(f.effect);
         j.key("description").value(f.description);
+        // Multi-oil campaigns: the oil a finding concerns alone; null: every oil.
+        if (f.oil.empty()) j.key("oil").null();
+        else j.key("oil").value(f.oil);
         j.key("parameters").begin_object();
         j.key(f.parameter.name).begin_object();
         j.key("value").value(f.parameter.value);
         j.key("uncertainty").value(f.parameter.uncertainty);
         j.key("unit").value(f.parameter.unit);
+        if (!f.parameter.form.empty()) {
+            j.key("form").value(f.parameter.form);
+            j.key("case_form").value(f.parameter.case_form);
+        }
         j.end_object();
         j.end_object();
         if (!f.rows.empty()) {
@@ -178,11 +227,20 @@ std::string diagnosis_json(const Diagnosis& d) {
 std::string residuals_csv(const Diagnosis& d) {
     std::string s =
         "row,speed_in_rpm,torque_in_Nm,P_loss_W,P_model_before_W,P_model_after_W,oil_temp_C,oil_temp_model_before_C,"
-        "oil_temp_model_after_C\n";
+        "oil_temp_model_after_C";
+    // Multi-oil campaigns: the oil of each test, quoted as CSV text (RFC 4180).
+    const bool oils = !d.oils.empty();
+    s += oils ? ",oil\n" : "\n";
     auto opt = [](const std::optional<double>& v) { return v ? fmt::format("{:.4f}", *v) : std::string(); };
+    auto quoted = [](const std::string& x) {
+        std::string q = "\"";
+        for (char c : x) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+        return q + "\"";
+    };
     for (const auto& r : d.residuals)
-        s += fmt::format("{},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f},{},{},{}\n", r.row, r.speed_rpm, r.torque, r.loss,
-                         r.loss_before, r.loss_after, opt(r.temp), opt(r.temp_before), opt(r.temp_after));
+        s += fmt::format("{},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f},{},{},{}{}\n", r.row, r.speed_rpm, r.torque, r.loss,
+                         r.loss_before, r.loss_after, opt(r.temp), opt(r.temp_before), opt(r.temp_after),
+                         oils ? "," + quoted(r.oil) : std::string());
     return s;
 }
 
@@ -213,12 +271,24 @@ void write_calibrated_config(const std::string& config_in, const std::string& co
     std::string note = "calibrated by gearloss diagnose (" + d.verdict + ")";
     for (const auto& f : d.findings)
         if (!f.effect.empty()) note += "; " + f.effect;
+    for (const auto& f : d.findings)
+        if (!f.oil.empty()) note += "; " + f.effect + " found for oil " + f.oil + " only, not written (the case has one oil)";
     const auto& a = d.calibrated.art;
     if (a.torque_gain != 1 || a.torque_offset != 0)
         note += fmt::format("; recordings carried a torque-sensor error (gain {:.5g}, offset {:.4g} N*m), not written as physics",
                             a.torque_gain, a.torque_offset);
     cal["note"] = note;
     root["calibration"] = cal;
+    // Forms found are physics: written under `mechanisms:` (read after `options:`, it wins).
+    if (!d.calibrated.forms.empty()) {
+        YAML::Node mechanisms = root["mechanisms"] ? root["mechanisms"] : YAML::Node(YAML::NodeType::Map);
+        for (const auto& f : d.calibrated.forms) {
+            YAML::Node block = mechanisms[f.mechanism] ? mechanisms[f.mechanism] : YAML::Node(YAML::NodeType::Map);
+            block[f.axis] = f.form;
+            mechanisms[f.mechanism] = block;
+        }
+        root["mechanisms"] = mechanisms;
+    }
     YAML::Emitter em;
     em << root;
     io::AtomicFile f(config_out);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "gearloss/units/units.hpp"
 
 namespace gearloss::diagnosis {
@@ -18,10 +20,72 @@ void Hypothesis::set(std::string_view mechanism, std::string_view parameter, dou
     mechanisms.at(mechanism).set_parameter(parameter, value);
 }
 
+void Hypothesis::select_form(const std::string& mechanism, const std::string& axis, const std::string& form) {
+    for (auto& f : forms)
+        if (f.mechanism == mechanism && f.axis == axis) {
+            f.form = form;
+            return;
+        }
+    forms.push_back({mechanism, axis, form});
+}
+
+void Hypothesis::set_oil_term(int oil, const std::string& effect, const std::function<void(Hypothesis&, double)>& apply,
+                              double value) {
+    for (auto& t : per_oil)
+        if (t.oil == oil && t.effect == effect) {
+            t.value = value;
+            return;
+        }
+    per_oil.push_back({oil, effect, apply, value});
+}
+
+void Hypothesis::apply_to(solver::Model& m, int oil) const {
+    if (std::none_of(per_oil.begin(), per_oil.end(), [&](const OilTerm& t) { return t.oil == oil; })) {
+        apply_to(m);
+        return;
+    }
+    Hypothesis h = *this;
+    h.per_oil.clear();
+    for (const auto& t : per_oil)
+        if (t.oil == oil) t.apply(h, t.value);
+    h.apply_to(m);
+}
+
+Effect for_oil(const Effect& e, int oil, const std::string& oil_name) {
+    Effect x = e;
+    x.base_id = e.id;
+    x.id = e.id + "@" + oil_name;
+    x.oil = oil;
+    x.oil_name = oil_name;
+    x.apply = [oil, id = e.id, f = e.apply](Hypothesis& h, double v) { h.set_oil_term(oil, id, f, v); };
+    return x;
+}
+
 void Hypothesis::apply_to(solver::Model& m) const {
     m.calibration = cal;
     m.mechanisms = mechanisms;
+    for (const auto& f : forms) m.mechanisms.at(f.mechanism).set_form(m, f.axis, f.form);
 }
+
+namespace {
+// A candidate of the diagnosis itself (oil, heat path, artefacts), not of a mechanism.
+Effect builtin(std::string id, std::string description, std::string parameter, std::string unit, double lower,
+               double upper, double neutral, EffectKind kind, bool multiplicative,
+               std::function<void(Hypothesis&, double)> apply) {
+    Effect e;
+    e.id = std::move(id);
+    e.description = std::move(description);
+    e.parameter = std::move(parameter);
+    e.unit = std::move(unit);
+    e.lower = lower;
+    e.upper = upper;
+    e.neutral = neutral;
+    e.kind = kind;
+    e.multiplicative = multiplicative;
+    e.apply = std::move(apply);
+    return e;
+}
+}  // namespace
 
 std::vector<Effect> candidate_effects(const solver::Model& m) {
     std::vector<Effect> v;
@@ -39,30 +103,64 @@ std::vector<Effect> candidate_effects(const solver::Model& m) {
             e.upper = p.upper;
             e.neutral = mech.parameter(p.name);
             e.kind = EffectKind::mechanism;
+            e.oil_dependent = p.oil_dependent;
+            e.group = e.id;
             e.apply = [mname = std::string(mech.name()), pname = p.name](Hypothesis& h, double x) { h.set(mname, pname, x); };
             v.push_back(std::move(e));
         }
     }
     const auto& c = m.calibration;
-    v.push_back({"oil_viscosity", "the oil's viscosity-temperature data are off (other oil, aged or diluted oil)",
+    v.push_back(builtin("oil_viscosity", "the oil's viscosity-temperature data are off (other oil, aged or diluted oil)",
                  "viscosity factor", "", 0.2, 5, c.viscosity_factor, EffectKind::oil, true,
-                 [](Hypothesis& h, double x) { h.cal.viscosity_factor = x; }});
-    v.push_back({"thermal_resistance", "the heat path to ambient differs (housing area, mounting, heat conducted into the rig)",
+                 [](Hypothesis& h, double x) { h.cal.viscosity_factor = x; }));
+    v.back().oil_dependent = true;  // each oil has its own viscosity data
+    v.push_back(builtin("thermal_resistance", "the heat path to ambient differs (housing area, mounting, heat conducted into the rig)",
                  "heat rejection factor", "", 0.2, 5, c.heat_rejection_factor, EffectKind::heat_path, true,
-                 [](Hypothesis& h, double x) { h.cal.heat_rejection_factor = x; }});
-    v.push_back({"speed_dependent_cooling", "forced convection grows with speed (air stirred by rotating parts or rig fans)",
+                 [](Hypothesis& h, double x) { h.cal.heat_rejection_factor = x; }));
+    v.push_back(builtin("speed_dependent_cooling", "forced convection grows with speed (air stirred by rotating parts or rig fans)",
                  "cooling increase per 1000 rpm", "", -0.9, 10, c.cooling_per_1000rpm, EffectKind::heat_path, false,
-                 [](Hypothesis& h, double x) { h.cal.cooling_per_1000rpm = x; }});
-    v.push_back({"torque_sensor_gain",
+                 [](Hypothesis& h, double x) { h.cal.cooling_per_1000rpm = x; }));
+    v.push_back(builtin("torque_sensor_gain",
                  "input torque sensor gain error: the recorded loss carries (g - 1) P_in, the oil is not heated", "gain", "",
-                 0.5, 2, 1, EffectKind::artefact, false, [](Hypothesis& h, double x) { h.art.torque_gain = x; }});
-    v.push_back({"torque_sensor_offset",
+                 0.5, 2, 1, EffectKind::artefact, false, [](Hypothesis& h, double x) { h.art.torque_gain = x; }));
+    v.push_back(builtin("torque_sensor_offset",
                  "input torque sensor offset: the recorded loss carries T_0 omega, the oil is not heated", "offset", "N*m",
-                 -1e6, 1e6, 0, EffectKind::artefact, false, [](Hypothesis& h, double x) { h.art.torque_offset = x; }});
-    v.push_back({"unstabilised_test",
+                 -1e6, 1e6, 0, EffectKind::artefact, false, [](Hypothesis& h, double x) { h.art.torque_offset = x; }));
+    v.push_back(builtin("unstabilised_test",
                  "some tests were recorded before thermal equilibrium: oil colder (warming) or hotter (cooling) than "
                  "the heat balance of the measured loss",
-                 "points still warming", "", 0, 0, 0, EffectKind::pointwise, false, nullptr});
+                 "points still warming", "", 0, 0, 0, EffectKind::pointwise, false, nullptr));
+    for (auto& e : v) e.group = e.id;  // an effect and its per-oil copies exclude each other
+    // Model form: each alternative of each form axis, as a discrete candidate. The axis is
+    // named by itself ("friction", "loss_factor") or, for a mechanism's single "form" axis, by
+    // the mechanism ("windage").
+    for (size_t k = 0; k < m.mechanisms.size(); ++k) {
+        const auto& mech = m.mechanisms[k];
+        if (!mech.enabled()) continue;
+        for (const auto& axis : mech.forms(m)) {
+            const std::string current = mech.form(m, axis.axis);
+            const std::string label = axis.axis == "form" ? std::string(mech.name()) : axis.axis;
+            for (const auto& form : axis.forms) {
+                if (form == current) continue;
+                Effect e;
+                e.id = label + ":" + form;
+                e.description = fmt::format("model form: the {} {} follows {}, not the case's {} (another published form)",
+                                            mech.label(), axis.axis == "form" ? "model" : axis.axis, form, current);
+                e.parameter = std::string(mech.name()) + "." + axis.axis;
+                e.lower = 0;
+                e.upper = 1;
+                e.neutral = 0;
+                e.kind = EffectKind::form;
+                e.group = e.parameter;
+                e.form = form;
+                e.case_form = current;
+                e.apply = [mname = std::string(mech.name()), ax = axis.axis, form](Hypothesis& h, double x) {
+                    if (x >= 0.5) h.select_form(mname, ax, form);
+                };
+                v.push_back(std::move(e));
+            }
+        }
+    }
     return v;
 }
 
@@ -88,6 +186,9 @@ std::pair<double, double> valid_range(const Effect& e, double max_speed_rpm) {
 std::string separating_measurement(const Signature& x, const Signature& y) {
     if (x.pointwise != y.pointwise)
         return "extend the suspect tests until (T_oil - T_room) varies < 0.5 K over 30 min and re-record them";
+    if (x.form != y.form)
+        return "extend the load range and repeat a few points at another oil temperature: a form changes how the "
+               "loss follows load and film thickness, a scale factor does not";
     if (x.thermal_path != y.thermal_path)
         return "measure the loss at a fixed, controlled oil temperature: a heat-path error leaves the loss unchanged";
     if (x.heats_oil != y.heats_oil)

@@ -23,17 +23,42 @@ struct Artefacts {
     double torque_offset = 0.0;    // N m
 };
 
+// A published form selected on a mechanism's form axis (mesh friction law, H_V model, ...).
+struct FormChoice {
+    std::string mechanism, axis, form;
+};
+
+struct Hypothesis;
+
+// A term that acts on the tests of one oil only (multi-oil campaigns): applied on top of the
+// common terms when a point of that oil is evaluated.
+struct OilTerm {
+    int oil = 0;
+    std::string effect;  // the effect's id (a refit replaces the value)
+    std::function<void(Hypothesis&, double)> apply;
+    double value = 0;
+};
+
 // What a hypothesis sets: physics (inside the coupled solve) and artefacts.
 struct Hypothesis {
     solver::Calibration cal;          // oil and heat-path terms
     losses::MechanismSet mechanisms;  // the loss mechanisms with their calibration parameters
+    std::vector<FormChoice> forms;    // forms other than the case's (applied after `mechanisms`)
     Artefacts art;
     std::vector<char> unstabilised;  // per point: its temperature is not an equilibrium value
+    std::vector<OilTerm> per_oil;    // terms of one oil each (empty for a single-oil campaign)
     // The physics of `m` (its calibration and mechanisms) as described, as the starting point.
     static Hypothesis of(const solver::Model& m);
     void set(std::string_view mechanism, std::string_view parameter, double value);
-    // Writes the physics of the hypothesis into a model.
+    // Selects a form (replacing an earlier choice on the same axis).
+    void select_form(const std::string& mechanism, const std::string& axis, const std::string& form);
+    // Sets (or replaces) the value of a term of one oil.
+    void set_oil_term(int oil, const std::string& effect, const std::function<void(Hypothesis&, double)>& apply,
+                      double value);
+    // Writes the physics of the hypothesis into a model (the common terms).
     void apply_to(solver::Model& m) const;
+    // The same for the tests of oil `oil`: the common terms, then that oil's own.
+    void apply_to(solver::Model& m, int oil) const;
 };
 
 // How an effect shows in recordings, measured on the model at the campaign's points
@@ -45,9 +70,12 @@ struct Signature {
     bool viscosity_dependent = false;
     double speed_exponent = 0;      // power of input speed in the loss it adds (or in the cooling)
     bool pointwise = false;         // concerns single points, not a law
+    bool form = false;              // another published form (not a scale on today's)
 };
 
-enum class EffectKind { mechanism, oil, heat_path, artefact, pointwise };
+// form: another published form of a mechanism (a discrete choice, no continuous parameter:
+// its "parameter" is 0 for the case's form and 1 for the alternative).
+enum class EffectKind { mechanism, oil, heat_path, artefact, pointwise, form };
 
 struct Effect {
     std::string id;
@@ -59,12 +87,26 @@ struct Effect {
     bool multiplicative = false;  // a factor on a property (scanned on a log scale)
     // Sets the parameter (SI / dimensionless) on a hypothesis.
     std::function<void(Hypothesis&, double)> apply;
+    // Effects of one group exclude each other (the forms of one axis: "mesh.friction").
+    std::string group;
+    std::string form, case_form;  // a form effect: the alternative and the case's own form
+    // Multi-oil campaigns: an effect of one oil's tests (-1: of every test), its oil as
+    // written in the recordings, and the id of the effect it restricts ("oil_viscosity").
+    int oil = -1;
+    std::string oil_name, base_id;
+    // Whether the effect may differ from oil to oil (the oil's data, the lubricant's friction
+    // level, its foaming): such effects are also offered per oil.
+    bool oil_dependent = false;
+    bool discrete() const { return kind == EffectKind::form; }
 };
 
 // The candidates of a model: its mechanisms' effect parameters (mechanisms switched off
-// excepted), then viscosity, heat path and artefacts.
+// excepted), then viscosity, heat path and artefacts, then every alternative form of every
+// form axis of its mechanisms ("friction:ehl_local": the case's mesh friction law replaced).
 std::vector<Effect> candidate_effects(const solver::Model& m);
 std::optional<Effect> find_effect(const solver::Model& m, const std::string& id);
+// The per-oil copy of an oil-dependent effect: it acts on the tests of oil `oil` only.
+Effect for_oil(const Effect& e, int oil, const std::string& oil_name);
 // Every candidate id of a model, comma-separated (for messages).
 std::string effect_names(const solver::Model& m);
 

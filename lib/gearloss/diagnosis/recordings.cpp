@@ -56,6 +56,7 @@ struct ColumnDef {
 // quantity with a unit that is unknown, of the wrong dimension or ambiguous is an error.
 std::optional<ColumnDef> column_definition(const std::string& name, const std::string& file, int line, int col) {
     if (name == "label") return ColumnDef{"label"};
+    if (name == "oil") return ColumnDef{"oil_file"};  // the oil of each test (multi-oil campaigns)
     for (const auto& q : kQuantityColumns) {
         const std::string prefix = q.prefix;
         if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
@@ -255,6 +256,11 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
                     fail_cell(file, t, r, "label", "'" + io::excerpt(p.label) +
                                                        "': a label must be printable UTF-8 text (save the file as UTF-8)");
             }
+            if (t.col.count("oil_file")) {
+                p.oil = t.rows[r][t.col["oil_file"]];
+                if (!io::is_printable_utf8(p.oil) || p.oil.size() > 4096)
+                    fail_cell(file, t, r, "oil_file", "'" + io::excerpt(p.oil) + "': an oil file name must be printable text");
+            }
             if (p.speed_in < 0) fail_cell(file, t, r, "speed_in", "negative speed");
             if (p.oil_temp && *p.oil_temp <= 0) fail_cell(file, t, r, "oil", "below absolute zero");
             rec.points.push_back(p);
@@ -264,6 +270,9 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
 
     // Raw log: split into tests at set-point changes, keep the last 30 min of each.
     rec.from_log = true;
+    if (t.col.count("oil_file"))
+        throw InputError(file, 1, static_cast<int>(t.col["oil_file"] + 1), "oil",
+                         "the oil column is read in steady-point recordings; give a raw log per oil");
     for (const char* k : {"speed_out", "torque_out", "oil"})
         if (!t.col.count(k))
             throw InputError(file, 1, 0, k, std::string("a raw log needs the column for '") + k +

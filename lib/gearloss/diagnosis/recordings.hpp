@@ -11,6 +11,9 @@ struct RecordedPoint {
     int row = 0;                  // data row in the source file (1 = first data line); tests: test number
     int line = 0;                 // line in the file (for messages)
     std::string label;
+    // The oil of the test: an oil file as written in the `oil` column (a path relative to the
+    // recordings file, or absolute); empty: the case's oil.
+    std::string oil;
     double speed_in = 0;          // rad/s
     double torque_in = 0;         // N m (as recorded)
     double loss = 0;              // W (as recorded)

@@ -96,6 +96,8 @@ struct Parameter {
     // within [lower, upper].
     std::string effect;          // empty: not a candidate
     std::string left_out;        // "air/oil-mist drag of the rotating gears, ..."
+    // Whether the term may differ from oil to oil (a multi-oil campaign fits it per oil).
+    bool oil_dependent = false;
 };
 
 // A choice between published forms of the same physics ("friction": schlenk, iso_6336_20, ...).

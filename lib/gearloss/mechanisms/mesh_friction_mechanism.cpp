@@ -69,7 +69,8 @@ public:
         // The boundary / full-film pair of the mixed-film model (Fernandes et al. 2015):
         // settings of the physics, not calibration terms; their order is checked in validate().
         return {{"friction_factor", "scales mu_mZ (an error of X_L)", nullptr, "1.1", 1.0, 0.05, 20.0, true, "mesh_friction",
-                 "load-dependent mesh friction level differs (lubricant factor X_L, surface finish)"},
+                 "load-dependent mesh friction level differs (lubricant factor X_L, surface finish)",
+                 /*oil_dependent=*/true},
                 {"mu_bl", "boundary friction of fernandes_mixed", nullptr, "0.10", 0.10, 0.0, 1.0, false},
                 {"mu_ehl", "full-film friction of fernandes_mixed", nullptr, "0.02", 0.02, 0.0, 1.0, false}};
     }
