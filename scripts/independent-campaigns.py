@@ -1,15 +1,21 @@
 #!/usr/bin/env python3
 """Independent blind campaigns for `gearloss diagnose`.
 
-The proof in scripts/prove-diagnosis.sh synthesises recordings with `gearloss synth`,
-i.e. with the candidates' own forms and the tool's own heat balance. This script makes
-its truth by another route, written here and nowhere else:
+`gearloss synth` would synthesise recordings with the candidates' own forms and the tool's
+own heat balance. This script makes its truth by another route, written here and nowhere
+else (scripts/prove-diagnosis.sh runs it over every shipped case and category):
 
   * the MODEL part only: `gearloss map CASE --oil-temp T --detail` over a temperature
     grid (5..150 degC every 5 K), interpolated per point and per loss column (PCHIP);
   * concealed effects in PERTURBED forms written here (exponents, thresholds, speed
     dependences the library's candidates do not have), effects OUTSIDE the library,
-    two effects at once, and null campaigns;
+    two and three effects at once, and null campaigns;
+  * MODEL-FORM campaigns: the model part from the same case with another published form
+    selected in a derived case (`mechanisms:`), built only when the change is >= 3x the
+    loss noise; expected finding `<axis>:<form>`;
+  * MULTI-OIL campaigns: 2-3 oils of one family on the same grid, a column `oil` naming
+    each row's oil file, the model part per oil from a derived case with that `oil:`, and
+    effects common to all oils or acting on one oil only (findings scoped by `"oil"`);
   * the steady oil temperature from a heat balance solved here, P_heat(T) = Q(T), with
     Q re-implemented from the case's `thermal.heat_rejection`: resistance, with the
     documented speed dependence R = R0 (n/n_ref)^-b above n_ref, or a textbook
@@ -36,10 +42,13 @@ are written to OUT/cases/ and are exactly what `diagnose` receives.
 
 Usage:
   scripts/independent-campaigns.py [--binary build/app/gearloss] [--cases transfer,fzg]
-        [--seeds N] [--quick] [--out DIR] [--jobs N] [--reuse] [--only TAGS] [--housing-check]
+        [--seeds N] [--quick] [--categories single,two,...] [--out DIR] [--jobs N] [--reuse]
+        [--only TAGS] [--housing-check] [--proof-doc FILE]
 Outputs in OUT: scores.md (the tables), failures.md (every campaign not scored correct),
-results.json, and per campaign recordings.csv, truth.json, diagnose.json, diagnose.txt.
-Deterministic for a given seed (Python's random seeded with strings).
+results.json, and per campaign recordings.csv (+ oils/ for multi-oil), truth.json,
+diagnose.json, diagnose.txt. --proof-doc writes docs/diagnosis-proof.md's tables (proof_doc.py).
+Deterministic for a given seed (Python's random seeded with strings); adding categories
+does not change the recordings of the others.
 """
 # The stages live in scripts/independent_campaigns/ (one module each, see its __init__.py);
 # this file parses the arguments and runs them.
@@ -55,33 +64,58 @@ from pathlib import Path
 sys.dont_write_bytecode = True  # no __pycache__ left in scripts/
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # the package, from any working directory
 
-from independent_campaigns.campaigns import build_campaign, plan, prepare_case  # noqa: E402
+from independent_campaigns.campaigns import CATEGORIES, build_campaign, plan, prepare_case  # noqa: E402
 from independent_campaigns.cases import CASES, DEFAULT_CASES, ROOT  # noqa: E402
 from independent_campaigns.heat_balance import housing_check  # noqa: E402
-from independent_campaigns.scoring import failures, run_diagnose, score, tabulate  # noqa: E402
+from independent_campaigns.multi_oil import build_multi_oil_campaign  # noqa: E402
+from independent_campaigns.proof_doc import write_proof_doc  # noqa: E402
+from independent_campaigns.scoring import run_diagnose, score  # noqa: E402
+from independent_campaigns.tables import failures, tabulate  # noqa: E402
+
+
+def command_line():
+    """This run's command as typed, with paths inside the repository made relative to it."""
+    words = [os.path.relpath(w, ROOT) if os.path.isabs(w) and w.startswith(str(ROOT) + os.sep) else w
+             for w in sys.argv[1:]]
+    own = "scripts/independent-campaigns.py " + " ".join(words)
+    outer = os.environ.get("PROVE_DIAGNOSIS_COMMAND")  # set by scripts/prove-diagnosis.sh
+    return f"{outer}` (`{own}" if outer else own
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--binary", default=str(ROOT / "build" / "app" / "gearloss"))
-    ap.add_argument("--cases", default=",".join(DEFAULT_CASES), help="comma list of: " + ",".join(CASES))
+    ap.add_argument("--cases", default=None,
+                    help="comma list of: " + ",".join(CASES) + " (default: all; with --quick: transfer)")
     ap.add_argument("--seeds", type=int, default=1)
-    ap.add_argument("--quick", action="store_true", help="a few campaigns on the transfer gearbox (< 3 min)")
+    ap.add_argument("--quick", action="store_true", help="a few campaigns per category on the transfer gearbox (< 1 min)")
+    ap.add_argument("--categories", default=",".join(CATEGORIES),
+                    help="comma list of: " + ",".join(CATEGORIES) + " (default all; 'form' includes form_effect)")
     ap.add_argument("--out", default=None, help="keep campaigns, derived cases and maps here")
     ap.add_argument("--jobs", type=int, default=1, help="diagnose runs in parallel (default 1)")
     ap.add_argument("--reuse", action="store_true",
                     help="re-score: reuse OUT's diagnose.json where the regenerated recordings are byte-identical")
-    ap.add_argument("--only", default=None, help="comma list of effect tags to run (e.g. aero_drag,null0)")
+    ap.add_argument("--only", default=None,
+                    help="comma list of campaign tags, effect names or categories to run (e.g. aero_drag,null0,form)")
+    ap.add_argument("--proof-doc", default=None, help="also write the proof document (docs/diagnosis-proof.md) here")
     ap.add_argument("--housing-check", action="store_true",
                     help="compare the textbook housing model written here with the binary's stabilised map")
     args = ap.parse_args()
     binary = os.path.abspath(args.binary)
     if not os.access(binary, os.X_OK):
         sys.exit(f"no executable at {binary} (build with scripts/build.sh, or give --binary)")
-    case_names = ["transfer"] if args.quick and args.cases == ",".join(DEFAULT_CASES) else args.cases.split(",")
+    case_names = args.cases.split(",") if args.cases else (["transfer"] if args.quick else DEFAULT_CASES)
+    if len(set(case_names)) != len(case_names):
+        sys.exit("a case is listed twice in --cases")
     for c in case_names:
         if c not in CASES:
             sys.exit(f"unknown case {c}; known: {', '.join(CASES)}")
+    categories = args.categories.split(",")
+    if "form" in categories and "form_effect" not in categories:
+        categories.append("form_effect")
+    for c in categories:
+        if c not in CATEGORIES:
+            sys.exit(f"unknown category {c}; known: {', '.join(CATEGORIES)}")
     out = Path(args.out) if args.out else Path(tempfile.mkdtemp(prefix="indep-camp-"))
     out.mkdir(parents=True, exist_ok=True)
     log = lambda s: print(s, file=sys.stderr, flush=True)
@@ -93,16 +127,23 @@ def main():
 
     cases = {cname: prepare_case(binary, cname, out, log) for cname in case_names}
 
-    specs = plan(case_names, args.seeds, args.quick)
+    specs = plan(case_names, args.seeds, args.quick, categories)
     if args.only:
         keep = set(args.only.split(","))
-        specs = [s for s in specs if s["tag"] in keep or any(e in keep for e in s["effects"])]
+        specs = [s for s in specs if s["tag"] in keep or s["category"] in keep or any(e in keep for e in s["effects"])]
     results, todo = [], []
     for s in specs:
         cid = f"{s['case']}/s{s['seed']}/{s['tag']}"
         cdir = out / "campaigns" / s["case"] / f"s{s['seed']}" / s["tag"]
         c = cases[s["case"]]
-        truth, why = build_campaign(s, c.model, c.oil, c.heat, c.ambient, cdir)
+        if s["category"] == "multi_oil":
+            truth, why = build_multi_oil_campaign(s, c, cdir)
+        elif "form" in s:
+            model, why = c.form_table(*s["form"])
+            truth, why = build_campaign(s, model, c.oil, c.heat, c.ambient, cdir, case_model=c.model) \
+                if model else (None, f"form {s['form'][0]}:{s['form'][1]}: {why}")
+        else:
+            truth, why = build_campaign(s, c.model, c.oil, c.heat, c.ambient, cdir)
         if truth is None:
             log(f"  skip {cid}: {why}")
             results.append({"id": cid, "skipped": why, "truth": {"category": s["category"], "case": s["case"]}})
@@ -137,6 +178,12 @@ def main():
     (out / "results.json").write_text(json.dumps(results, indent=1, default=str))
     (out / "scores.md").write_text(header + "\n\n" + table + "\n")
     (out / "failures.md").write_text(failures(results) + "\n")
+    if args.proof_doc:
+        targets = write_proof_doc(Path(args.proof_doc), results, {cname: c.info for cname, c in cases.items()},
+                                  dict(seeds=args.seeds, cases=case_names, categories=categories, out=str(out),
+                                       seconds=time.time() - t_start, binary=binary, command=command_line(),
+                                       quick=args.quick))
+        (out / "targets.json").write_text(json.dumps(targets, indent=1))
 
 
 if __name__ == "__main__":

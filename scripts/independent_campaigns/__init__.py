@@ -6,7 +6,11 @@ Independent blind campaigns for `gearloss diagnose`, one module per stage:
   model_table  the binary's fixed-temperature maps, interpolated in oil temperature
   heat_balance the heat path re-implemented here, the steady oil temperature, its checks
   effects      the concealed effects in perturbed forms, and the acceptance mapping
+  forms        the model-form axes, a case's forms, derived cases with another form or oil
   campaigns    a case's shared setup, the plan, one campaign's recordings.csv + truth.json
-  scoring      diagnose run blind, the outcome of each campaign, the tables
+  multi_oil    multi-oil campaigns: per-oil model tables, per-oil effects, the `oil` column
+  scoring      diagnose run blind, the outcome of each campaign
+  tables       scores.md's tables, failures.md, each category's headline numbers
+  proof_doc    docs/diagnosis-proof.md (targets, per-category and per-case tables)
 Split from the single script to keep every file under the project's 600-line limit.
 """

@@ -1,28 +1,73 @@
 """One case's shared setup, the campaign plan, and the synthesis of one campaign.
 
 prepare_case maps the model table, reads the oil and chooses the heat path (the derived
-case's resistance R0). plan lists the campaigns (single, two, outside-library, null).
+case's resistance R0); the case then maps, on demand and once per run, the same case with
+another form (form campaigns) or another oil (multi-oil campaigns). plan lists the
+campaigns (single, two, three, outside-library, form, form + effect, multi-oil, null).
 build_campaign draws a rig-like sub-grid, sizes the concealed effects on the null state,
 solves each point's steady temperature with the effects, adds noise, ambient drift and
 sensor artefacts, and writes recordings.csv (the `diagnose` CSV format) and truth.json.
+The multi-oil campaigns are built in multi_oil.py.
 """
 import json
 import math
 import random
 
-from .cases import CASES, ROOT, Oil, derive_case, oil_path, read_thermal
+from .cases import CASES, OILS_DIR, ROOT, Oil, derive_case, oil_family, oil_path, read_thermal
 from .effects import ACCEPT, EFFECTS, LIBRARY, OUTSIDE, THERMAL_ONLY, Ctx
+from .forms import AXES, alternatives, case_forms, checked_forms, expected_id, rewrite_case
 from .heat_balance import T_MAX_NULL, Heat, heat_check, steady_temperature
 from .model_table import ModelTable
 from .numerics import mean
 
+CATEGORIES = ["single", "outside", "two", "three", "form", "form_effect", "multi_oil", "null"]
+MULTI_OIL_KINDS = ["common", "per_oil", "both"]
+
 
 class PreparedCase:
-    """What every campaign of a case shares."""
+    """What every campaign of a case shares, and the case's other-form / other-oil tables."""
 
     def __init__(self, model, config, heat, oil, ambient, info):
         self.model, self.config, self.heat, self.oil, self.ambient = model, config, heat, oil, ambient
         self.info = info  # the heat path, for the tables
+        self.tables = {}  # (kind, name) -> (ModelTable or None, why): maps per case + form / case + oil
+
+    def _table(self, key, write_case):
+        if key not in self.tables:
+            cfg = write_case()
+            wd = self.out / "maps" / self.cname / f"{key[0]}_{key[1]}"
+            wd.mkdir(parents=True, exist_ok=True)
+            try:
+                t = ModelTable(self.binary, cfg, CASES[self.cname], wd, self.log)
+                self.tables[key] = (t, None) if t.failed == 0 else \
+                    (None, f"{t.failed} failed points on the {key[0]} map's grid")
+            except RuntimeError as e:
+                self.tables[key] = (None, f"map failed: {str(e).strip().splitlines()[-1][:200]}")
+        return self.tables[key]
+
+    def form_table(self, axis, form):
+        """The model table of this case with `form` selected on `axis` (derived case in OUT/cases)."""
+        def write():
+            dst = self.out / "cases" / f"{self.cname}__{axis}_{form}.yaml"
+            rewrite_case(self.config, dst, f"Form campaign truth: {self.cname} with {axis} = {form} "
+                         "(scripts/independent-campaigns.py; diagnose never sees this file)", form=(axis, form))
+            got = checked_forms(self.binary, dst).get(axis)
+            if got != form:
+                raise RuntimeError(f"gearloss check reports {axis} = {got} in {dst}, not {form}")
+            return dst
+        return self._table(("form", f"{axis}_{form}"), write)
+
+    def oil_table(self, oil_name):
+        """The model table of this case with its `oil:` replaced (derived case in OUT/cases)."""
+        def write():
+            dst = self.out / "cases" / f"{self.cname}__oil_{oil_name}.yaml"
+            rewrite_case(self.config, dst, f"Multi-oil campaign truth: {self.cname} with oil {oil_name} "
+                         "(scripts/independent-campaigns.py; diagnose never sees this file)",
+                         oil=OILS_DIR / f"{oil_name}.yaml")
+            return dst
+        if oil_name == oil_path(self.config).stem:
+            return self.model, None
+        return self._table(("oil", oil_name), write)
 
 
 def prepare_case(binary, cname, out, log):
@@ -58,55 +103,160 @@ def prepare_case(binary, cname, out, log):
     if case["heat"] != "fixed":
         e = heat_check(binary, cfg, case, model, oil, heat, ambient, wd / "stabilised.csv", log)
         info += f"; check {e:.2f} K"
-    return PreparedCase(model, cfg, heat, oil, ambient, info)
+    c = PreparedCase(model, cfg, heat, oil, ambient, info)
+    c.binary, c.cname, c.out, c.log = binary, cname, out, log
+    c.forms = case_forms(cfg)  # the forms `diagnose` receives (options / mechanisms, documented defaults)
+    checked = checked_forms(binary, cfg)
+    if checked and checked != c.forms:
+        raise RuntimeError(f"{cfg}: forms read from the text {c.forms} differ from gearloss check's {checked}")
+    c.family = oil_family(cfg)
+    return c
 
 
-def plan(case_names, seeds, quick):
+def plan(case_names, seeds, quick, categories=None):
     """The campaigns to run: per case and seed, single in-library effects, effects outside the
-    library, two pairs of effects (drawn so that no name is acceptable for both) and two nulls."""
+    library, two pairs and two triples of effects (drawn so that no name is acceptable for two of
+    them), one campaign per form axis (the case's alternative forms in turn over the seeds) and
+    one form change with a small effect, one multi-oil campaign per kind, and two nulls.
+    categories: the subset of CATEGORIES to plan (default all)."""
+    cats = set(categories or CATEGORIES)
     specs = []
     for cname in case_names:
         case = CASES[cname]
         fixed = case["heat"] == "fixed"
         lib = [e for e in LIBRARY if not (fixed and e in THERMAL_ONLY)]
         out = [e for e in OUTSIDE if not (fixed and e in THERMAL_ONLY)]
+        forms = case_forms(ROOT / case["config"])  # derived cases keep the shipped options
         for s in range(seeds):
             if quick:
                 singles = ["aero_drag", "visc_shift", "sensor_offset"] + ([] if fixed else ["heat_factor"])
                 outside = ["speed_step", "torque2_band"]
                 pairs = [("aero_drag", "sensor_offset")]
+                triples = [("aero_drag", "sensor_gain", "pump_loss" if fixed else "heat_factor")]
+                form_axes = ["friction", "loss_factor"]
+                oil_kinds = ["both"]
             else:
-                singles, outside, pairs = lib, out, []
+                singles, outside, pairs, triples = lib, out, [], []
                 rng = random.Random(f"{cname}|pairs|{s}")
                 for _ in range(2):
                     a, b = rng.sample(lib, 2)
                     while ACCEPT[a] & ACCEPT[b]:
                         a, b = rng.sample(lib, 2)
                     pairs.append((a, b))
+                rng = random.Random(f"{cname}|three|{s}")
+                for _ in range(2):
+                    t = rng.sample(lib, 3)
+                    while ACCEPT[t[0]] & ACCEPT[t[1]] or ACCEPT[t[0]] & ACCEPT[t[2]] or ACCEPT[t[1]] & ACCEPT[t[2]]:
+                        t = rng.sample(lib, 3)
+                    triples.append(tuple(t))
+                form_axes = list(AXES)
+                oil_kinds = MULTI_OIL_KINDS
+            add = lambda cat, **kw: specs.append(dict(case=cname, seed=s, category=cat, **kw)) if cat in cats else None
             for e in singles:
-                specs.append(dict(case=cname, effects=[e], seed=s, tag=e, category="single"))
+                add("single", effects=[e], tag=e)
             for e in outside:
-                specs.append(dict(case=cname, effects=[e], seed=s, tag=e, category="outside"))
+                add("outside", effects=[e], tag=e)
             for p, (a, b) in enumerate(pairs):
-                specs.append(dict(case=cname, effects=[a, b], seed=s, tag=f"pair{p}_{a}+{b}", category="two"))
+                add("two", effects=[a, b], tag=f"pair{p}_{a}+{b}")
+            for p, t in enumerate(triples):
+                add("three", effects=list(t), tag=f"three{p}_" + "+".join(t))
+            for axis in form_axes:
+                alts = alternatives(forms, axis)
+                form = alts[s % len(alts)]  # over the seeds, every alternative form in turn
+                add("form", effects=[], tag=f"form_{axis}_{form}", form=(axis, form))
+            if not quick:
+                # a form change of mesh friction or load-loss factor (the axes whose change shows on the
+                # shipped cases; film correction and windage form stay below the noise) + a small effect
+                rng = random.Random(f"{cname}|form_effect|{s}")
+                axis = rng.choice(["friction", "loss_factor"])
+                form = rng.choice(alternatives(forms, axis))
+                e = rng.choice(["sensor_offset", "aero_drag"])
+                add("form_effect", effects=[e], tag=f"formfx_{axis}_{form}+{e}", form=(axis, form))
+            for k, kind in enumerate(oil_kinds):
+                add("multi_oil", effects=[], tag=f"oils{k}_{kind}", kind=kind)
             for z in range(2):
-                specs.append(dict(case=cname, effects=[], seed=s, tag=f"null{z}", category="null"))
+                add("null", effects=[], tag=f"null{z}")
     return specs
 
 
-def choose_points(model, rng):
+def choose_points(model, rng, max_points=30):
+    """A rig-like sub-grid of 3-5 speeds x 3-6 torques with 9..max_points points (indices of model)."""
     ns, ts = model.speeds, model.torques
     while True:
         a, b = rng.randint(3, min(5, len(ns))), rng.randint(3, len(ts))
-        if 9 <= a * b <= 30:
+        if 9 <= a * b <= max_points:
             break
     sn = sorted(rng.sample(range(len(ns)), a))
     st = sorted(rng.sample(range(len(ts)), b))
     return [si * len(ts) + ti for si in sn for ti in st]
 
 
-def build_campaign(spec, model, oil, heat, ambient, outdir):
-    """spec: dict(case, effects=[names], seed, tag). Writes recordings.csv + truth.json."""
+def draw_conditions(rng):
+    """Ambient drift over the campaign (half of them), loss and temperature noise, recorded format."""
+    drift = rng.uniform(-4, 4) if rng.random() < 0.5 else 0.0
+    s_loss = rng.uniform(0.01, 0.03)
+    s_temp = rng.uniform(0.3, 0.5)
+    fmt = "torques" if rng.random() < 0.3 else "ploss"
+    return drift, s_loss, s_temp, fmt
+
+
+def record_point(ctx, i, ta, effects, k, nrows, s_loss, s_temp, rng):
+    """Point i as the rig records it in row k: the steady oil temperature with the effects, the
+    true loss, the sensor artefacts on the input torque, noise. Returns (row, truth_row), row
+    None when the point has no equilibrium."""
+    m = ctx.m
+    t = steady_temperature(ctx, i, ta, effects, k)
+    if t is None:
+        return None, {"speed_rpm": ctx.n[i], "torque_Nm": ctx.tq[i], "dropped": "no equilibrium"}
+    p_model = m.get("P_total_W", i, t)
+    p_true = p_model + sum(e.dloss(ctx, i, t, k) for e in effects if e.heats)
+    tq_rec = ctx.tq[i]
+    for e in effects:
+        tq_rec = e.torque_rec(ctx, i, tq_rec, k, nrows)
+    w_in = ctx.omega(i)
+    p_rec = p_true + (tq_rec - ctx.tq[i]) * w_in  # what in - out power gives with that torque
+    p_rec *= 1 + rng.gauss(0, s_loss)
+    t_rec = t + rng.gauss(0, s_temp)
+    ta_rec = ta + rng.gauss(0, 0.1)
+    p_out_m, t_out_m = m.get("power_out_W", i, t), m.get("torque_out_Nm", i, t)
+    w_out = abs(p_out_m / t_out_m) if t_out_m else 0.0
+    row = {"speed_in_rpm": f"{ctx.n[i]:g}", "torque_in_Nm": f"{tq_rec:.4f}", "P_loss_W": f"{p_rec:.3f}",
+           "torque_out_Nm": f"{(tq_rec * w_in - p_rec) / w_out:.5f}" if w_out > 0 else None,
+           "speed_out_rpm": f"{w_out * 60 / (2 * math.pi):.5f}" if w_out > 0 else None,
+           "oil_temp_C": f"{t_rec:.3f}", "ambient_temp_C": f"{ta_rec:.3f}"}
+    return row, {"speed_rpm": ctx.n[i], "torque_Nm": ctx.tq[i], "oil_temp_C": t, "ambient_C": ta,
+                 "P_model_W": p_model, "P_true_W": p_true, "P_recorded_noiseless_W": p_true + (tq_rec - ctx.tq[i]) * w_in}
+
+
+def write_recordings(outdir, rows, fmt, lead=()):
+    """recordings.csv in the `diagnose` format (columns `lead` first). Returns (format used, whether
+    an identical file was already there); the loss column is used where an output speed is unknown."""
+    if any(r["torque_out_Nm"] is None for r in rows):
+        fmt = "ploss"
+    outdir.mkdir(parents=True, exist_ok=True)
+    cols = list(lead) + ["speed_in_rpm", "torque_in_Nm"] \
+        + (["P_loss_W"] if fmt == "ploss" else ["torque_out_Nm", "speed_out_rpm"]) + ["oil_temp_C", "ambient_temp_C"]
+    text = ",".join(cols) + "\n" + "".join(",".join(r[c] for c in cols) + "\n" for r in rows)
+    rec = outdir / "recordings.csv"
+    unchanged = rec.exists() and rec.read_text().replace("\r\n", "\n") == text
+    if not unchanged:
+        rec.write_text(text)
+    return fmt, unchanged
+
+
+def visible_size(kept, fixed):
+    """What the diagnosis can see, noise aside: the loss residual at the measured oil temperature
+    (against the model `diagnose` uses) and the oil temperature residual against the null balance."""
+    size_loss = mean(abs(x["P_recorded_noiseless_W"] / x.get("P_case_model_W", x["P_model_W"]) - 1) for x in kept)
+    size_temp = math.sqrt(mean((x["oil_temp_C"] - x["null_oil_temp_C"]) ** 2 for x in kept
+                               if x["null_oil_temp_C"] is not None)) if not fixed else 0.0
+    return size_loss, size_temp
+
+
+def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
+    """spec: dict(case, effects=[names], seed, tag[, form]). Writes recordings.csv + truth.json.
+    model: the truth's model part; case_model: the one `diagnose` compares with, when it differs
+    (form campaigns: model is the case with another form). Returns (truth, None) or (None, why)."""
     rng = random.Random(f"{spec['case']}|{spec['tag']}|{spec['seed']}")
     pts = choose_points(model, rng)
     ctx = Ctx(model, oil, pts, heat, rng)
@@ -128,7 +278,12 @@ def build_campaign(spec, model, oil, heat, ambient, outdir):
             ok, why = e.applicable(ctx)
             if not ok:
                 return None, f"{name} not applicable ({why})"
-        r = rng.uniform(0.06, 0.14) if len(spec["effects"]) == 1 else rng.uniform(0.05, 0.10)
+        if spec["category"] == "three":
+            r = rng.uniform(0.04, 0.08)
+        elif spec["category"] == "form_effect":
+            r = rng.uniform(0.04, 0.06)  # a small effect beside the form change
+        else:
+            r = rng.uniform(0.06, 0.14) if len(spec["effects"]) == 1 else rng.uniform(0.05, 0.10)
         e.setup(ctx, r)
         e.params["size_r"] = r
         effects.append(e)
@@ -140,60 +295,40 @@ def build_campaign(spec, model, oil, heat, ambient, outdir):
     else:
         order_kind = "speed outer, torque inner"
     nrows = len(order)
-    drift = rng.uniform(-4, 4) if rng.random() < 0.5 else 0.0
-    s_loss = rng.uniform(0.01, 0.03)
-    s_temp = rng.uniform(0.3, 0.5)
-    fmt = "torques" if rng.random() < 0.3 else "ploss"
+    drift, s_loss, s_temp, fmt = draw_conditions(rng)
+    form = None
+    if case_model is not None:  # form change: detectable against the noise, else not built
+        d = mean(abs(model.get("P_total_W", i, ctx.t0[i]) / case_model.get("P_total_W", i, ctx.t0[i]) - 1)
+                 for i in pts)
+        axis, name = spec["form"]
+        form = {"axis": axis, "form": name, "expected": expected_id(axis, name),
+                "mean_abs_rel_change_at_null": d, "noise_loss": s_loss}
+        if d < 3 * s_loss:
+            return None, (f"form change {axis}:{name} not detectable: mean |P_form/P_case - 1| = {100 * d:.2f} % "
+                          f"< 3 x loss noise {100 * s_loss:.2f} %")
+    null_ctx = ctx if case_model is None else Ctx(case_model, oil, pts, heat, rng)
     rows, truth_rows = [], []
     for k, i in enumerate(order):
         ta = ambient + drift * (k / max(nrows - 1, 1) - 0.5)
-        t = steady_temperature(ctx, i, ta, effects, k)
-        if t is None:
-            truth_rows.append({"speed_rpm": ctx.n[i], "torque_Nm": ctx.tq[i], "dropped": "no equilibrium"})
+        row, trow = record_point(ctx, i, ta, effects, k, nrows, s_loss, s_temp, rng)
+        truth_rows.append(trow)
+        if row is None:
             continue
-        p_model = model.get("P_total_W", i, t)
-        p_true = p_model + sum(e.dloss(ctx, i, t, k) for e in effects if e.heats)
-        tq_rec = ctx.tq[i]
-        for e in effects:
-            tq_rec = e.torque_rec(ctx, i, tq_rec, k, nrows)
-        w_in = ctx.omega(i)
-        p_rec = p_true + (tq_rec - ctx.tq[i]) * w_in  # what in - out power gives with that torque
-        p_rec *= 1 + rng.gauss(0, s_loss)
-        t_rec = t + rng.gauss(0, s_temp)
-        ta_rec = ta + rng.gauss(0, 0.1)
-        p_out_m, t_out_m = model.get("power_out_W", i, t), model.get("torque_out_Nm", i, t)
-        w_out = abs(p_out_m / t_out_m) if t_out_m else 0.0
-        rows.append({"speed_in_rpm": f"{ctx.n[i]:g}", "torque_in_Nm": f"{tq_rec:.4f}", "P_loss_W": f"{p_rec:.3f}",
-                     "torque_out_Nm": f"{(tq_rec * w_in - p_rec) / w_out:.5f}" if w_out > 0 else None,
-                     "speed_out_rpm": f"{w_out * 60 / (2 * math.pi):.5f}" if w_out > 0 else None,
-                     "oil_temp_C": f"{t_rec:.3f}", "ambient_temp_C": f"{ta_rec:.3f}"})
-        t_null = steady_temperature(ctx, i, ta, [], k)
-        truth_rows.append({"speed_rpm": ctx.n[i], "torque_Nm": ctx.tq[i], "oil_temp_C": t, "ambient_C": ta,
-                           "P_model_W": p_model, "P_true_W": p_true, "P_recorded_noiseless_W":
-                           p_true + (tq_rec - ctx.tq[i]) * w_in, "null_oil_temp_C": t_null})
-    if any(r["torque_out_Nm"] is None for r in rows):
-        fmt = "ploss"  # the output speed is unknown somewhere: record the loss column
+        rows.append(row)
+        trow["null_oil_temp_C"] = steady_temperature(null_ctx, i, ta, [], k)  # the balance `diagnose` expects
+        if case_model is not None:  # what `diagnose` compares with: the case's own form
+            trow["P_case_model_W"] = case_model.get("P_total_W", i, trow["oil_temp_C"])
     if len(rows) < 9:
         return None, "fewer than 9 points with an equilibrium"
-    outdir.mkdir(parents=True, exist_ok=True)
-    cols = ["speed_in_rpm", "torque_in_Nm"] + (["P_loss_W"] if fmt == "ploss" else ["torque_out_Nm", "speed_out_rpm"]) \
-        + ["oil_temp_C", "ambient_temp_C"]
-    text = ",".join(cols) + "\n" + "".join(",".join(r[c] for c in cols) + "\n" for r in rows)
-    rec = outdir / "recordings.csv"
-    unchanged = rec.exists() and rec.read_text().replace("\r\n", "\n") == text
-    if not unchanged:
-        rec.write_text(text)
-    kept = [x for x in truth_rows if "dropped" not in x]
-    # what the diagnosis can see, noise aside: the loss residual at the measured oil temperature
-    # and the oil temperature residual against the null balance at the same ambient
-    size_loss = mean(abs(x["P_recorded_noiseless_W"] / x["P_model_W"] - 1) for x in kept)
-    size_temp = math.sqrt(mean((x["oil_temp_C"] - x["null_oil_temp_C"]) ** 2 for x in kept
-                               if x["null_oil_temp_C"] is not None)) if heat.kind != "fixed" else 0.0
+    fmt, unchanged = write_recordings(outdir, rows, fmt)
+    size_loss, size_temp = visible_size([x for x in truth_rows if "dropped" not in x], heat.kind == "fixed")
     truth = {"case": spec["case"], "tag": spec["tag"], "seed": spec["seed"], "category": spec["category"],
              "effects": [{"name": e.name, "params": e.params, "truth_parameter": e.truth(ctx)} for e in effects],
              "points": len(rows), "dropped_points": len(truth_rows) - len(rows) + len(dropped),
              "noise_loss": s_loss, "noise_temp_K": s_temp, "ambient_drift_K": drift, "order": order_kind,
              "format": fmt, "heat": heat.kind, "size_loss_rel": size_loss, "size_temp_rms_K": size_temp,
              "recordings_unchanged": unchanged, "rows": truth_rows}
+    if form:
+        truth["form"] = form
     (outdir / "truth.json").write_text(json.dumps(truth, indent=1))
     return truth, None

@@ -2,8 +2,9 @@
 
 CASES lists every case variant (shipped config, heat path, the superset speed x torque
 grid). The readers take what this script needs from a case file as text (no YAML library):
-the `thermal` block, the oil file and its viscosity law. derive_case writes the derived
-case that `diagnose` receives: the shipped gearbox with its thermal block replaced.
+the `thermal` block, the oil file and its viscosity law, the oil families of the multi-oil
+campaigns. derive_case writes the derived case that `diagnose` receives: the shipped gearbox
+with its thermal block replaced.
 """
 import math
 import re
@@ -47,6 +48,10 @@ CASES = {
 }
 DEFAULT_CASES = ["transfer", "transfer140", "fzg", "planetary", "spur", "manual", "automatic",
                  "transfer_housing", "fzg_housing", "manual_housing", "fzg_fixed", "wind"]
+# Oils of one family, for the multi-oil campaigns (a rig testing two or three oils in one box):
+# a case runs with oils of its own oil's family (the ATF has none).
+OILS_DIR = ROOT / "configs" / "oils"
+OIL_FAMILIES = [["75W90-A", "75W140-A", "75W90-syn-A", "75W90-syn-B"], ["PAOR", "MINR", "ESTR", "PAGD"]]
 
 
 # ----------------------------------------------------------------------------------------
@@ -107,6 +112,12 @@ def oil_path(config_path):
     m = re.search(r"^oil:\s*(\S+)", text, re.M)
     p = m.group(1)
     return (Path(config_path).parent / p).resolve()
+
+
+def oil_family(config_path):
+    """The oils (file stems under configs/oils) of the family of a case's oil, or None."""
+    name = oil_path(config_path).stem
+    return next((fam for fam in OIL_FAMILIES if name in fam), None)
 
 
 class Oil:

@@ -31,6 +31,9 @@ ACCEPT = {
     "hot_loss": set(),
     "torque2_band": set(),
     "running_in": set(),
+    # per-oil effects of the multi-oil campaigns (multi_oil.py): named for that oil only
+    "oil_visc_factor": {"oil_viscosity"},
+    "oil_mesh_friction": {"mesh_friction"},
 }
 LIBRARY = ["aero_drag", "churning_speed", "bearing_visc_drag", "seal_extra", "mesh_low_film", "visc_shift",
            "heat_factor", "forced_convection", "sensor_gain", "sensor_offset", "pump_loss"]

@@ -40,12 +40,14 @@ class ModelTable:
         self.speeds, self.torques = case["speeds"], case["torques"]
         self.points = [(n, t) for n in self.speeds for t in self.torques]  # map's row order
         raw = {c: [[None] * len(TGRID) for _ in self.points] for c in COLS}
+        self.failed = 0  # points x temperatures the map did not solve (status other than ok / above_oil_limit)
         t0 = time.time()
         for j, t in enumerate(TGRID):
             rows = run_map(binary, config, self.speeds, self.torques, Path(workdir) / f"map_{t:g}C.csv", t)
             assert len(rows) == len(self.points)
             for i, row in enumerate(rows):
                 ok = row.get("status", "ok") in ("ok", "above_oil_limit")
+                self.failed += not ok
                 for c in COLS:
                     raw[c][i][j] = num(row.get(c)) if ok else None
         log(f"  mapped {len(self.points)} points x {len(TGRID)} oil temperatures in {time.time() - t0:.1f} s")

@@ -1,16 +1,15 @@
-"""Running `gearloss diagnose` blind, scoring it against the truth, and the tables.
+"""Running `gearloss diagnose` blind and scoring it against the truth.
 
 score turns a diagnose.json into an outcome (correct top finding, in 2nd place, wrong
-name, missed, false alarm, ...) and, for a correct single finding, the fitted / true
-parameter ratio. tabulate and failures write scores.md and failures.md.
+name, missed, false alarm, the expected form, the right oil scope, ...) and, for a correct
+single finding, the fitted / true parameter ratio. A diagnose that exits non-zero, writes no
+JSON or times out scores `error` in every category (never correct). The tables are tables.py's.
 """
 import json
 import subprocess
 import time
 
-from .cases import CASES
-from .effects import ACCEPT, LIBRARY, OUTSIDE
-from .numerics import median
+from .effects import ACCEPT
 
 # Coarse families (what kind of thing went wrong), reported beside strict acceptance, never counted as correct.
 FAMILY = {
@@ -25,18 +24,31 @@ NEUTRAL = {"churning_speed": 1.0, "seal_extra": 1.0, "mesh_low_film": 1.0, "visc
            "sensor_gain": 1.0}
 NULL_VERDICT = "no_significant_mismatch"
 CONFIDENT_VERDICT = "missing_physics"
+# The outcome that counts as correct in each category (two: both named; three: all three named).
+GOOD = {"correct_top", "correct_top_not_confident", "both_named", "all_three_named", "correct_not_confident",
+        "correct"}
+DIAGNOSE_TIMEOUT_S = 900
 
 
 def run_diagnose(binary, config, cdir):
     t0 = time.time()
-    cmd = ["nice", "-n", "19", binary, "diagnose", str(config), str(cdir / "recordings.csv"),
-           "--json", str(cdir / "diagnose.json")]
-    r = subprocess.run(cmd, capture_output=True, text=True)
+    out = cdir / "diagnose.json"
+    if out.exists():
+        out.unlink()  # never score a stale file
+    cmd = ["nice", "-n", "19", binary, "diagnose", str(config), str(cdir / "recordings.csv"), "--json", str(out)]
+    try:
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=DIAGNOSE_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        (cdir / "diagnose.txt").write_text(f"timed out after {DIAGNOSE_TIMEOUT_S} s\n")
+        return {"error": f"timeout after {DIAGNOSE_TIMEOUT_S} s"}, time.time() - t0
     (cdir / "diagnose.txt").write_text(r.stdout + ("\n--- stderr ---\n" + r.stderr if r.stderr else ""))
     dt = time.time() - t0
-    if r.returncode != 0 or not (cdir / "diagnose.json").exists():
+    if r.returncode != 0 or not out.exists():
         return {"error": f"exit {r.returncode}: {r.stderr.strip()[-300:]}"}, dt
-    return json.loads((cdir / "diagnose.json").read_text()), dt
+    try:
+        return json.loads(out.read_text()), dt
+    except ValueError as e:
+        return {"error": f"unreadable diagnose.json: {e}"}, dt
 
 
 def first_param(finding):
@@ -63,6 +75,8 @@ def score(truth, diag):
     eff = [e["name"] for e in truth["effects"]]
     res = {"verdict": diag.get("verdict", "error" if "error" in diag else "?"), "error": diag.get("error")}
     finds = diag.get("findings") or []
+    if not isinstance(finds, list) or any(not isinstance(f, dict) for f in finds):
+        res["error"], finds = (res["error"] or "findings is not a list of objects"), []
     res["names"] = [f.get("effect") for f in finds]
     res["top"] = res["names"][0] if finds else None
     res["second"] = res["names"][1] if len(finds) > 1 else None
@@ -71,6 +85,11 @@ def score(truth, diag):
     v = res["verdict"]
     cat = truth["category"]
     acc = [ACCEPT[e] for e in eff]
+    res["top_ok"] = any(res["top"] in a for a in acc)
+    res["param_ratio"] = None
+    if res["error"]:
+        res["outcome"], res["correct"] = "error", False
+        return res
     if cat == "null":
         res["outcome"] = "correct" if v == NULL_VERDICT else ("false_alarm_named" if res["top"] else "false_alarm_unexplained")
     elif cat == "outside":
@@ -91,156 +110,98 @@ def score(truth, diag):
             res["outcome"] = "wrong_name"
         else:
             res["outcome"] = "not_confident_unnamed"
-    else:  # two effects
-        names = res["names"][:2]
-        hit = [bool(a & set(names)) for a in acc]
-        if v == NULL_VERDICT:
-            res["outcome"] = "missed"
-        elif all(hit):
-            res["outcome"] = "both_named"
-        elif res["top"] and any(res["top"] in a for a in acc):
-            res["outcome"] = "one_named_top"
-        elif any(hit):
-            res["outcome"] = "one_named_second"
-        elif res["top"]:
-            res["outcome"] = "wrong_name"
-        else:
-            res["outcome"] = "not_confident_unnamed"
+    elif cat in ("form", "form_effect"):
+        score_form(truth, res, acc)
+    elif cat == "multi_oil":
+        score_multi_oil(truth, diag, finds, res)
+    else:  # two or three effects
+        score_several(res, acc)
     # parameter vs truth for a correct single finding
-    res["param_ratio"] = None
     if cat == "single" and res["top"] in acc[0]:
         tp, fp = truth["effects"][0].get("truth_parameter"), res["fitted"][1]
         z = NEUTRAL.get(eff[0], 0.0)  # factors are compared by their departure from 1
         if tp is not None and fp is not None and tp != z:
             res["param_ratio"] = (fp - z) / (tp - z)
+    res["correct"] = res["outcome"] in GOOD
     return res
 
 
-def snr(truth):
-    a = truth.get("size_loss_rel", 0.0) / truth.get("noise_loss", 1.0)
-    b = truth.get("size_temp_rms_K", 0.0) / truth.get("noise_temp_K", 1.0)
-    return max(a, b)
+def score_several(res, acc):
+    """Two (three) effects: how many truths the top two (three) findings name. Outcomes: both_named
+    (all_three_named), two_named (three only), one_named_top, one_named_second (one_named_not_top),
+    wrong_name, not_confident_unnamed, missed."""
+    k = len(acc)
+    hit = [bool(a & set(res["names"][:k])) for a in acc]
+    res["named"] = sum(hit)
+    everyone, one_later = ("both_named", "one_named_second") if k == 2 else ("all_three_named", "one_named_not_top")
+    if res["verdict"] == NULL_VERDICT:
+        res["outcome"] = "missed"
+    elif all(hit):
+        res["outcome"] = everyone
+    elif sum(hit) >= 2:
+        res["outcome"] = "two_named"
+    elif res["top_ok"]:
+        res["outcome"] = "one_named_top"
+    elif any(hit):
+        res["outcome"] = one_later
+    elif res["top"]:
+        res["outcome"] = "wrong_name"
+    else:
+        res["outcome"] = "not_confident_unnamed"
 
 
-def failures(results):
-    """Every campaign not scored correct, with its truth and what diagnose said (for inspection)."""
-    good = {"correct_top", "correct", "both_named", "correct_not_confident"}
-    out = ["| campaign | truth | size loss / temp. | verdict | findings | summary |", "|---|---|---|---|---|---|"]
-    for r in results:
-        if "score" not in r or r["score"]["outcome"] in good:
-            continue
-        t = r["truth"]
-        eff = "; ".join(e["name"] + " " + ", ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
-                                                   for k, v in e["params"].items()) for e in t["effects"]) or "none"
-        fit = r["score"]["fitted"]
-        fnd = ", ".join(x for x in r["score"]["names"] if x) or "-"
-        if fit and fit[0]:
-            fnd += f" ({fit[0]} = {fit[1]:.4g})"
-        out.append(f"| {r['id']} | {eff} | {100 * t.get('size_loss_rel', 0):.1f} % / {t.get('size_temp_rms_K', 0):.1f} K | "
-                   f"{r['score']['verdict']} ({r['score']['outcome']}) | {fnd} | {r.get('summary', '').replace('|', '/')[:300]} |")
-    return "\n".join(out)
+def score_form(truth, res, acc):
+    """form: correct when the top finding is the expected `<axis>:<form>` id (named among the top
+    finding's equivalents is reported apart, not correct). form_effect: correct when the top two
+    findings name both the form and the small effect."""
+    exp, v, names = truth["form"]["expected"], res["verdict"], res["names"]
+    res["expected"] = exp
+    if v == NULL_VERDICT:
+        res["outcome"] = "missed"
+    elif truth["category"] == "form_effect":
+        form_ok, eff_ok = exp in names[:2], bool(acc[0] & set(names[:2]))
+        res["outcome"] = ("correct" if form_ok and eff_ok else "form_only" if form_ok else "effect_only" if eff_ok
+                          else "form_among_equivalents" if exp in res["top_equivalent"]
+                          else "wrong_name" if res["top"] else "not_named")
+    elif res["top"] == exp:
+        res["outcome"] = "correct"
+    elif exp in res["top_equivalent"]:
+        res["outcome"] = "named_among_equivalents"
+    elif exp in names[1:]:
+        res["outcome"] = "form_not_top"
+    elif res["top"] and ":" in res["top"]:
+        res["outcome"] = "wrong_form"
+    elif res["top"]:
+        res["outcome"] = "wrong_name"
+    else:
+        res["outcome"] = "not_named"
 
 
-def pct(a, b):
-    return f"{a}/{b} ({100 * a / b:.0f} %)" if b else "-"
+def score_multi_oil(truth, diag, finds, res):
+    """Correct when every truth effect is named with the right oil scope: `"oil": null` for a
+    common effect, the `oil` column's text for a per-oil one (a finding without the key has no
+    scope). Also notes whether the JSON carries the top-level array `oil_differences`."""
+    res["oil_differences"] = isinstance(diag.get("oil_differences"), list)
+    res["scopes"] = []
+    status = []
+    for e in truth["effects"]:
+        named = [f for f in finds if f.get("effect") in ACCEPT[e["name"]]]
+        given = [f.get("oil", "<no oil key>") for f in named]
+        st = "right" if any("oil" in f and f["oil"] == e["oil"] for f in named) else \
+            ("wrong_scope" if named else "absent")
+        status.append(st)
+        res["scopes"].append({"effect": e["name"], "expected_oil": e["oil"], "given": given, "status": st})
+    if res["verdict"] == NULL_VERDICT:
+        res["outcome"] = "missed"
+    elif all(s == "right" for s in status):
+        res["outcome"] = "correct"
+    elif all(s != "absent" for s in status):
+        res["outcome"] = "named_wrong_scope"
+    elif any(s != "absent" for s in status):
+        res["outcome"] = "partly_named"
+    elif res["top"]:
+        res["outcome"] = "wrong_name"
+    else:
+        res["outcome"] = "not_named"
 
 
-def tabulate(results, cases_info):
-    out = []
-    p = out.append
-    by = lambda cat: [r for r in results if r["truth"]["category"] == cat and "score" in r]
-    p("## Single in-library effect (perturbed form), per case\n")
-    p("| case | heat path | n | correct top (confident) | correct top, verdict not confident | in 2nd finding / equivalent | wrong name | not named | missed (no mismatch) |")
-    p("|---|---|---|---|---|---|---|---|---|")
-    single = by("single")
-    for c in sorted({r["truth"]["case"] for r in single}, key=list(CASES).index):
-        rs = [r for r in single if r["truth"]["case"] == c]
-        cnt = lambda o: sum(1 for r in rs if r["score"]["outcome"] == o)
-        p(f"| {c} | {cases_info[c]} | {len(rs)} | {pct(cnt('correct_top'), len(rs))} | {cnt('correct_top_not_confident')} | "
-          f"{cnt('second_or_equivalent')} | {cnt('wrong_name')} | {cnt('not_confident_unnamed')} | {cnt('missed')} |")
-    cnt = lambda o: sum(1 for r in single if r["score"]["outcome"] == o)
-    p(f"| **all** | | {len(single)} | {pct(cnt('correct_top'), len(single))} | {cnt('correct_top_not_confident')} | "
-      f"{cnt('second_or_equivalent')} | {cnt('wrong_name')} | {cnt('not_confident_unnamed')} | {cnt('missed')} |")
-    p("\n## Single in-library effect, per effect (all cases)\n")
-    p("| concealed effect | acceptable | n | correct top | wrong name, same family | what was named instead (count) | "
-      "median size: loss / oil temp. | fitted / true parameter, median (range); factors as (f - 1) ratios |")
-    p("|---|---|---|---|---|---|---|---|")
-    for e in LIBRARY:
-        rs = [r for r in single if r["truth"]["effects"][0]["name"] == e]
-        if not rs:
-            continue
-        ok = sum(1 for r in rs if r["score"]["outcome"] in ("correct_top", "correct_top_not_confident"))
-        fam = {FAMILY[x] for x in ACCEPT[e]}
-        same = sum(1 for r in rs if r["score"]["outcome"] not in ("correct_top", "correct_top_not_confident")
-                   and FAMILY.get(r["score"]["top"]) in fam)
-        other = {}
-        for r in rs:
-            if r["score"]["outcome"] not in ("correct_top", "correct_top_not_confident"):
-                k = r["score"]["top"] or r["score"]["verdict"]
-                other[k] = other.get(k, 0) + 1
-        ratios = [r["score"]["param_ratio"] for r in rs if r["score"]["param_ratio"] is not None]
-        rtxt = f"{median(ratios):.2f} ({min(ratios):.2f}-{max(ratios):.2f}, n={len(ratios)})" if ratios else "-"
-        size = (f"{100 * median(r['truth'].get('size_loss_rel', float('nan')) for r in rs):.1f} % / "
-                f"{median(r['truth'].get('size_temp_rms_K', float('nan')) for r in rs):.1f} K")
-        p(f"| {e} | {', '.join(sorted(ACCEPT[e]))} | {len(rs)} | {pct(ok, len(rs))} | {same} | "
-          f"{', '.join(f'{k} {v}' for k, v in sorted(other.items(), key=lambda x: -x[1])) or '-'} | {size} | {rtxt} |")
-    p("\n## Single in-library effect by visibility (signal / noise = max(loss size / loss noise, temp. size / temp. noise))\n")
-    p("| signal / noise | n | correct top | missed |")
-    p("|---|---|---|---|")
-    for lo, hi in [(0, 1), (1, 3), (3, 10), (10, 1e9)]:
-        rs = [r for r in single if lo <= snr(r["truth"]) < hi]
-        if rs:
-            ok = sum(1 for r in rs if r["score"]["outcome"] in ("correct_top", "correct_top_not_confident"))
-            p(f"| {lo:g}-{hi:g} | {len(rs)} | {pct(ok, len(rs))} | {sum(1 for r in rs if r['score']['outcome'] == 'missed')} |"
-              .replace("-1e+09", "+"))
-    two = by("two")
-    if two:
-        p("\n## Two effects at once\n")
-        p("| n | both named (top two findings) | one named as top | one named second only | wrong top name | not named | missed |")
-        p("|---|---|---|---|---|---|---|")
-        cnt = lambda o: sum(1 for r in two if r["score"]["outcome"] == o)
-        p(f"| {len(two)} | {pct(cnt('both_named'), len(two))} | {cnt('one_named_top')} | {cnt('one_named_second')} | "
-          f"{cnt('wrong_name')} | {cnt('not_confident_unnamed')} | {cnt('missed')} |")
-    p("\n## By heat path (resistance: exact re-implementation; housing: textbook, within ~2 %; fixed: no temperature evidence)\n")
-    p("| heat path | single: correct top | two: both named | outside: correct (not confident) | null: correct |")
-    p("|---|---|---|---|---|")
-    for hk in ["resistance", "housing", "fixed"]:
-        cells = []
-        for cat, good in [("single", ("correct_top", "correct_top_not_confident")), ("two", ("both_named",)),
-                          ("outside", ("correct_not_confident",)), ("null", ("correct",))]:
-            rs = [r for r in by(cat) if r["truth"].get("heat") == hk]
-            cells.append(pct(sum(1 for r in rs if r["score"]["outcome"] in good), len(rs)))
-        p(f"| {hk} | " + " | ".join(cells) + " |")
-    outside = by("outside")
-    if outside:
-        p("\n## Effects outside the library (correct = a non-confident verdict)\n")
-        p("| effect | n | correct (not confident) | wrong (confident library name) | missed (no mismatch) | names given when wrong |")
-        p("|---|---|---|---|---|---|")
-        for e in OUTSIDE + ["all"]:
-            rs = outside if e == "all" else [r for r in outside if r["truth"]["effects"][0]["name"] == e]
-            if not rs:
-                continue
-            cnt = lambda o: sum(1 for r in rs if r["score"]["outcome"] == o)
-            names = {}
-            for r in rs:
-                if r["score"]["outcome"] == "wrong_confident_name":
-                    names[r["score"]["top"]] = names.get(r["score"]["top"], 0) + 1
-            p(f"| {'**all**' if e == 'all' else e} | {len(rs)} | {pct(cnt('correct_not_confident'), len(rs))} | "
-              f"{cnt('wrong_confident_name')} | {cnt('missed')} | {', '.join(f'{k} {v}' for k, v in names.items()) or '-'} |")
-    null = by("null")
-    if null:
-        p("\n## Null campaigns (correct = no_significant_mismatch)\n")
-        p("| case | n | correct | false alarm with a name | false alarm without a name |")
-        p("|---|---|---|---|---|")
-        for c in sorted({r["truth"]["case"] for r in null}, key=list(CASES).index) + ["all"]:
-            rs = null if c == "all" else [r for r in null if r["truth"]["case"] == c]
-            cnt = lambda o: sum(1 for r in rs if r["score"]["outcome"] == o)
-            p(f"| {'**all**' if c == 'all' else c} | {len(rs)} | {pct(cnt('correct'), len(rs))} | "
-              f"{cnt('false_alarm_named')} | {cnt('false_alarm_unexplained')} |")
-    errs = [r for r in results if r.get("score", {}).get("error")]
-    if errs:
-        p(f"\n{len(errs)} campaigns where diagnose failed: " + "; ".join(f"{r['id']}: {r['score']['error'][:120]}" for r in errs[:5]))
-    p("\n## Acceptance mapping used (perturbed effect -> acceptable library names)\n")
-    for e in LIBRARY + OUTSIDE:
-        p(f"- `{e}` -> {', '.join('`' + x + '`' for x in sorted(ACCEPT[e])) if ACCEPT[e] else 'none: a non-confident verdict (anything but missing_physics with a name, and not no_significant_mismatch)'}")
-    return "\n".join(out)
