@@ -170,6 +170,10 @@ TEST_CASE("the oil column: a missing oil file and a raw log are errors naming th
         const std::string what = e.what();
         CHECK(what.rfind("rec.csv:2: oil: oil file 'oils/A.yaml'", 0) == 0);
     }
+    // synth: a form is chosen or not, nothing in between.
+    CHECK(diagnosis::parse_effect_assignment(c.model, "friction:ehl_local=1").second == 1.0);
+    CHECK_THROWS_WITH(diagnosis::parse_effect_assignment(c.model, "friction:ehl_local=0.3"),
+                      Catch::Contains("a form is chosen (1) or not (0)"));
     CHECK_THROWS_WITH(diagnosis::read_recordings_text("time_s,speed_in_rpm,torque_in_Nm,speed_out_rpm,torque_out_Nm,oil_temp_C,"
                                                       "room_temp_C,oil\n0,500,100,250,190,40,25,a.yaml\n",
                                                       "log.csv"),

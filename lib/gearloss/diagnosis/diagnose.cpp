@@ -43,10 +43,9 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     Hypothesis neutral = Hypothesis::of(model);
     std::vector<Obs> obs;
     std::vector<Outlier> unused;  // rows the model cannot be compared with: listed, not used
-    const CampaignOils oils = campaign_oils(model, rec);
+    CampaignOils oils = campaign_oils(model, rec);
     {
-        std::vector<solver::Model> per_oil(oils.oils.size(), model);
-        for (size_t j = 0; j < oils.oils.size(); ++j) per_oil[j].oil = oils.oils[j];
+        std::vector<solver::Model>& per_oil = oils.models;
         solver::PointState ps;
         for (size_t k = 0; k < rec.points.size(); ++k) {
             const auto& r = rec.points[k];
@@ -65,7 +64,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             o.T_oil = r.oil_temp ? *r.oil_temp : 0.0;
             o.stabilised = r.stabilised;
             o.drift = r.stabilisation_drift;
-            std::string why = recorded_fault(model, o);
+            std::string why = recorded_fault(m, o);
             double L = 0, T = 0;
             if (why.empty()) why = evaluate_point(m, ps, neutral, o, L, T);
             if (why.empty() && !(std::isfinite(o.loss - L) && std::isfinite(o.T_oil - T)))
@@ -93,10 +92,16 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     }
     if (model.thermal.mode != solver::ThermalMode::stabilised)
         d.warnings.push_back("the case is in fixed-temperature mode: oil temperatures are not used as evidence");
-    Engine E(model, std::move(obs), opt.threads, opt.physical_scan_range, oils.oils);
+    Engine E(model, std::move(obs), opt.threads, opt.physical_scan_range, oils.models);
+    mark_tested(oils, E);
     if (oils.count_tested() >= 2)
-        for (size_t j = 0; j < oils.oils.size(); ++j)
+        for (size_t j = 0; j < oils.models.size(); ++j)
             if (oils.tested[j]) d.oils.push_back(oils.names[j]);
+    if (oils.count_tested() == 1 && !oils.tested[0])
+        d.warnings.push_back("every usable test names the oil " + oils.names[std::find(oils.tested.begin(), oils.tested.end(), 1) -
+                                                                              oils.tested.begin()] +
+                             ", not the case's: the findings are for the case with that oil; --write-config keeps the "
+                             "case's oil, so set `oil:` in the written case");
     d.points = static_cast<int>(E.obs().size());
     d.bootstrap = opt.bootstrap;
     d.has_temperature = E.has_temperature();
@@ -117,7 +122,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     Selection S = select_effects(E, lib, neutral, opt);
     d.candidates = std::move(S.candidates);
     d.findings = std::move(S.findings);
-    name_oil_findings(d.findings, lib);
+    name_oil_findings(d.findings, d.candidates, lib);
     d.warnings.insert(d.warnings.end(), S.warnings.begin(), S.warnings.end());
     const Hypothesis& base = S.h;
     d.calibrated = base;
@@ -165,7 +170,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             f.speed_rpm.push_back(std::abs(o.w) * to_rpm);
             f.torque_Nm.push_back(o.torque);
             f.oil_temp_C.push_back(T - 273.15);
-            f.viscosity_cSt.push_back(model.oil.nu_mm2s(T));
+            f.viscosity_cSt.push_back(point_viscosity(E, o, T));
             f.order.push_back(o.row);
         }
         auto p = hypothesis::propose(resid, scale, f);

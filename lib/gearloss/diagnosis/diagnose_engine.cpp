@@ -65,17 +65,15 @@ double profiled(double rss, int n, double floor) {
 }
 
 Engine::Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool physical_range,
-               std::vector<lubricant::Oil> oils)
+               const std::vector<solver::Model>& per_oil)
     : obs_(std::move(obs)), physical_range_(physical_range) {
     threads_ = threads > 0 ? threads : omp_get_max_threads();
-    if (oils.empty()) oils.push_back(m.oil);
-    n_oils_ = static_cast<int>(oils.size());
+    n_oils_ = per_oil.empty() ? 1 : static_cast<int>(per_oil.size());
     work_.reserve(static_cast<size_t>(threads_ * n_oils_));
-    for (int t = 0; t < threads_; ++t)
-        for (const auto& oil : oils) {
-            work_.push_back(m);
-            work_.back().oil = oil;
-        }
+    for (int t = 0; t < threads_; ++t) {
+        if (per_oil.empty()) work_.push_back(m);
+        else work_.insert(work_.end(), per_oil.begin(), per_oil.end());
+    }
     states_.resize(static_cast<size_t>(threads_));
     all_.resize(obs_.size());
     std::iota(all_.begin(), all_.end(), 0);
@@ -111,6 +109,8 @@ void Engine::predict(const Hypothesis& h, const std::vector<int>& idx, Pred& out
         }
     }
 }
+
+double point_viscosity(const Engine& E, const Obs& o, double T) { return E.oil(o.oil).nu_mm2s(T); }
 
 void Engine::apply(const Hypothesis& h, int tid) const {
     for (int j = 0; j < n_oils_; ++j) h.apply_to(model(tid, j), j);

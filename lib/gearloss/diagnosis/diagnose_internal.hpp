@@ -135,10 +135,11 @@ private:
 // The recorded points, and one working copy of the model per thread (diagnose_engine.cpp).
 class Engine {
 public:
-    // `oils`: the campaign's oils by Obs::oil (empty: the case's oil alone).
+    // `per_oil`: the case with each of the campaign's oils, by Obs::oil (empty: `m` alone).
     Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool physical_range,
-           std::vector<lubricant::Oil> oils = {});
+           const std::vector<solver::Model>& per_oil = {});
     int oils() const { return n_oils_; }
+    const lubricant::Oil& oil(int j) const { return work_[static_cast<size_t>(j)].oil; }
     int threads() const { return threads_; }
     const std::vector<Obs>& obs() const { return obs_; }
     const std::vector<int>& all() const { return all_; }
@@ -219,24 +220,29 @@ struct Location {
 };
 
 Location locate(const Engine& E, const Pred& p, const Hypothesis& h, const solver::Model& model);
+// The kinematic viscosity [mm^2/s] of a point's oil at T (the point's own oil in a multi-oil campaign).
+double point_viscosity(const Engine& E, const Obs& o, double T);
 
 // diagnose_oils.cpp: multi-oil campaigns. The oils of a campaign: [0] the case's, then each
 // oil file of the recordings' `oil` column (paths relative to the recordings file).
 struct CampaignOils {
-    std::vector<lubricant::Oil> oils;
+    std::vector<solver::Model> models;  // the case with each oil (io::replace_oil)
     std::vector<std::string> names;  // as written in the column
     std::vector<int> of_point;       // per recorded point
     std::vector<char> tested;        // per oil: some point was recorded with it
     int count_tested() const;
 };
 CampaignOils campaign_oils(const solver::Model& model, const Recordings& rec);
+// The oils with a usable point (after the rows the model cannot compare were set aside).
+void mark_tested(CampaignOils& oils, const Engine& E);
 // Per-oil copies of the oil-dependent candidates, when two or more oils were tested.
 void add_per_oil_candidates(std::vector<Effect>& lib, const CampaignOils& oils);
 // Recorded vs model loss differences between oils at the operating points tested with several.
 std::vector<OilDifference> oil_differences(const Engine& E, const Pred& before, const Pred& after,
                                            const CampaignOils& oils);
-// Findings of a per-oil candidate report the effect's own id and the oil.
-void name_oil_findings(std::vector<Finding>& findings, const std::vector<Effect>& lib);
+// Findings (and their equivalents, and the candidate list) of a per-oil candidate report the
+// effect's own id and the oil.
+void name_oil_findings(std::vector<Finding>& findings, std::vector<Candidate>& candidates, const std::vector<Effect>& lib);
 
 // Why a recorded point cannot be compared with the model (empty: it can).
 std::string recorded_fault(const solver::Model& model, const Obs& o);

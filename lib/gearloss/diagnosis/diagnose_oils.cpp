@@ -17,9 +17,10 @@ namespace gearloss::diagnosis::detail {
 CampaignOils campaign_oils(const solver::Model& model, const Recordings& rec) {
     namespace fs = std::filesystem;
     CampaignOils c;
-    c.oils.push_back(model.oil);
+    c.models.push_back(model);
     c.names.push_back("the case's oil (" + model.oil.name + ")");
-    std::map<std::string, int> index;  // as written in the column -> oil
+    // One oil per file: keyed by its resolved path ("B.yaml" and "./B.yaml" are one oil).
+    std::map<std::string, int> index, by_path;
     const fs::path dir = fs::path(rec.file).parent_path();
     for (const auto& r : rec.points) {
         if (r.oil.empty()) {
@@ -30,20 +31,35 @@ CampaignOils campaign_oils(const solver::Model& model, const Recordings& rec) {
         if (it == index.end()) {
             const fs::path written(r.oil);
             const fs::path path = written.is_absolute() ? written : dir / written;
-            try {
-                c.oils.push_back(io::load_oil_file(path.string()));
-            } catch (const Error& e) {
-                throw InputError(rec.file, r.line, 0, "oil",
-                                 fmt::format("oil file '{}' ({}): {}", r.oil, path.string(), e.what()));
+            std::error_code ec;
+            const std::string key = fs::weakly_canonical(path, ec).string();
+            const auto same = by_path.find(ec ? path.string() : key);
+            if (same != by_path.end()) {
+                it = index.emplace(r.oil, same->second).first;
+            } else {
+                solver::Model m = model;
+                try {
+                    io::replace_oil(m, io::load_oil_file(path.string()));
+                } catch (const Error& e) {
+                    throw InputError(rec.file, r.line, 0, "oil", fmt::format("oil file '{}': {}", r.oil, e.what()));
+                }
+                c.models.push_back(std::move(m));
+                c.names.push_back(r.oil);
+                const int j = static_cast<int>(c.models.size()) - 1;
+                by_path.emplace(ec ? path.string() : key, j);
+                it = index.emplace(r.oil, j).first;
             }
-            c.names.push_back(r.oil);
-            it = index.emplace(r.oil, static_cast<int>(c.oils.size()) - 1).first;
         }
         c.of_point.push_back(it->second);
     }
-    c.tested.assign(c.oils.size(), 0);
+    c.tested.assign(c.models.size(), 0);
     for (int j : c.of_point) c.tested[static_cast<size_t>(j)] = 1;
     return c;
+}
+
+void mark_tested(CampaignOils& oils, const Engine& E) {
+    oils.tested.assign(oils.models.size(), 0);
+    for (const auto& o : E.obs()) oils.tested[static_cast<size_t>(o.oil)] = 1;
 }
 
 int CampaignOils::count_tested() const { return static_cast<int>(std::count(tested.begin(), tested.end(), 1)); }
@@ -53,7 +69,7 @@ void add_per_oil_candidates(std::vector<Effect>& lib, const CampaignOils& oils) 
     const size_t n = lib.size();
     for (size_t k = 0; k < n; ++k) {
         if (!lib[k].oil_dependent) continue;
-        for (size_t j = 0; j < oils.oils.size(); ++j)
+        for (size_t j = 0; j < oils.models.size(); ++j)
             if (oils.tested[j]) lib.push_back(for_oil(lib[k], static_cast<int>(j), oils.names[j]));
     }
 }
@@ -98,7 +114,7 @@ std::vector<OilDifference> oil_differences(const Engine& E, const Pred& before, 
             OilDifference d;
             d.speed_rpm = p.w * to_rpm;
             d.torque = p.torque;
-            d.oil_a = oils.names[static_cast<size_t>(ia)];
+            d.oil_a = oils.names[static_cast<size_t>(ia)];  // the first oil tested at this point
             d.oil_b = oils.names[static_cast<size_t>(ib)];
             d.recorded = B.rec / B.n - A.rec / A.n;
             d.model_before = B.b / B.n - A.b / A.n;
@@ -112,17 +128,22 @@ std::vector<OilDifference> oil_differences(const Engine& E, const Pred& before, 
     return out;
 }
 
-void name_oil_findings(std::vector<Finding>& findings, const std::vector<Effect>& lib) {
+void name_oil_findings(std::vector<Finding>& findings, std::vector<Candidate>& candidates, const std::vector<Effect>& lib) {
+    auto per_oil = [&](const std::string& id) -> const Effect* {
+        const auto it = std::find_if(lib.begin(), lib.end(), [&](const Effect& e) { return e.id == id; });
+        return it != lib.end() && it->oil >= 0 ? &*it : nullptr;
+    };
+    auto readable = [&](std::string& id) {
+        if (const Effect* e = per_oil(id)) id = e->base_id + " (oil " + e->oil_name + ")";
+    };
     for (auto& f : findings) {
-        const auto it = std::find_if(lib.begin(), lib.end(), [&](const Effect& e) { return e.id == f.effect; });
-        if (it == lib.end() || it->oil < 0) continue;
-        f.oil = it->oil_name;
-        f.effect = it->base_id;
-        for (auto& x : f.equivalent) {
-            const auto jt = std::find_if(lib.begin(), lib.end(), [&](const Effect& e) { return e.id == x; });
-            if (jt != lib.end() && jt->oil >= 0) x = jt->base_id + " (oil " + jt->oil_name + ")";
+        for (auto& x : f.equivalent) readable(x);
+        if (const Effect* e = per_oil(f.effect)) {
+            f.oil = e->oil_name;
+            f.effect = e->base_id;
         }
     }
+    for (auto& c : candidates) readable(c.effect);
 }
 
 }  // namespace gearloss::diagnosis::detail

@@ -157,7 +157,7 @@ Location locate(const Engine& E, const Pred& p, const Hypothesis& h, const solve
         const double T = o.has_T ? o.T_oil : p.temp[i];
         lnn.push_back(std::log(std::max(o.w * to_rpm, 1e-3)));
         tq.push_back(o.torque);
-        visc.push_back(std::log(model.oil.nu_mm2s(T)));
+        visc.push_back(std::log(point_viscosity(E, o, T)));
         dL.push_back(o.loss - p.loss[i]);
         if (o.T_evidence && (h.unstabilised.empty() || !h.unstabilised[i])) {
             dT.push_back(o.T_oil - p.temp[i]);

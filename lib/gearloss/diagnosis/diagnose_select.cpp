@@ -112,9 +112,13 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
     for (size_t j = 0; j + 1 < terms.size(); ++j) {
         if (terms[j].effect->kind == EffectKind::pointwise) continue;
         const Effect* best = nullptr;
+        double best_nll = kFailedNll;
         std::vector<Term> best_terms;
         std::vector<char> best_flags;
-        double best_nll = nll_full - 1.0;
+        // The BIC of the swap: a replacement with a parameter more than the one it replaces (a
+        // scale factor for a form) pays for it.
+        auto params = [](const Effect& e) { return e.discrete() ? 0 : 1; };
+        double best_bic = 2.0 * (nll_full - 1.0);
         int tried = 0;
         for (const auto& c : S.candidates) {
             if (tried >= 4 || !c.rejected.empty() || c.delta_bic < 0.5 * opt.bic_threshold) continue;
@@ -126,7 +130,9 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
             swapped[j] = {&*it, c.value};
             std::vector<char> fl = flags;
             const double nll = refit_jointly(E, neutral, swapped, fl, opt, false);
-            if (nll < best_nll) {
+            const double bic = 2.0 * nll + (params(*it) - params(*terms[j].effect)) * std::log(static_cast<double>(N));
+            if (bic < best_bic) {
+                best_bic = bic;
                 best_nll = nll;
                 best = &*it;
                 best_terms = swapped;

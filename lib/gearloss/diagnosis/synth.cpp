@@ -38,7 +38,10 @@ std::pair<std::string, double> parse_effect_assignment(const solver::Model& mode
     if (q.dim != want && !(q.dim == units::dim::none))
         throw InputError("", 0, 0, "--effect " + name,
                          "'" + value + "' has dimension " + units::to_string(q.dim) + ", expected " + units::to_string(want));
-    if (e->id == "unstabilised_test") {
+    if (e->discrete()) {
+        if (q.value != 0 && q.value != 1)
+            throw InputError("", 0, 0, "--effect " + name, "a form is chosen (1) or not (0): give " + name + "=1");
+    } else if (e->id == "unstabilised_test") {
         if (q.value < 0 || q.value != std::floor(q.value))
             throw InputError("", 0, 0, "--effect " + name, "the number of unstabilised points must be a whole number >= 0");
     } else if (q.value < e->lower || q.value > e->upper) {

@@ -97,9 +97,11 @@ std::vector<double> load_axis(const YamlNode& n, const units::Dimension& d, cons
 
 }  // namespace
 
-void replace_oil(Case& c, const lubricant::Oil& oil) {
-    c.model.oil = oil;
-    for (auto& b : c.model.gearbox.bearings) detail::set_bearing_friction(b.spec, oil);
+void replace_oil(Case& c, const lubricant::Oil& oil) { replace_oil(c.model, oil); }
+
+void replace_oil(solver::Model& m, const lubricant::Oil& oil) {
+    m.oil = oil;
+    for (auto& b : m.gearbox.bearings) detail::set_bearing_friction(b.spec, oil);
 }
 
 Case load_case(const std::string& file, const std::optional<std::string>& ratio_override) {

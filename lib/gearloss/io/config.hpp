@@ -57,6 +57,8 @@ lubricant::Oil load_oil(const YamlNode& node);
 lubricant::Oil load_oil_file(const std::string& file);
 // Replaces the oil of a loaded case (bearing friction pairs follow the new oil).
 void replace_oil(Case& c, const lubricant::Oil& oil);
+// The same on a model: the oil and what derives from it (the bearings' friction pair).
+void replace_oil(solver::Model& m, const lubricant::Oil& oil);
 
 // "600,700,800rpm" or "600 rpm, 700 rpm" -> SI values of the expected dimension.
 std::vector<double> parse_value_list(const std::string& text, const units::Dimension& d, const char* what,
