@@ -98,8 +98,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         for (size_t j = 0; j < oils.models.size(); ++j)
             if (oils.tested[j]) d.oils.push_back(oils.names[j]);
     if (oils.count_tested() == 1 && !oils.tested[0])
-        d.warnings.push_back("every usable test names the oil " + oils.names[std::find(oils.tested.begin(), oils.tested.end(), 1) -
-                                                                              oils.tested.begin()] +
+        d.warnings.push_back("every usable test names the oil " + oils.names[static_cast<size_t>(E.obs().front().oil)] +
                              ", not the case's: the findings are for the case with that oil; --write-config keeps the "
                              "case's oil, so set `oil:` in the written case");
     d.points = static_cast<int>(E.obs().size());
