@@ -55,7 +55,7 @@ TEST_CASE("housing radiation and free convection coefficients", "[thermal]") {
     CHECK(s.convection_coefficient(348.15, 298.15) == Approx(5.09).epsilon(0.10));
 }
 
-TEST_CASE("stabilised points satisfy the heat balance; fixed mode skips the solve", "[thermal][solver]") {
+TEST_CASE("stabilised points satisfy the heat balance, fixed mode skips the solve", "[thermal][solver]") {
     auto c = io::load_case(test_support::source_path("configs/transfer-box.yaml"));
     const auto& m = c.model;
     for (size_t i = 0; i < c.grid.size(); ++i) {
