@@ -186,6 +186,29 @@ TEST_CASE("adequacy: goodness of fit against hand-computed tails", "[adequacy]")
     CHECK(goodness_of_fit({sigma, sigma, sigma}, NoiseEstimate{}, 0).p_value == 1);
 }
 
+TEST_CASE("adequacy: Fisher's combination against hand-computed tails", "[adequacy]") {
+    // Two tests at p = 0.05: X = -2 (2 ln 0.05) = 11.983 on 4 dof; the even-dof tail is
+    // e^(-X/2) (1 + X/2) = e^-5.9915 * 6.9915 = 0.0175 (Fisher 1932, table of chi-squared).
+    CHECK_THAT(combined_p({0.05, 0.05}), WithinRel(0.017479, 1e-3));
+    // Four tests each just above 1 % (0.02, 0.026, 0.03, 0.031): X = 2 (3.912 + 3.650 + 3.507
+    // + 3.474) = 29.08 on 8 dof: e^-14.542 (1 + 14.542 + 105.74 + 512.6) = 4.84e-7 * 633.9
+    // = 3.07e-4. Jointly
+    // they are a remainder although no single one fails at 1 %.
+    CHECK_THAT(combined_p({0.02, 0.026, 0.03, 0.031}), WithinRel(3.07e-4, 1e-2));
+    // One test: the combination is the test itself; no test: nothing is rejected.
+    CHECK_THAT(combined_p({0.3}), WithinRel(0.3, 1e-9));
+    CHECK(combined_p({}) == 1);
+    // A p-value of 0 (a far-out tail) is finite evidence, not a NaN.
+    CHECK(combined_p({0.0, 0.5}) < 1e-100);
+    // Under independent uniform p-values the combination holds its level (5 % of 4000 draws,
+    // binomial sd 0.34 %).
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    int rejected = 0;
+    for (int k = 0; k < 4000; ++k) rejected += combined_p({u(rng), u(rng), u(rng), u(rng)}) < 0.05;
+    CHECK(rejected / 4000.0 == Approx(0.05).margin(0.012));
+}
+
 TEST_CASE("adequacy: goodness-of-fit p-values are uniform under pure noise", "[adequacy]") {
     const double sigma = 0.02;
     int below_5 = 0, below_50 = 0, f_below_5 = 0;

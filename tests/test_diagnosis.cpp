@@ -177,6 +177,27 @@ TEST_CASE("diagnose names a concealed windage and recovers its size", "[diagnosi
     CHECK_THAT(d.summary, Catch::Contains("grows with speed"));
 }
 
+TEST_CASE("a finding is named with confidence only at the stricter confidence level", "[diagnosis]") {
+    const auto c = transfer();
+    const auto rec = campaign(c, {{"windage", 25.0}}, 11);
+    // Default: what the windage finding leaves passes the combined test at 5 % (the four
+    // p-values are 0.41, 1, 0.98 and 0.04: Fisher's X = 8.3 on 8 dof, p = 0.41).
+    diagnosis::DiagnoseOptions opt;
+    const auto d = diagnosis::diagnose(c.model, rec, opt);
+    REQUIRE(d.verdict == "missing_physics");
+    // Demanding that the combination passes at 49 %: p = 0.41 fails, so the same finding is
+    // no longer confident, and the report says what is left; the finding itself does not change.
+    opt.confidence_level = 0.49;
+    const auto strict = diagnosis::diagnose(c.model, rec, opt);
+    CHECK(strict.verdict == "partly_explained");
+    REQUIRE(!strict.findings.empty());
+    CHECK(strict.findings[0].effect == "windage");
+    CHECK(!strict.remaining.empty());
+    // The confidence level cannot be laxer than the level at which a mismatch is claimed.
+    opt.confidence_level = 0.005;
+    CHECK_THROWS_WITH(diagnosis::diagnose(c.model, rec, opt), Catch::Contains("confidence_level"));
+}
+
 TEST_CASE("diagnose finds nothing in data without a concealed effect", "[diagnosis]") {
     const auto c = transfer();
     for (unsigned seed : {21u, 22u, 23u}) {

@@ -437,4 +437,12 @@ StructureTest structure(const Channel& c, int permutations, std::uint64_t seed) 
     return t;
 }
 
+double combined_p(const std::vector<double>& p_values) {
+    if (p_values.empty()) return 1;
+    double statistic = 0;
+    for (double p : p_values) statistic -= 2 * std::log(std::clamp(p, 1e-300, 1.0));
+    const boost::math::chi_squared chi2(2.0 * static_cast<double>(p_values.size()));
+    return boost::math::cdf(boost::math::complement(chi2, statistic));
+}
+
 }  // namespace gearloss::diagnosis::adequacy

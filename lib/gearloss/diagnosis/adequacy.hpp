@@ -70,4 +70,10 @@ struct StructureTest {
 };
 StructureTest structure(const Channel& c, int permutations = 199, std::uint64_t seed = 20261123);
 
+// Fisher's (1932) combination of p-values: -2 sum ln p against chi-squared with 2k dof.
+// Exact for independent tests; the tests of one campaign are positively dependent, which
+// makes it reject somewhat more often than its level (on the independent null campaigns of
+// docs/diagnosis-proof.md it added no false alarm at 1 %).
+double combined_p(const std::vector<double>& p_values);
+
 }  // namespace gearloss::diagnosis::adequacy

@@ -33,6 +33,8 @@ void DiagnoseOptions::validate() const {
     if (!(loss_uncertainty >= 0 && loss_uncertainty <= 0.5)) bad("--loss-uncertainty", "give 0 to 50 % (0: estimated)");
     if (!(temp_uncertainty >= 0 && temp_uncertainty <= 20)) bad("--temp-uncertainty", "give 0 to 20 K (0: estimated)");
     if (!(adequacy_level > 0 && adequacy_level < 0.5)) bad("adequacy_level", "must be within 0..0.5");
+    if (!(confidence_level >= adequacy_level && confidence_level < 0.5))
+        bad("confidence_level", "must be within adequacy_level..0.5");
 }
 
 Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const DiagnoseOptions& opt) {
@@ -135,7 +137,9 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
 
     // Is what is left noise? Declared or estimated noise, goodness of fit and structure.
     if (opt.progress) opt.progress("diagnose: testing what is left against the noise");
-    const Adequacy ad = assess(E, pf, base, S.fitted, opt);
+    // A finding is named with confidence only when what it leaves passes the combined test at
+    // the (stricter) confidence level; a mismatch without findings is claimed at the adequacy level.
+    const Adequacy ad = assess(E, pf, base, S.fitted, opt, d.findings.empty() ? opt.adequacy_level : opt.confidence_level);
     auto channel = [](const adequacy::NoiseEstimate& n, const adequacy::FitTest& f, const adequacy::StructureTest& st) {
         Diagnosis::Channel c;
         c.noise = n.sigma;

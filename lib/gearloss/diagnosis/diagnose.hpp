@@ -39,8 +39,15 @@ struct DiagnoseOptions {
     // Declared measurement noise (one standard deviation): the loss as a share of the recorded
     // loss, the oil temperature in K. 0: estimated from the recordings (adequacy.hpp).
     double loss_uncertainty = 0, temp_uncertainty = 0;
-    // Level of each adequacy test (goodness of fit and structure, per channel).
+    // Level of each adequacy test (goodness of fit and structure, per channel), and of their
+    // combination for the claim that there is a mismatch at all: the null model is rejected
+    // only on strong evidence.
     double adequacy_level = 0.01;
+    // Level of the tests' combination (Fisher 1932) that what the findings leave must pass for
+    // them to be named with confidence (`missing_physics`; else `partly_explained`). Laxer
+    // than adequacy_level on purpose: naming a cause demands that nothing systematic is left,
+    // and several tests each just short of failing are a remainder, not noise.
+    double confidence_level = 0.05;
     // Progress messages (a terminal shows them); called from the calling thread only.
     std::function<void(const std::string&)> progress;
     // Candidate scans stay where the model is physical at every recorded point (effects.hpp

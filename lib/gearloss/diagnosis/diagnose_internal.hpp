@@ -208,10 +208,15 @@ struct Adequacy {
     adequacy::NoiseEstimate noise_loss, noise_temp;   // relative; K
     adequacy::FitTest fit_loss, fit_temp;
     adequacy::StructureTest structure_loss, structure_temp;
+    double combined_p = 1;  // Fisher's combination of the tests' p-values
     bool adequate = true;
     std::string text;  // what is left and where, when not adequate
 };
-Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted, const DiagnoseOptions& opt);
+// Each test at opt.adequacy_level, and Fisher's combination of the tests' p-values
+// (adequacy::combined_p) at `combined_level`: it sees a remainder that leaves several tests
+// each short of failing.
+Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted, const DiagnoseOptions& opt,
+                double combined_level);
 
 // Where the mismatch lives: per channel, mean, RMSE, and its dependence on
 // speed, torque and oil viscosity.

@@ -37,7 +37,9 @@ ChannelStats channel_rmse(const Engine& E, const Pred& p, const Hypothesis& h) {
 
 // What the hypothesis leaves, per channel, against the noise: declared, or estimated from
 // the recordings (replicates, neighbour differences); goodness of fit and structure.
-Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted, const DiagnoseOptions& opt) {
+Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted, const DiagnoseOptions& opt,
+                double combined_level) {
+    const double level = opt.adequacy_level;
     Adequacy A;
     adequacy::Channel cl, ct;
     std::vector<int> oil_l, oil_t;  // the oil of each channel entry (multi-oil campaigns)
@@ -102,8 +104,8 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
         }
         return n;
     };
-    const double level = opt.adequacy_level;
     std::vector<std::string> left;
+    std::vector<double> p_values;
     auto test = [&](const adequacy::Channel& c, const std::vector<int>& oil, adequacy::NoiseEstimate& n, adequacy::FitTest& fit,
                     adequacy::StructureTest& st, double declared, double floor, const char* what, double unit_scale,
                     const char* unit) {
@@ -113,6 +115,8 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
         st = adequacy::structure(c, 999);
         double ms = 0;
         for (double r : c.residual) ms += r * r / c.residual.size();
+        if (n.known()) p_values.push_back(fit.p_value);
+        p_values.push_back(st.p_value);
         const bool bad_fit = n.known() && fit.p_value < level, bad_structure = st.p_value < level;
         if (!bad_fit && !bad_structure) return;
         A.adequate = false;
@@ -128,6 +132,18 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
     test(cl, oil_l, A.noise_loss, A.fit_loss, A.structure_loss, opt.loss_uncertainty, kFloorLoss, "loss", 100.0, "%");
     if (E.has_temperature())
         test(ct, oil_t, A.noise_temp, A.fit_temp, A.structure_temp, opt.temp_uncertainty, kFloorTemp, "oil temperature", 1.0, "K");
+    if (p_values.size() > 1) {
+        A.combined_p = adequacy::combined_p(p_values);
+        if (A.adequate && A.combined_p < combined_level) {
+            A.adequate = false;
+            left.push_back(fmt::format("no single test fails at {:g}, but together they do (Fisher's combination of {} tests, "
+                                       "p = {:.2g}): loss fit p = {:.2g}, structure p = {:.2g}{}",
+                                       combined_level, p_values.size(), A.combined_p, A.fit_loss.p_value, A.structure_loss.p_value,
+                                       E.has_temperature() ? fmt::format("; oil temperature fit p = {:.2g}, structure p = {:.2g}",
+                                                                         A.fit_temp.p_value, A.structure_temp.p_value)
+                                                           : std::string()));
+        }
+    }
     for (const auto& s : left) A.text += (A.text.empty() ? "" : "\n") + s;
     return A;
 }
