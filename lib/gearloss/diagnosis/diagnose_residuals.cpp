@@ -106,6 +106,7 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
     };
     std::vector<std::string> left;
     std::vector<double> p_values;
+    std::vector<std::string> tested;  // "loss fit p = 0.03", ... for the combined test's sentence
     auto test = [&](const adequacy::Channel& c, const std::vector<int>& oil, adequacy::NoiseEstimate& n, adequacy::FitTest& fit,
                     adequacy::StructureTest& st, double declared, double floor, const char* what, double unit_scale,
                     const char* unit) {
@@ -115,8 +116,12 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
         st = adequacy::structure(c, 999);
         double ms = 0;
         for (double r : c.residual) ms += r * r / c.residual.size();
-        if (n.known()) p_values.push_back(fit.p_value);
+        if (n.known()) {
+            p_values.push_back(fit.p_value);
+            tested.push_back(fmt::format("{} fit p = {:.2g}", what, fit.p_value));
+        }
         p_values.push_back(st.p_value);
+        tested.push_back(fmt::format("{} structure p = {:.2g}", what, st.p_value));
         const bool bad_fit = n.known() && fit.p_value < level, bad_structure = st.p_value < level;
         if (!bad_fit && !bad_structure) return;
         A.adequate = false;
@@ -136,12 +141,11 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
         A.combined_p = adequacy::combined_p(p_values);
         if (A.adequate && A.combined_p < combined_level) {
             A.adequate = false;
+            std::string list;
+            for (const auto& t : tested) list += (list.empty() ? "" : ", ") + t;
             left.push_back(fmt::format("no single test fails at {:g}, but together they do (Fisher's combination of {} tests, "
-                                       "p = {:.2g}): loss fit p = {:.2g}, structure p = {:.2g}{}",
-                                       combined_level, p_values.size(), A.combined_p, A.fit_loss.p_value, A.structure_loss.p_value,
-                                       E.has_temperature() ? fmt::format("; oil temperature fit p = {:.2g}, structure p = {:.2g}",
-                                                                         A.fit_temp.p_value, A.structure_temp.p_value)
-                                                           : std::string()));
+                                       "p = {:.2g} < {:g}): {}",
+                                       level, p_values.size(), A.combined_p, combined_level, list));
         }
     }
     for (const auto& s : left) A.text += (A.text.empty() ? "" : "\n") + s;
