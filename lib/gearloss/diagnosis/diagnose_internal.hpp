@@ -234,7 +234,7 @@ struct CampaignOils {
     std::vector<solver::Model> models;  // the case with each oil (io::replace_oil)
     std::vector<std::string> names;  // as written in the column
     std::vector<int> of_point;       // per recorded point
-    std::vector<char> tested;        // per oil: some point was recorded with it
+    std::vector<char> tested;        // per oil: some usable point was recorded with it (mark_tested)
     int count_tested() const;
 };
 CampaignOils campaign_oils(const solver::Model& model, const Recordings& rec);

@@ -32,8 +32,9 @@ CampaignOils campaign_oils(const solver::Model& model, const Recordings& rec) {
             const fs::path written(r.oil);
             const fs::path path = written.is_absolute() ? written : dir / written;
             std::error_code ec;
-            const std::string key = fs::weakly_canonical(path, ec).string();
-            const auto same = by_path.find(ec ? path.string() : key);
+            const fs::path canonical = fs::weakly_canonical(path, ec);
+            const std::string key = ec ? path.string() : canonical.string();
+            const auto same = by_path.find(key);
             if (same != by_path.end()) {
                 it = index.emplace(r.oil, same->second).first;
             } else {
@@ -46,14 +47,12 @@ CampaignOils campaign_oils(const solver::Model& model, const Recordings& rec) {
                 c.models.push_back(std::move(m));
                 c.names.push_back(r.oil);
                 const int j = static_cast<int>(c.models.size()) - 1;
-                by_path.emplace(ec ? path.string() : key, j);
+                by_path.emplace(key, j);
                 it = index.emplace(r.oil, j).first;
             }
         }
         c.of_point.push_back(it->second);
     }
-    c.tested.assign(c.models.size(), 0);
-    for (int j : c.of_point) c.tested[static_cast<size_t>(j)] = 1;
     return c;
 }
 
