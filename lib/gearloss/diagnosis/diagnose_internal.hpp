@@ -117,6 +117,7 @@ public:
     double lo() const { return knots_.front(); }
     double hi() const { return knots_.back(); }
     const std::vector<double>& loss_at_knot(size_t k) const { return loss_[k]; }
+    const std::vector<double>& temp_at_knot(size_t k) const { return temp_[k]; }
     const std::vector<double>& knots() const { return knots_; }
 
 private:

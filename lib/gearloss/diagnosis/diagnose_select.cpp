@@ -11,11 +11,9 @@
 #include "gearloss/io/interrupt.hpp"
 
 namespace gearloss::diagnosis::detail {
-namespace {
 
-// The case with the accepted terms (and the flagged points of an unstabilised-test term).
 Hypothesis with_terms(const Hypothesis& neutral, const std::vector<Term>& terms, const std::vector<char>& flags,
-                      int skip = -1) {
+                      int skip) {
     Hypothesis h = neutral;
     for (size_t j = 0; j < terms.size(); ++j)
         if (static_cast<int>(j) != skip && terms[j].effect->apply) terms[j].effect->apply(h, terms[j].value);
@@ -30,7 +28,7 @@ Hypothesis with_terms(const Hypothesis& neutral, const std::vector<Term>& terms,
 // Whether e is already among the terms or excluded by one of them: another form of the same
 // axis, or the same effect for every oil and for one (per-oil copies of different oils
 // coexist); `skip`: a term being replaced.
-bool taken(const std::vector<Term>& terms, const Effect& e, int skip = -1) {
+bool taken(const std::vector<Term>& terms, const Effect& e, int skip) {
     for (size_t j = 0; j < terms.size(); ++j) {
         if (static_cast<int>(j) == skip) continue;
         const Effect& t = *terms[j].effect;
@@ -46,7 +44,7 @@ bool taken(const std::vector<Term>& terms, const Effect& e, int skip = -1) {
 // (after an addition); trial fits keep them, so that no trial gains flags it does not pay for.
 // kFailedNll when the combination cannot be evaluated (a trial is then rejected, not fatal).
 double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
-                     const DiagnoseOptions& opt, bool refit_flags, int skip = -1) {
+                     const DiagnoseOptions& opt, bool refit_flags, int skip) {
     double last = kFailedNll;
     for (int sweep = 0; sweep < 4; ++sweep) {
         for (size_t j = 0; j < terms.size(); ++j) {
@@ -72,7 +70,6 @@ double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Ter
     return last;
 }
 
-// A finding's before/after figures: the hypothesis without it (predictions pb) and with it (h).
 void record_fit(Finding& f, const Engine& E, const Pred& pb, const Hypothesis& without, const Hypothesis& h,
                 const CvResult& cv_without, const CvResult& cv_with) {
     const ChannelStats sb = channel_rmse(E, pb, without);
@@ -84,6 +81,8 @@ void record_fit(Finding& f, const Engine& E, const Pred& pb, const Hypothesis& w
     f.temp_rmse_before = sb.rmse_temp;
     f.temp_rmse_after = sa.rmse_temp;
 }
+
+namespace {
 
 int parameters_of(const std::vector<Term>& terms, const std::vector<char>& flags) {
     int k = 0;
@@ -124,7 +123,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
             if (tried >= 4 || !c.rejected.empty() || c.delta_bic < 0.5 * opt.bic_threshold) continue;
             const auto it = std::find_if(lib.begin(), lib.end(), [&](const Effect& x) { return x.id == c.effect; });
             if (it == lib.end() || it->kind == EffectKind::pointwise) continue;
-            if (taken(terms, *it, static_cast<int>(j))) continue;
+            if (&*it == terms[j].effect || taken(terms, *it, static_cast<int>(j))) continue;  // itself, or excluded
             ++tried;
             std::vector<Term> swapped = terms;
             swapped[j] = {&*it, c.value};
@@ -199,12 +198,15 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
     auto report = [&](const std::string& what) {
         if (opt.progress) opt.progress(what);
     };
+    std::vector<size_t> lead_partners;  // the first round's leader's best partners (select_pair)
     for (int round = 0; round < opt.max_findings; ++round) {
         const Pred pb = E.predict_checked(base, all);
         const double nll_base = E.score(base, pb, all).nll;
         std::vector<Fit> fits(lib.size());
         std::vector<Response> resp(lib.size());
         std::vector<double> dbic(lib.size(), kRejectedBic);
+        // A candidate judged on top of the accepted effects refitted with it: those values.
+        std::vector<std::vector<Term>> refitted(lib.size());
         for (size_t k = 0; k < lib.size(); ++k) {
             io::throw_if_interrupted();
             if (taken(terms, lib[k])) continue;
@@ -227,9 +229,17 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         // windage), which a candidate held against it cannot win back. Each is then judged on
         // top of the refitted others (its response, cross-validation and resamples).
         if (!terms.empty()) {
-            for (size_t r = 0; r < std::min<size_t>(order.size(), 4); ++r) {
-                const size_t k = order[r];
-                if (dbic[k] <= 0 || lib[k].kind == EffectKind::pointwise) continue;
+            // The leaders here, and in the second round the first leader's best partners on the
+            // pair screening: an effect the first one partly cancels shows little on top of it.
+            std::vector<size_t> joint_candidates(order.begin(), order.begin() + std::min<size_t>(order.size(), 4));
+            if (round == 1)
+                for (size_t k : lead_partners)
+                    if (std::find(joint_candidates.begin(), joint_candidates.end(), k) == joint_candidates.end() &&
+                        !taken(terms, lib[k]))
+                        joint_candidates.push_back(k);
+            for (size_t k : joint_candidates) {
+                if ((dbic[k] <= 0 && round != 1) || dbic[k] <= kRejectedBic || lib[k].kind == EffectKind::pointwise)
+                    continue;
                 report(fmt::format("diagnose: finding {}: {} fitted jointly with {} accepted", round + 1, lib[k].id,
                                    terms.size()));
                 std::vector<Term> joint = terms;
@@ -243,14 +253,23 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 const double dk = delta_bic(nll_base, fk, N);
                 if (dk > dbic[k]) {
                     dbic[k] = dk;
+                    joint.back().value = fk.value;
                     fits[k] = std::move(fk);
                     resp[k] = std::move(rk);
+                    refitted[k] = std::move(joint);
                 }
             }
             std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dbic[a] > dbic[b]; });
         }
-        if (round == 0)
+        if (round == 0) {
             for (size_t k : order) S.candidates.push_back({lib[k].id, fits[k].value, dbic[k], fits[k].failed});
+            report("diagnose: pairs of candidates");
+            if (select_pair(E, lib, neutral, {fits, resp, dbic, order, pb, nll_base}, opt, S, terms, lead_partners)) {
+                base = with_terms(neutral, terms, flags);
+                ++round;  // two findings: the next round looks for a third
+                continue;
+            }
+        }
         // Candidates over the BIC threshold, gated by cross-validation in BIC order.
         const CvResult cv0 = cross_validate(E, nullptr, pb, base);
         int chosen = -1;
@@ -334,7 +353,10 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         record_fit(f, E, pb, base, fits[chosen].h, cv0, cv_chosen);
         S.findings.push_back(f);
         S.cv_rmse_after = cv_chosen.rmse_loss;
-        terms.push_back({&e, fits[chosen].value});
+        // Taken with the accepted effects as refitted with it (a joint refit restarted from the
+        // values they had alone would creep along a valley of compensating parameters).
+        if (!refitted[chosen].empty()) terms = refitted[chosen];
+        else terms.push_back({&e, fits[chosen].value});
         if (e.kind == EffectKind::pointwise) flags = fits[chosen].h.unstabilised;
         // Joint refit, then: is every earlier effect still needed?
         report(fmt::format("diagnose: finding {}: {} — refitting {} effect(s) jointly", round + 1, e.id, terms.size()));

@@ -16,6 +16,42 @@ struct Selection {
     int fitted = 0;                      // parameters in h beyond the case
 };
 
+// The case with the accepted terms (and the flagged points of an unstabilised-test term);
+// `skip`: a term left out.
+Hypothesis with_terms(const Hypothesis& neutral, const std::vector<Term>& terms, const std::vector<char>& flags,
+                      int skip = -1);
+// Whether e is already among the terms or excluded by one of them (another form of its axis,
+// the same effect for every oil and for one); `skip`: a term being replaced.
+bool taken(const std::vector<Term>& terms, const Effect& e, int skip = -1);
+// Coordinate descent over the terms' parameters (kFailedNll when the combination cannot be
+// evaluated); the flagged points are chosen again only when `refit_flags`.
+double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
+                     const DiagnoseOptions& opt, bool refit_flags, int skip = -1);
+// A finding's before/after figures: without it (predictions pb) and with it (h).
+void record_fit(Finding& f, const Engine& E, const Pred& pb, const Hypothesis& without, const Hypothesis& h,
+                const CvResult& cv_without, const CvResult& cv_with);
+
+// The first round's candidates, as fitted alone on top of the case (diagnose_pairs.cpp).
+struct FirstRound {
+    const std::vector<Fit>& fits;
+    const std::vector<Response>& responses;
+    const std::vector<double>& delta_bic;
+    const std::vector<size_t>& order;  // best first
+    const Pred& base_pred;
+    double base_nll;
+};
+
+// Two effects taken together when no single one leads to them: effects that partly cancel
+// (a negative sensor offset under a real drag) or that another single candidate imitates
+// better than either does alone. Every pair is screened on the responses, the leading pair
+// refitted with the model; it is taken when it beats the best pair forward selection can
+// reach by the BIC threshold and each member is needed on top of the other (BIC, cross-
+// validation, stability). On success the two findings are in S and `terms` holds them.
+// `lead_partners`: the leading candidate's best partners on the screening, for the next
+// round's joint fits (a partner that the lead, fitted alone, partly cancels ranks low there).
+bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothesis& neutral, const FirstRound& r,
+                 const DiagnoseOptions& opt, Selection& S, std::vector<Term>& terms, std::vector<size_t>& lead_partners);
+
 Selection select_effects(const Engine& E, const std::vector<Effect>& candidates, const Hypothesis& neutral,
                          const DiagnoseOptions& opt);
 

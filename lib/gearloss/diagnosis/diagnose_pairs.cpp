@@ -1,0 +1,270 @@
+// diagnose: two effects taken together when forward selection cannot reach them. Forward
+// selection adds the best single effect first; two effects that partly cancel (a negative
+// torque-sensor offset under a real drag) leave no single effect worth adding, and two that
+// together imitate a third leave that third one as the best single. Every pair is screened
+// on an additive surrogate of the first round's responses, the leading pairs refitted with
+// the model, and a pair is taken only when it beats what forward selection can reach.
+#include <algorithm>
+#include <boost/math/tools/minima.hpp>
+#include <cmath>
+#include <fmt/format.h>
+#include <optional>
+#include <random>
+
+#include "gearloss/diagnosis/diagnose_select.hpp"
+#include "gearloss/io/interrupt.hpp"
+
+namespace gearloss::diagnosis::detail {
+namespace {
+
+struct PairFit {
+    size_t a = 0, b = 0;
+    double xa = 0, xb = 0, nll = kFailedNll;
+};
+
+// Two effects together approximated as the base plus each one's change, both responses built
+// at the same base: exact for effects that only add to the recorded loss (artefacts, drags at
+// a fixed oil temperature), first order where one's heat changes the other through the oil
+// temperature. It costs no model evaluation; the pairs it ranks first are refitted with the model.
+class PairSurrogate {
+public:
+    PairSurrogate(const Engine& E, const Response& a, const Response& b, const Pred& base, const Hypothesis& h)
+        : E_(E), a_(a), b_(b), base_(base), flagged_(h.unstabilised) {}
+
+    double nll(double xa, double xb, const std::vector<int>& idx) const {
+        return score(idx, [&](int i, double& La, double& Ta, double& Lb, double& Tb) {
+            a_.predict(xa, i, La, Ta);
+            b_.predict(xb, i, Lb, Tb);
+        });
+    }
+
+    // At knots of both responses: the model's own values, no interpolation (the screening of
+    // every pair stays a few additions per point and knot pair).
+    double nll_at_knots(size_t ka, size_t kb, const std::vector<int>& idx) const {
+        const auto &la = a_.loss_at_knot(ka), &ta = a_.temp_at_knot(ka);
+        const auto &lb = b_.loss_at_knot(kb), &tb = b_.temp_at_knot(kb);
+        return score(idx, [&](int i, double& La, double& Ta, double& Lb, double& Tb) {
+            La = la[i], Ta = ta[i], Lb = lb[i], Tb = tb[i];
+        });
+    }
+
+    // The best knot pair (a form: its alternative knot only).
+    PairFit grid(const std::vector<int>& idx) const {
+        const auto knots = [](const Response& r) {
+            std::vector<size_t> k;
+            for (size_t j = r.discrete() ? r.knots().size() - 1 : 0; j < r.knots().size(); ++j) k.push_back(j);
+            return k;
+        };
+        PairFit best;
+        for (size_t ka : knots(a_))
+            for (size_t kb : knots(b_)) {
+                const double v = nll_at_knots(ka, kb, idx);
+                if (v < best.nll) best = {0, 0, a_.knots()[ka], b_.knots()[kb], v};
+            }
+        return best;
+    }
+
+    // The best knot pair, then refined.
+    PairFit minimise(const std::vector<int>& idx) const { return refine(grid(idx), idx); }
+
+    // Coordinate minimisation (Brent) from a knot pair, between the neighbouring knots of each
+    // continuous parameter; a form stays the alternative form (its only fitted value).
+    PairFit refine(PairFit best, const std::vector<int>& idx) const {
+        const auto bracket = [](const Response& r, double x) {
+            const auto& k = r.knots();
+            const size_t at = static_cast<size_t>(std::lower_bound(k.begin(), k.end(), x) - k.begin());
+            return std::make_pair(k[at == 0 ? 0 : at - 1], k[std::min(at + 1, k.size() - 1)]);
+        };
+        for (int sweep = 0; sweep < 3; ++sweep) {
+            const double before = best.nll;
+            for (int axis = 0; axis < 2; ++axis) {
+                const Response& r = axis == 0 ? a_ : b_;
+                if (r.discrete()) continue;
+                const auto [lo, hi] = bracket(r, axis == 0 ? best.xa : best.xb);
+                std::uintmax_t iters = 40;
+                const auto [x, fx] = boost::math::tools::brent_find_minima(
+                    [&](double t) { return axis == 0 ? nll(t, best.xb, idx) : nll(best.xa, t, idx); }, lo, hi, 30,
+                    iters);
+                if (fx < best.nll) (axis == 0 ? best.xa : best.xb) = x, best.nll = fx;
+            }
+            if (before - best.nll < 1e-3) break;
+        }
+        return best;
+    }
+
+private:
+    template <class Predict>
+    double score(const std::vector<int>& idx, Predict&& predict) const {
+        double rP = 0, rT = 0;
+        int nP = 0, nT = 0;
+        for (int i : idx) {
+            const Obs& o = E_.obs()[i];
+            double La, Ta, Lb, Tb;
+            predict(i, La, Ta, Lb, Tb);
+            const double eP = (o.loss - (La + Lb - base_.loss[i])) / o.scale;
+            rP += eP * eP;
+            ++nP;
+            if (o.T_evidence) {
+                const bool own = !flagged_.empty() && flagged_[i];
+                const double eT = own ? 0.0 : o.T_oil - (Ta + Tb - base_.temp[i]);
+                rT += eT * eT;
+                ++nT;
+            }
+        }
+        return profiled(rP, nP, kFloorLoss) + profiled(rT, nT, kFloorTemp);
+    }
+
+    const Engine& E_;
+    const Response &a_, &b_;
+    const Pred& base_;
+    std::vector<char> flagged_;
+};
+
+// Whether a candidate can enter a pair: fitted, with a response, acting on these points.
+bool pairable(const Effect& e, const Fit& f, const Response& r) {
+    return e.kind != EffectKind::pointwise && f.failed.empty() && r.failed().empty() && !r.knots().empty() && !r.flat();
+}
+
+}  // namespace
+
+bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothesis& neutral, const FirstRound& r,
+                 const DiagnoseOptions& opt, Selection& S, std::vector<Term>& terms, std::vector<size_t>& lead_partners) {
+    lead_partners.clear();
+    if (opt.max_findings < 2 || r.order.empty()) return false;
+    const size_t lead = r.order.front();
+    const auto& all = E.all();
+    const size_t N = n_observations(E, all);
+    const double lnN = std::log(static_cast<double>(N));
+    std::vector<size_t> eligible;
+    for (size_t k = 0; k < lib.size(); ++k)
+        if (pairable(lib[k], r.fits[k], r.responses[k])) eligible.push_back(k);
+    const bool forward_stops = r.delta_bic[lead] < opt.bic_threshold;
+    // Occam: a leading effect that leaves only noise is the explanation; no pair is sought.
+    if (!forward_stops) {
+        const Hypothesis& h = r.fits[lead].h;
+        if (assess(E, E.predict_checked(h, all), h, 1, opt, opt.confidence_level).adequate) return false;
+    }
+    // Screen every pair on the surrogate.
+    std::vector<PairFit> screened;
+    for (size_t i = 0; i < eligible.size(); ++i)
+        for (size_t j = i + 1; j < eligible.size(); ++j) {
+            io::throw_if_interrupted();
+            const size_t a = eligible[i], b = eligible[j];
+            if (taken({{&lib[a], 0.0}}, lib[b])) continue;  // two forms of one axis, or an oil's copy of the other
+            PairFit p = PairSurrogate(E, r.responses[a], r.responses[b], r.base_pred, neutral).grid(all);
+            p.a = a, p.b = b;
+            screened.push_back(p);
+        }
+    if (screened.empty()) return false;
+    const auto by_nll = [](const PairFit& x, const PairFit& y) { return x.nll < y.nll; };
+    std::sort(screened.begin(), screened.end(), by_nll);
+    // The leading knot pairs refined between the knots.
+    for (size_t c = 0; c < std::min<size_t>(screened.size(), 8); ++c) {
+        PairFit& p = screened[c];
+        const PairFit q = PairSurrogate(E, r.responses[p.a], r.responses[p.b], r.base_pred, neutral).refine(p, all);
+        p.xa = q.xa, p.xb = q.xb, p.nll = q.nll;
+    }
+    std::sort(screened.begin(), screened.begin() + static_cast<long>(std::min<size_t>(screened.size(), 8)), by_nll);
+    for (const auto& p : screened)
+        if ((p.a == lead || p.b == lead) && lead_partners.size() < 2) lead_partners.push_back(p.a == lead ? p.b : p.a);
+    const PairFit& best = screened.front();
+    const bool holds_lead = best.a == lead || best.b == lead;
+    // Forward selection reaches a pair holding the leading single candidate: leave it to it.
+    if (holds_lead && !forward_stops) return false;
+    // The surrogate's pair must promise at least the threshold for each of its two parameters.
+    if (2.0 * (r.base_nll - best.nll) - 2.0 * lnN < 2.0 * opt.bic_threshold) return false;
+
+    const auto refit = [&](const PairFit& p, std::vector<Term>& t) {
+        t = {{&lib[p.a], p.xa}, {&lib[p.b], p.xb}};
+        std::vector<char> none;
+        return refit_jointly(E, neutral, t, none, opt, false);
+    };
+    std::vector<Term> pair_terms;
+    const double nll_pair = refit(best, pair_terms);
+    if (nll_pair >= kFailedNll) return false;
+    double nll_forward = r.base_nll;  // forward selection stops: it reaches the case alone (no parameter)
+    int k_forward = 0;
+    if (!forward_stops) {
+        // The best pair forward selection can reach: the leading candidate with its best partner.
+        const auto q = std::find_if(screened.begin(), screened.end(),
+                                    [&](const PairFit& p) { return p.a == lead || p.b == lead; });
+        std::vector<Term> q_terms;
+        nll_forward = q == screened.end() ? r.fits[lead].nll : refit(*q, q_terms);
+        k_forward = q == screened.end() ? 1 : 2;
+        if (nll_forward >= kFailedNll) return false;
+    }
+    const double margin = 2.0 * (nll_forward - nll_pair) - (2 - k_forward) * lnN;
+    if (margin < opt.bic_threshold) return false;
+
+    // Each member on top of the other: BIC, cross-validated gain, and the share of resamples
+    // in which this pair beats the other leading pairs (on the surrogate).
+    std::vector<Finding> found;
+    std::vector<size_t> contenders;
+    for (size_t c = 0; c < std::min<size_t>(screened.size(), 4); ++c) contenders.push_back(c);
+    std::vector<int> wins(contenders.size(), 0);
+    for (int bs = 0; bs < opt.bootstrap; ++bs) {
+        io::throw_if_interrupted();
+        std::mt19937_64 rng(opt.seed + 6151u * static_cast<unsigned>(bs) + 3u);
+        std::uniform_int_distribution<int> pick(0, static_cast<int>(all.size()) - 1);
+        std::vector<int> idx(all.size());
+        for (auto& i : idx) i = pick(rng);
+        size_t winner = 0;
+        double low = kFailedNll;
+        for (size_t c : contenders) {
+            const PairFit& p = screened[c];
+            const double v = PairSurrogate(E, r.responses[p.a], r.responses[p.b], r.base_pred, neutral).minimise(idx).nll;
+            if (v < low) low = v, winner = c;
+        }
+        ++wins[winner];
+    }
+    double stability = static_cast<double>(wins[0]) / opt.bootstrap;
+    for (int m = 0; m < 2; ++m) {
+        const Effect& e = *pair_terms[static_cast<size_t>(m)].effect;
+        std::vector<char> none;
+        const Hypothesis others = with_terms(neutral, pair_terms, none, m);
+        const Pred po = E.predict_checked(others, all);
+        const double nll_o = E.score(others, po, all).nll;
+        Response rm;
+        const Fit fm = E.fit(e, others, &rm);
+        if (!fm.failed.empty()) return false;
+        const double dbm = delta_bic(nll_o, fm, N);
+        const CvResult cv0 = cross_validate(E, nullptr, po, others), cvm = cross_validate(E, &rm, po, others);
+        if (dbm < opt.bic_threshold || cv0.nll - cvm.nll < opt.cv_margin) return false;
+        Finding f;
+        f.effect = e.id;
+        const Effect& partner = *pair_terms[static_cast<size_t>(1 - m)].effect;
+        f.description = e.description + "; found together with " + partner.id +
+                        ": neither alone accounts for the mismatch, the two fitted jointly do";
+        f.parameter = {e.parameter, e.unit, pair_terms[static_cast<size_t>(m)].value, fm.uncertainty, e.form, e.case_form};
+        f.delta_bic = dbm;
+        f.cv_gain = cv0.nll - cvm.nll;
+        // Near-tied pairs that keep the partner: the effect they swap in is an equivalent of this one.
+        double shared = 0;
+        for (size_t c = 1; c < contenders.size(); ++c) {
+            const PairFit& p = screened[c];
+            const Effect* pa = &lib[p.a];
+            const Effect* pb = &lib[p.b];
+            const Effect* other = pa == &partner ? pb : pb == &partner ? pa : nullptr;
+            if (!other || 2.0 * (p.nll - best.nll) > opt.ambiguity_bic) continue;
+            f.equivalent.push_back(other->id);
+            shared += static_cast<double>(wins[c]) / opt.bootstrap;
+            if (f.separating_measurement.empty())
+                f.separating_measurement = separating_measurement(E.signature(e, others), E.signature(*other, others));
+        }
+        f.stability = stability;
+        if (stability < opt.stability_min && (f.equivalent.empty() || stability + shared < 0.8)) return false;
+        record_fit(f, E, po, others, fm.h, cv0, cvm);
+        found.push_back(std::move(f));
+    }
+    if (found[1].delta_bic > found[0].delta_bic) std::swap(found[0], found[1]);
+    for (auto& f : found) S.findings.push_back(std::move(f));
+    S.warnings.push_back(fmt::format(
+        "{} and {} were fitted as a pair: together better than {} by a BIC of {:.1f} (an effect fitted alone cannot "
+        "reach them: they partly cancel, or another effect imitates their sum)",
+        pair_terms[0].effect->id, pair_terms[1].effect->id,
+        forward_stops ? std::string("the case without an effect") : lib[lead].id + " with its best partner", margin));
+    terms = pair_terms;
+    return true;
+}
+
+}  // namespace gearloss::diagnosis::detail
