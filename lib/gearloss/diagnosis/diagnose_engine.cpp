@@ -125,23 +125,7 @@ Pred Engine::predict_checked(const Hypothesis& h, const std::vector<int>& idx) c
 }
 
 Score Engine::score(const Hypothesis& h, const Pred& p, const std::vector<int>& idx) const {
-    double rP = 0, rT = 0;
-    Score s;
-    for (int i : idx) {
-        const Obs& o = obs_[i];
-        const double eP = (o.loss - p.loss[i]) / o.scale;
-        rP += eP * eP;
-        ++s.nP;
-        if (o.T_evidence) {
-            // A point flagged unstabilised has its own temperature parameter: residual 0.
-            const bool own = !h.unstabilised.empty() && h.unstabilised[i];
-            const double eT = own ? 0.0 : o.T_oil - p.temp[i];
-            rT += eT * eT;
-            ++s.nT;
-        }
-    }
-    s.nll = profiled(rP, s.nP, kFloorLoss) + profiled(rT, s.nT, kFloorTemp);
-    return s;
+    return score_points(obs_, h.unstabilised, idx, [&](int i, double& L, double& T) { L = p.loss[i], T = p.temp[i]; });
 }
 
 double Engine::nll(const Hypothesis& h, const std::vector<int>& idx, int tid, std::string* failure) const {

@@ -110,24 +110,7 @@ void Response::predict(double x, int i, double& loss, double& temp) const {
 }
 
 double Response::nll(double x, const std::vector<int>& idx) const {
-    double rP = 0, rT = 0;
-    int nP = 0, nT = 0;
-    const auto& flagged = base_->unstabilised;
-    for (int i : idx) {
-        const Obs& o = E_->obs()[i];
-        double L, T;
-        predict(x, i, L, T);
-        const double eP = (o.loss - L) / o.scale;
-        rP += eP * eP;
-        ++nP;
-        if (o.T_evidence) {
-            const bool own = !flagged.empty() && flagged[i];
-            const double eT = own ? 0.0 : o.T_oil - T;
-            rT += eT * eT;
-            ++nT;
-        }
-    }
-    return profiled(rP, nP, kFloorLoss) + profiled(rT, nT, kFloorTemp);
+    return score_points(E_->obs(), base_->unstabilised, idx, [&](int i, double& L, double& T) { predict(x, i, L, T); }).nll;
 }
 
 std::pair<double, double> Response::minimise(const std::vector<int>& idx) const {

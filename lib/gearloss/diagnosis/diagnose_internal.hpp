@@ -90,6 +90,32 @@ std::pair<double, double> robust_centre_scale(std::vector<double> v, double floo
 // Negative log-likelihood of n residuals with their variance profiled out (floored).
 double profiled(double rss, int n, double floor);
 
+// The score of predictions at the points idx (with repeats): the loss residual relative to
+// each point's scale, the oil temperature where it is equilibrium evidence (a point flagged
+// unstabilised has its own temperature: residual 0), each channel's variance profiled out.
+// `predict(i, loss, temp)` gives point i's prediction: the model's, a response's, or a sum.
+template <class Predict>
+Score score_points(const std::vector<Obs>& obs, const std::vector<char>& flagged, const std::vector<int>& idx,
+                   Predict&& predict) {
+    double rP = 0, rT = 0;
+    Score s;
+    for (int i : idx) {
+        const Obs& o = obs[i];
+        double L, T;
+        predict(i, L, T);
+        const double eP = (o.loss - L) / o.scale;
+        rP += eP * eP;
+        ++s.nP;
+        if (o.T_evidence) {
+            const double eT = !flagged.empty() && flagged[i] ? 0.0 : o.T_oil - T;
+            rT += eT * eT;
+            ++s.nT;
+        }
+    }
+    s.nll = profiled(rP, s.nP, kFloorLoss) + profiled(rT, s.nT, kFloorTemp);
+    return s;
+}
+
 class Engine;
 
 // The per-point predictions of one effect along its parameter, everything else held at

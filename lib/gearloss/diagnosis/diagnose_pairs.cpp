@@ -93,31 +93,21 @@ public:
     }
 
 private:
+    // The surrogate at point i: the base plus each effect's change.
     template <class Predict>
     double score(const std::vector<int>& idx, Predict&& predict) const {
-        double rP = 0, rT = 0;
-        int nP = 0, nT = 0;
-        for (int i : idx) {
-            const Obs& o = E_.obs()[i];
-            double La, Ta, Lb, Tb;
-            predict(i, La, Ta, Lb, Tb);
-            const double eP = (o.loss - (La + Lb - base_.loss[i])) / o.scale;
-            rP += eP * eP;
-            ++nP;
-            if (o.T_evidence) {
-                const bool own = !flagged_.empty() && flagged_[i];
-                const double eT = own ? 0.0 : o.T_oil - (Ta + Tb - base_.temp[i]);
-                rT += eT * eT;
-                ++nT;
-            }
-        }
-        return profiled(rP, nP, kFloorLoss) + profiled(rT, nT, kFloorTemp);
+        return score_points(E_.obs(), flagged_, idx, [&](int i, double& L, double& T) {
+                   double La, Ta, Lb, Tb;
+                   predict(i, La, Ta, Lb, Tb);
+                   L = La + Lb - base_.loss[i];
+                   T = Ta + Tb - base_.temp[i];
+               }).nll;
     }
 
     const Engine& E_;
     const Response &a_, &b_;
     const Pred& base_;
-    std::vector<char> flagged_;
+    const std::vector<char>& flagged_;  // the base hypothesis' flagged points (outlives the surrogate)
 };
 
 // Whether a candidate can enter a pair: fitted, with a response, acting on these points.
