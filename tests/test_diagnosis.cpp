@@ -264,5 +264,13 @@ TEST_CASE("the calibrated config reproduces the recordings", "[diagnosis]") {
     const auto c2 = io::load_case(out);
     std::filesystem::remove(out);
     CHECK(c2.model.mechanisms.at("auxiliary").parameter("power") == Approx(d.findings[0].parameter.value).epsilon(1e-5));
-    CHECK(diagnosis::diagnose(c2.model, rec).verdict == "no_significant_mismatch");
+    // The noise synth put in is known (1.5 % on loss, 0.4 K): declared, the verdict does not
+    // hang on how well 20 points estimate it (their neighbour differences give 0.67 % for this
+    // seed, one campaign in a hundred, which the exact test then rightly calls a remainder).
+    diagnosis::DiagnoseOptions known_noise;
+    known_noise.loss_uncertainty = diagnosis::SynthOptions{}.noise_loss;
+    known_noise.temp_uncertainty = diagnosis::SynthOptions{}.noise_temp;
+    const auto d2 = diagnosis::diagnose(c2.model, rec, known_noise);
+    INFO(d2.summary);
+    CHECK(d2.verdict == "no_significant_mismatch");
 }

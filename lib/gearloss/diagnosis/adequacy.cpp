@@ -7,9 +7,11 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/fisher_f.hpp>
 #include <cmath>
+#include <Eigen/SparseCore>
 #include <cstddef>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <numeric>
 #include <random>
 #include <set>
@@ -23,9 +25,20 @@ using Index = std::vector<std::size_t>;
 
 // 1 / Phi^-1(3/4): makes the median of |e| a consistent estimate of sigma for Gaussian e.
 constexpr double mad_consistency = 1.4826;
-// Gaussian efficiency of the MAD (Rousseeuw & Croux (1993)): the scale is worth as much as a
-// standard deviation from 37 % as many values, which is what its dof has to say.
-constexpr double mad_efficiency = 0.37;
+// Huber's (1981, sec. 5.4) "proposal 2" scale: the root of mean(min(e^2, (c s)^2)) = kappa s^2,
+// kappa = E[min(Z^2, c^2)] for a standard normal Z (consistency). With c = 2 a value beyond
+// 2 s counts as 2 s, so a few points off the rest (a step, a band, an outlier) move the scale
+// by a bounded amount (about a fifth of the values may be such before it breaks down), while
+// for Gaussian values it is worth a standard deviation from about 88 % as many (the median
+// absolute value: 37 %, Rousseeuw & Croux (1993), and biased upward by 12 % on 7 values). That efficiency is its dof.
+constexpr double huber_c = 2.0;
+constexpr double huber_efficiency = 0.88;
+
+double huber_kappa() {
+    const double c = huber_c, phi = std::exp(-0.5 * c * c) / std::sqrt(2 * M_PI);
+    const double tail = 0.5 * std::erfc(c / std::sqrt(2.0));  // P(Z > c)
+    return std::erf(c / std::sqrt(2.0)) - 2 * c * phi + 2 * c * c * tail;
+}
 
 // A coordinate is either absent (empty) or one value per point; anything else is a caller
 // error. Non-finite values would make the sorts and medians below undefined, so they are too.
@@ -56,11 +69,27 @@ double median_of(std::vector<double> v) {
 }
 
 // Robust scale of values that have zero mean under the null: about zero, not about their
-// median, since a common shift is structure and not noise.
+// median, since a common shift is structure and not noise. Huber's proposal 2 by fixed-point
+// iteration from the median absolute value (a contraction for c = 2; converged to 1e-10).
 double robust_scale(const std::vector<double>& e) {
+    if (e.empty()) return 0;
     std::vector<double> a(e.size());
     std::transform(e.begin(), e.end(), a.begin(), [](double x) { return std::abs(x); });
-    return mad_consistency * median_of(std::move(a));
+    double s = mad_consistency * median_of(a);
+    double ms = 0;
+    for (double x : a) ms += x * x / static_cast<double>(a.size());
+    if (!(s > 0)) s = std::sqrt(ms);  // more than half the values zero
+    if (!(s > 0)) return 0;
+    static const double kappa = huber_kappa();
+    for (int it = 0; it < 200; ++it) {
+        double w = 0;
+        for (double x : a) w += std::min(x * x, huber_c * huber_c * s * s);
+        const double next = std::sqrt(w / (static_cast<double>(a.size()) * kappa));
+        const bool done = std::abs(next - s) <= 1e-10 * s;
+        s = next;
+        if (done) break;
+    }
+    return s;
 }
 
 // `idx` sorted by x, ties by index (a stable order, so results do not depend on the sort).
@@ -130,10 +159,13 @@ bool replicate_noise(const Channel& c, double rel_tol, NoiseEstimate& out) {
     return true;
 }
 
-// One pseudo-residual and the contrast it belongs to (see grid_pseudo_residuals).
+// One pseudo-residual: its value, the contrast it belongs to (see grid_pseudo_residuals) and
+// its coefficients on the residuals (value = sum of coefficient x residual), from which the
+// estimate's degrees of freedom follow (effective_dof).
 struct Pseudo {
     double value;
     std::array<int, 4> key;  // axis, level ids of the left, centre and right points
+    std::vector<std::pair<std::size_t, double>> row;
 };
 
 // 2. Pseudo-residuals of Gasser et al. (1986) along one axis: within each line (a level of the
@@ -153,8 +185,9 @@ void line_pseudo_residuals(const Channel& c, const std::vector<double>& x, const
                 wa = (x[b] - x[i]) / span;
                 wb = (x[i] - x[a]) / span;
             }
-            const double e = (wa * c.residual[a] + wb * c.residual[b] - c.residual[i]) / std::sqrt(wa * wa + wb * wb + 1);
-            out.push_back({e, {axis, x_level[a], x_level[i], x_level[b]}});
+            const double norm = std::sqrt(wa * wa + wb * wb + 1);
+            const double e = (wa * c.residual[a] + wb * c.residual[b] - c.residual[i]) / norm;
+            out.push_back({e, {axis, x_level[a], x_level[i], x_level[b]}, {{a, wa / norm}, {b, wb / norm}, {i, -1 / norm}}});
         }
     }
 }
@@ -177,21 +210,25 @@ std::vector<Pseudo> grid_pseudo_residuals(const Channel& c, double rel_tol) {
 // puts 18 of the 38 pseudo-residuals of a 5 x 6 grid off zero, and a median cannot stand
 // half of them (+50 % on sigma). Likewise for a step of one torque level. An offset of only
 // part of a level's torques is not common to all lines and stays a (bounded) contamination.
-// Returns the number of contrasts removed (each costs one dof).
-int remove_common_contrasts(std::vector<Pseudo>& p) {
+// (Each removal costs one dof, which effective_dof sees in the rows.)
+void remove_common_contrasts(std::vector<Pseudo>& p) {
     std::map<std::array<int, 4>, std::vector<std::size_t>> groups;
     for (std::size_t j = 0; j < p.size(); ++j) groups[p[j].key].push_back(j);
-    int removed = 0;
     for (const auto& [key, members] : groups) {
         if (members.size() < 2) continue;
-        const double m = static_cast<double>(members.size());
+        const double m = static_cast<double>(members.size()), k = std::sqrt(m / (m - 1));
         double mean = 0;
-        for (std::size_t j : members) mean += p[j].value;
-        mean /= m;
-        for (std::size_t j : members) p[j].value = (p[j].value - mean) * std::sqrt(m / (m - 1));
-        ++removed;
+        std::vector<std::pair<std::size_t, double>> mean_row;
+        for (std::size_t j : members) {
+            mean += p[j].value / m;
+            for (auto [i, w] : p[j].row) mean_row.emplace_back(i, w / m);
+        }
+        for (std::size_t j : members) {
+            p[j].value = (p[j].value - mean) * k;
+            for (auto& [i, w] : p[j].row) w *= k;
+            for (auto [i, w] : mean_row) p[j].row.emplace_back(i, -k * w);
+        }
     }
-    return removed;
 }
 
 // Average ranks of x scaled to [0, 1] (all 0 when absent or constant): the plane in which
@@ -213,9 +250,9 @@ std::vector<double> normalised_ranks(const std::vector<double>& x, std::size_t n
 
 // 2b. Scattered points (no level holds three): the difference of each point and its nearest
 // other point in the (speed, torque) rank plane, each unordered pair once.
-std::vector<double> nearest_neighbour_pseudo_residuals(const Channel& c) {
+std::vector<Pseudo> nearest_neighbour_pseudo_residuals(const Channel& c) {
     const std::size_t n = c.residual.size();
-    std::vector<double> e;
+    std::vector<Pseudo> e;
     if (c.speed.empty() && c.torque.empty()) return e;
     const auto u = normalised_ranks(c.speed, n), v = normalised_ranks(c.torque, n);
     std::set<std::pair<std::size_t, std::size_t>> pairs;
@@ -229,17 +266,95 @@ std::vector<double> nearest_neighbour_pseudo_residuals(const Channel& c) {
         }
         if (best < n) pairs.insert({std::min(i, best), std::max(i, best)});
     }
-    for (const auto& [i, j] : pairs) e.push_back((c.residual[i] - c.residual[j]) / std::sqrt(2.0));
+    const double h = 1 / std::sqrt(2.0);
+    for (const auto& [i, j] : pairs)
+        e.push_back({(c.residual[i] - c.residual[j]) * h, {}, {{i, h}, {j, -h}}});
     return e;
 }
 
-NoiseEstimate from_pseudo_residuals(const std::vector<double>& e, int effective) {
+// The degrees of freedom of a mean square of the pseudo-residuals e = A r when the residuals
+// r are independent noise: Satterthwaite's (1946) tr(C)^2 / tr(C^2) with C = A A^T. The
+// pseudo-residuals share points (a point is the centre of one contrast and the neighbour of
+// up to four), so they are worth fewer than their number: on a 3 x 4 grid 10 of them, less
+// the 3 common contrasts removed, carry about 4 dof, not 7.
+double effective_dof(const std::vector<Pseudo>& p, std::size_t n) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (std::size_t j = 0; j < p.size(); ++j)
+        for (auto [i, w] : p[j].row) t.emplace_back(static_cast<int>(j), static_cast<int>(i), w);
+    Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(p.size()), static_cast<Eigen::Index>(n));
+    A.setFromTriplets(t.begin(), t.end());  // repeated (row, point) entries are summed
+    const Eigen::SparseMatrix<double> C = A * A.transpose();
+    const double tr = C.diagonal().sum(), tr2 = C.squaredNorm();  // C symmetric: tr(C^2) = |C|_F^2
+    return tr2 > 0 ? tr * tr / tr2 : 0.0;
+}
+
+}  // namespace
+
+struct Contrasts {
+    std::size_t points = 0;
+    std::vector<std::vector<std::pair<std::size_t, double>>> rows;
+};
+
+namespace {
+
+NoiseEstimate from_pseudo_residuals(const std::vector<Pseudo>& p, std::size_t n) {
+    std::vector<double> e;
+    auto contrasts = std::make_shared<Contrasts>();
+    contrasts->points = n;
+    for (const Pseudo& q : p) {
+        e.push_back(q.value);
+        contrasts->rows.push_back(q.row);
+    }
     NoiseEstimate out;
     out.sigma = robust_scale(e);
-    out.dof = std::max(1.0, mad_efficiency * effective);
+    out.dof = std::max(1.0, huber_efficiency * effective_dof(p, n));
     out.source = "neighbour differences";
     out.pairs = static_cast<int>(e.size());
+    out.contrasts = std::move(contrasts);
     return out;
+}
+
+// The mean-square ratios (mean square of the residuals over the squared robust scale of their
+// contrasts) of 999 Gaussian residual vectors through these contrasts, sorted: the null
+// distribution of the fit test's statistic. It depends on the points' coordinates only, so a
+// campaign's hypotheses share it: the last few are kept (keyed by the contrasts themselves).
+std::shared_ptr<const std::vector<double>> null_ratios(const Contrasts& c) {
+    static std::mutex guard;
+    static std::vector<std::pair<std::shared_ptr<const Contrasts>, std::shared_ptr<const std::vector<double>>>> kept;
+    auto same = [&](const Contrasts& k) { return k.points == c.points && k.rows == c.rows; };
+    {
+        std::lock_guard<std::mutex> lock(guard);
+        for (const auto& [k, v] : kept)
+            if (same(*k)) return v;
+    }
+    constexpr int draws = 999;
+    std::mt19937_64 rng(20261124);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    std::vector<double> z(c.points), e(c.rows.size());
+    auto ratios = std::make_shared<std::vector<double>>();
+    for (int d = 0; d < draws; ++d) {
+        double ss = 0;
+        for (double& x : z) x = normal(rng), ss += x * x;
+        for (std::size_t j = 0; j < c.rows.size(); ++j) {
+            e[j] = 0;
+            for (auto [i, w] : c.rows[j]) e[j] += w * z[i];
+        }
+        const double s = robust_scale(e);
+        ratios->push_back(s > 0 ? ss / static_cast<double>(c.points) / (s * s) : std::numeric_limits<double>::infinity());
+    }
+    std::sort(ratios->begin(), ratios->end());
+    std::lock_guard<std::mutex> lock(guard);
+    if (kept.size() >= 8) kept.erase(kept.begin());
+    kept.emplace_back(std::make_shared<Contrasts>(c), ratios);
+    return ratios;
+}
+
+// The p-value of an observed ratio: the share of the null draws at least as large (with the
+// observation counted among them, so never 0).
+double drawn_fit_p(const Contrasts& c, double statistic) {
+    const auto r = null_ratios(c);
+    const auto at_least = r->end() - std::lower_bound(r->begin(), r->end(), statistic);
+    return (1.0 + static_cast<double>(at_least)) / (static_cast<double>(r->size()) + 1.0);
 }
 
 }  // namespace
@@ -250,15 +365,14 @@ NoiseEstimate estimate_noise(const Channel& c, double rel_tol) {
     out.source = "none";
     if (replicate_noise(c, rel_tol, out)) return out;
 
+    const std::size_t n = c.residual.size();
     auto grid = grid_pseudo_residuals(c, rel_tol);
     if (grid.size() >= 3) {
-        const int removed = remove_common_contrasts(grid);
-        std::vector<double> e;
-        for (const Pseudo& p : grid) e.push_back(p.value);
-        return from_pseudo_residuals(e, static_cast<int>(e.size()) - removed);
+        remove_common_contrasts(grid);
+        return from_pseudo_residuals(grid, n);
     }
     const auto e = nearest_neighbour_pseudo_residuals(c);
-    if (e.size() >= 3) return from_pseudo_residuals(e, static_cast<int>(e.size()));
+    if (e.size() >= 3) return from_pseudo_residuals(e, n);
     return out;
 }
 
@@ -282,6 +396,8 @@ FitTest goodness_of_fit(const std::vector<double>& residual, const NoiseEstimate
         t.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(dof), chi2));
     else
         t.p_value = boost::math::cdf(boost::math::complement(boost::math::fisher_f(dof, noise.dof), t.statistic));
+    if (noise.contrasts && noise.contrasts->points == residual.size() && residual.size() <= 400)
+        t.p_value = drawn_fit_p(*noise.contrasts, t.statistic);
     return t;
 }
 

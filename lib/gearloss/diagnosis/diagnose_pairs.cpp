@@ -115,6 +115,16 @@ bool pairable(const Effect& e, const Fit& f, const Response& r) {
     return e.kind != EffectKind::pointwise && f.failed.empty() && r.failed().empty() && !r.knots().empty() && !r.flat();
 }
 
+// Whether a fitted value sits at an end of its scan range [lo, hi] (within 0.1 % of the
+// range, on a log scale for a factor) that is not the case's own value.
+bool at_range_end(const Effect& e, double v, double lo, double hi) {
+    auto coord = [&](double x) { return e.multiplicative && x > 0 ? std::log(x) : x; };
+    const double span = coord(hi) - coord(lo);
+    if (!(span > 0)) return false;
+    const double tol = 1e-3 * span;
+    return (coord(v) - coord(lo) < tol && lo != e.neutral) || (coord(hi) - coord(v) < tol && hi != e.neutral);
+}
+
 }  // namespace
 
 bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothesis& neutral, const FirstRound& r,
@@ -172,6 +182,15 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
     std::vector<Term> pair_terms;
     const double nll_pair = refit(best, pair_terms);
     if (nll_pair >= kFailedNll) return false;
+    // A member held at an end of its range wants more than the physics allows: the two are
+    // compensating each other (a viscosity five times the datasheet's against a negative
+    // remainder), not two effects of credible size.
+    for (int m = 0; m < 2; ++m) {
+        std::vector<char> none;
+        const Term& t = pair_terms[static_cast<size_t>(m)];
+        const auto [lo, hi] = E.range(*t.effect, with_terms(neutral, pair_terms, none, m));
+        if (at_range_end(*t.effect, t.value, lo, hi)) return false;
+    }
     double nll_forward = r.base_nll;  // forward selection stops: it reaches the case alone (no parameter)
     int k_forward = 0;
     if (!forward_stops) {
