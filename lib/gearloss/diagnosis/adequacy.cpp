@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <numeric>
 #include <random>
 #include <set>
@@ -35,7 +36,7 @@ constexpr double huber_c = 2.0;
 constexpr double huber_efficiency = 0.88;
 
 double huber_kappa() {
-    const double c = huber_c, phi = std::exp(-0.5 * c * c) / std::sqrt(2 * M_PI);
+    const double c = huber_c, phi = std::exp(-0.5 * c * c) / std::sqrt(2 * std::numbers::pi);
     const double tail = 0.5 * std::erfc(c / std::sqrt(2.0));  // P(Z > c)
     return std::erf(c / std::sqrt(2.0)) - 2 * c * phi + 2 * c * c * tail;
 }

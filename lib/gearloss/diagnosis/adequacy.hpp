@@ -43,7 +43,8 @@ struct NoiseEstimate {
 //    along torque within each speed level and along speed within each torque level, each
 //    interior point against the straight line through its two neighbours, normalised to unit
 //    variance; the scale is a robust one (Huber's (1981) proposal 2, so that a band or step at
-//    one level moves it by a bounded amount) with dof reduced by the estimator's efficiency;
+//    one level moves it by a bounded amount) with the contrasts' effective dof (Satterthwaite
+//    (1946): they share points) reduced by the estimator's efficiency;
 // 3. fewer than 3 usable pseudo-residuals: source "none", sigma 0.
 // The residual that goes in is the channel's residual (the model removes most of the
 // variation, so what remains is smooth plus noise).
