@@ -31,7 +31,8 @@ constexpr double mad_consistency = 1.4826;
 // 2 s counts as 2 s, so a few points off the rest (a step, a band, an outlier) move the scale
 // by a bounded amount (about a fifth of the values may be such before it breaks down), while
 // for Gaussian values it is worth a standard deviation from about 88 % as many (the median
-// absolute value: 37 %, Rousseeuw & Croux (1993), and biased upward by 12 % on 7 values). That efficiency is its dof.
+// absolute value: 37 %, Rousseeuw & Croux (1993), and biased upward by 12 % on 7 values).
+// That efficiency is part of its dof.
 constexpr double huber_c = 2.0;
 constexpr double huber_efficiency = 0.88;
 
@@ -77,9 +78,10 @@ double robust_scale(const std::vector<double>& e) {
     std::vector<double> a(e.size());
     std::transform(e.begin(), e.end(), a.begin(), [](double x) { return std::abs(x); });
     double s = mad_consistency * median_of(a);
-    double ms = 0;
-    for (double x : a) ms += x * x / static_cast<double>(a.size());
-    if (!(s > 0)) s = std::sqrt(ms);  // more than half the values zero
+    if (!(s > 0)) {  // more than half the values zero: start from the root mean square
+        for (double x : a) s += x * x / static_cast<double>(a.size());
+        s = std::sqrt(s);
+    }
     if (!(s > 0)) return 0;
     static const double kappa = huber_kappa();
     for (int it = 0; it < 200; ++it) {
@@ -160,13 +162,16 @@ bool replicate_noise(const Channel& c, double rel_tol, NoiseEstimate& out) {
     return true;
 }
 
+// A pseudo-residual's coefficients on the residuals: value = sum of coefficient x residual.
+using ContrastRow = std::vector<std::pair<std::size_t, double>>;
+
 // One pseudo-residual: its value, the contrast it belongs to (see grid_pseudo_residuals) and
-// its coefficients on the residuals (value = sum of coefficient x residual), from which the
-// estimate's degrees of freedom follow (effective_dof).
+// its row, from which the estimate's degrees of freedom (effective_dof) and the fit test's
+// null distribution (null_ratios) follow.
 struct Pseudo {
     double value;
     std::array<int, 4> key;  // axis, level ids of the left, centre and right points
-    std::vector<std::pair<std::size_t, double>> row;
+    ContrastRow row;
 };
 
 // 2. Pseudo-residuals of Gasser et al. (1986) along one axis: within each line (a level of the
@@ -219,7 +224,7 @@ void remove_common_contrasts(std::vector<Pseudo>& p) {
         if (members.size() < 2) continue;
         const double m = static_cast<double>(members.size()), k = std::sqrt(m / (m - 1));
         double mean = 0;
-        std::vector<std::pair<std::size_t, double>> mean_row;
+        ContrastRow mean_row;
         for (std::size_t j : members) {
             mean += p[j].value / m;
             for (auto [i, w] : p[j].row) mean_row.emplace_back(i, w / m);
@@ -278,11 +283,11 @@ std::vector<Pseudo> nearest_neighbour_pseudo_residuals(const Channel& c) {
 // pseudo-residuals share points (a point is the centre of one contrast and the neighbour of
 // up to four), so they are worth fewer than their number: on a 3 x 4 grid 10 of them, less
 // the 3 common contrasts removed, carry about 4 dof, not 7.
-double effective_dof(const std::vector<Pseudo>& p, std::size_t n) {
+double effective_dof(const std::vector<ContrastRow>& rows, std::size_t n) {
     std::vector<Eigen::Triplet<double>> t;
-    for (std::size_t j = 0; j < p.size(); ++j)
-        for (auto [i, w] : p[j].row) t.emplace_back(static_cast<int>(j), static_cast<int>(i), w);
-    Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(p.size()), static_cast<Eigen::Index>(n));
+    for (std::size_t j = 0; j < rows.size(); ++j)
+        for (auto [i, w] : rows[j]) t.emplace_back(static_cast<int>(j), static_cast<int>(i), w);
+    Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(n));
     A.setFromTriplets(t.begin(), t.end());  // repeated (row, point) entries are summed
     const Eigen::SparseMatrix<double> C = A * A.transpose();
     const double tr = C.diagonal().sum(), tr2 = C.squaredNorm();  // C symmetric: tr(C^2) = |C|_F^2
@@ -293,22 +298,22 @@ double effective_dof(const std::vector<Pseudo>& p, std::size_t n) {
 
 struct Contrasts {
     std::size_t points = 0;
-    std::vector<std::vector<std::pair<std::size_t, double>>> rows;
+    std::vector<ContrastRow> rows;
 };
 
 namespace {
 
-NoiseEstimate from_pseudo_residuals(const std::vector<Pseudo>& p, std::size_t n) {
+NoiseEstimate from_pseudo_residuals(std::vector<Pseudo> p, std::size_t n) {
     std::vector<double> e;
     auto contrasts = std::make_shared<Contrasts>();
     contrasts->points = n;
-    for (const Pseudo& q : p) {
+    for (Pseudo& q : p) {
         e.push_back(q.value);
-        contrasts->rows.push_back(q.row);
+        contrasts->rows.push_back(std::move(q.row));
     }
     NoiseEstimate out;
     out.sigma = robust_scale(e);
-    out.dof = std::max(1.0, huber_efficiency * effective_dof(p, n));
+    out.dof = std::max(1.0, huber_efficiency * effective_dof(contrasts->rows, n));
     out.source = "neighbour differences";
     out.pairs = static_cast<int>(e.size());
     out.contrasts = std::move(contrasts);
@@ -319,10 +324,11 @@ NoiseEstimate from_pseudo_residuals(const std::vector<Pseudo>& p, std::size_t n)
 // contrasts) of 999 Gaussian residual vectors through these contrasts, sorted: the null
 // distribution of the fit test's statistic. It depends on the points' coordinates only, so a
 // campaign's hypotheses share it: the last few are kept (keyed by the contrasts themselves).
-std::shared_ptr<const std::vector<double>> null_ratios(const Contrasts& c) {
+std::shared_ptr<const std::vector<double>> null_ratios(const std::shared_ptr<const Contrasts>& key) {
     static std::mutex guard;
     static std::vector<std::pair<std::shared_ptr<const Contrasts>, std::shared_ptr<const std::vector<double>>>> kept;
-    auto same = [&](const Contrasts& k) { return k.points == c.points && k.rows == c.rows; };
+    const Contrasts& c = *key;
+    auto same = [&](const Contrasts& k) { return &k == &c || (k.points == c.points && k.rows == c.rows); };
     {
         std::lock_guard<std::mutex> lock(guard);
         for (const auto& [k, v] : kept)
@@ -346,13 +352,13 @@ std::shared_ptr<const std::vector<double>> null_ratios(const Contrasts& c) {
     std::sort(ratios->begin(), ratios->end());
     std::lock_guard<std::mutex> lock(guard);
     if (kept.size() >= 8) kept.erase(kept.begin());
-    kept.emplace_back(std::make_shared<Contrasts>(c), ratios);
+    kept.emplace_back(key, ratios);
     return ratios;
 }
 
 // The p-value of an observed ratio: the share of the null draws at least as large (with the
 // observation counted among them, so never 0).
-double drawn_fit_p(const Contrasts& c, double statistic) {
+double drawn_fit_p(const std::shared_ptr<const Contrasts>& c, double statistic) {
     const auto r = null_ratios(c);
     const auto at_least = r->end() - std::lower_bound(r->begin(), r->end(), statistic);
     return (1.0 + static_cast<double>(at_least)) / (static_cast<double>(r->size()) + 1.0);
@@ -370,7 +376,7 @@ NoiseEstimate estimate_noise(const Channel& c, double rel_tol) {
     auto grid = grid_pseudo_residuals(c, rel_tol);
     if (grid.size() >= 3) {
         remove_common_contrasts(grid);
-        return from_pseudo_residuals(grid, n);
+        return from_pseudo_residuals(std::move(grid), n);
     }
     const auto e = nearest_neighbour_pseudo_residuals(c);
     if (e.size() >= 3) return from_pseudo_residuals(e, n);
@@ -392,13 +398,14 @@ FitTest goodness_of_fit(const std::vector<double>& residual, const NoiseEstimate
     const double chi2 = rss / (noise.sigma * noise.sigma);
     t.statistic = chi2 / dof;
     // A declared noise is known exactly: RSS / sigma^2 is chi-squared. An estimated one has
-    // its own chi-squared of noise.dof in the denominator: the ratio is Fisher's F.
+    // its own chi-squared of noise.dof in the denominator: the ratio is Fisher's F, or, for
+    // neighbour differences of these residuals, its distribution drawn through their contrasts.
     if (std::isinf(noise.dof))
         t.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(dof), chi2));
+    else if (noise.contrasts && noise.contrasts->points == residual.size() && residual.size() <= 400)
+        t.p_value = drawn_fit_p(noise.contrasts, t.statistic);
     else
         t.p_value = boost::math::cdf(boost::math::complement(boost::math::fisher_f(dof, noise.dof), t.statistic));
-    if (noise.contrasts && noise.contrasts->points == residual.size() && residual.size() <= 400)
-        t.p_value = drawn_fit_p(*noise.contrasts, t.statistic);
     return t;
 }
 
