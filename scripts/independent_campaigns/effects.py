@@ -19,7 +19,8 @@ ACCEPT = {
     "churning_speed": {"churning"},
     "bearing_visc_drag": {"bearing_drag"},
     "seal_extra": {"seal_friction"},
-    "mesh_low_film": {"mesh_friction"},
+    # a uniform friction factor, or the friction rise that follows the film (mixed lubrication)
+    "mesh_low_film": {"mesh_friction", "mesh_friction_mixed"},
     "visc_shift": {"oil_viscosity"},
     "heat_factor": {"thermal_resistance"},
     "forced_convection": {"speed_dependent_cooling"},

@@ -15,6 +15,7 @@ from .effects import ACCEPT
 FAMILY = {
     "windage": "extra loss", "churning": "extra loss", "bearing_drag": "extra loss", "seal_friction": "extra loss",
     "constant_parasitic": "extra loss", "oil_viscosity": "extra loss", "mesh_friction": "extra loss",
+    "mesh_friction_mixed": "extra loss",
     "thermal_resistance": "heat path", "speed_dependent_cooling": "heat path",
     "torque_sensor_gain": "sensor", "torque_sensor_offset": "sensor", "unstabilised_test": "test procedure",
 }
@@ -22,6 +23,9 @@ FAMILY = {
 # ratios, amounts (W, N*m, cooling per 1000 rpm) directly.
 NEUTRAL = {"churning_speed": 1.0, "seal_extra": 1.0, "mesh_low_film": 1.0, "visc_shift": 1.0, "heat_factor": 1.0,
            "sensor_gain": 1.0}
+# Library names whose fitted parameter is not the truth's comparable one (mesh_friction_mixed: the
+# rise at full boundary share, not a factor over the campaign): no parameter ratio is scored.
+NOT_COMPARABLE = {"mesh_friction_mixed"}
 NULL_VERDICT = "no_significant_mismatch"
 CONFIDENT_VERDICT = "missing_physics"
 # The outcome that counts as correct in each category (two: both named; three: all three named).
@@ -117,7 +121,7 @@ def score(truth, diag):
     else:  # two or three effects
         score_several(res, acc)
     # parameter vs truth for a correct single finding
-    if cat == "single" and res["top"] in acc[0]:
+    if cat == "single" and res["top"] in acc[0] and res["top"] not in NOT_COMPARABLE:
         tp, fp = truth["effects"][0].get("truth_parameter"), res["fitted"][1]
         z = NEUTRAL.get(eff[0], 0.0)  # factors are compared by their departure from 1
         if tp is not None and fp is not None and tp != z:

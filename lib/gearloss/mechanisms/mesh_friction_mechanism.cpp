@@ -53,7 +53,7 @@ int value_of(const NamedForm (&t)[N], std::string_view axis, std::string_view na
 
 class MeshFriction final : public losses::LossMechanism {
 public:
-    enum : size_t { kFrictionFactor, kMuBl, kMuEhl };
+    enum : size_t { kFrictionFactor, kMuBl, kMuEhl, kMixedRise };
     std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<MeshFriction>(*this); }
     std::string_view name() const override { return "mesh"; }
     std::string_view label() const override { return "mesh"; }
@@ -72,7 +72,15 @@ public:
                  "load-dependent mesh friction level differs (lubricant factor X_L, surface finish)",
                  /*oil_dependent=*/true},
                 {"mu_bl", "boundary friction of fernandes_mixed", nullptr, "0.10", 0.10, 0.0, 1.0, false},
-                {"mu_ehl", "full-film friction of fernandes_mixed", nullptr, "0.02", 0.02, 0.0, 1.0, false}};
+                {"mu_ehl", "full-film friction of fernandes_mixed", nullptr, "0.02", 0.02, 0.0, 1.0, false},
+                // Friction that follows the film: mu x (1 + k xi(Lambda)), xi the boundary share
+                // of Doleschel (2003), 0 above Lambda = 2. The published laws give mu a fixed
+                // power of load, speed and viscosity; asperity contact makes it rise where the
+                // film is thin (slow, loaded, hot), by an amount that is the lubricant's own.
+                {"mixed_friction_rise", "relative rise of mu_mZ at full boundary share (Lambda -> 0)", nullptr, "0.5",
+                 0.0, -0.9, 20.0, true, "mesh_friction_mixed",
+                 "mesh friction rises where the film is thin (mixed lubrication: asperity contact below Lambda = 2)",
+                 /*oil_dependent=*/true}};
     }
     std::vector<losses::FormAxis> forms(const solver::Model&) const override {
         return {{"friction", names(kFriction)}, {"loss_factor", names(kLossFactor)}, {"film_correction", names(kFilm)}};
@@ -218,14 +226,16 @@ double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint&
     const auto& s = e.oil;
     const auto& meshes = static_cast<const MeshFrictionPoint&>(pt).meshes;
     const double factor = param(kFrictionFactor);
+    const double mixed_rise = param(kMixedRise);
     const double eta_factor = std::exp(-0.05 * std::log(s.eta * 1e3));  // eta [mPa s]^-0.05
-    const bool need_film = d || e.want_film || opt.friction == FrictionModel::fernandes_mixed;
+    const bool need_film = d || e.want_film || opt.friction == FrictionModel::fernandes_mixed || mixed_rise != 0.0;
     if (d) d->reset(meshes.size(), kMeshQuantities);
     double total = 0.0;
     for (size_t i = 0; i < meshes.size(); ++i) {
         const auto& ms = meshes[i];
         if (ms.power == 0.0) continue;
         double mu = ms.mu_prefactor * eta_factor * factor;
+        double mixed = 1.0;  // the film's own rise of friction (mixed_friction_rise)
         if (need_film) {
             const Film f = line_contact_film(ms.contact, s.eta, s.alpha_p, s.beta_T, s.k, opt.film_correction);
             const double lambda = f.h_c / ms.sigma;
@@ -233,6 +243,8 @@ double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint&
                 const double xi = boundary_share_doleschel(lambda);
                 mu = (xi * param(kMuBl) + (1.0 - xi) * param(kMuEhl)) * factor;
             }
+            if (mixed_rise != 0.0) mixed = 1.0 + mixed_rise * boundary_share_doleschel(lambda);
+            mu *= mixed;
             e.add_lambda(lambda);
             if (d) {
                 d->at(i, kMeshLambda) = lambda;
@@ -246,7 +258,7 @@ double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint&
             const auto& md = m.layout.meshes[i];
             loss = ehl_mesh_loss(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime, ms.sigma,
                                  s.T, m.oil, m.oil.traction, &ms.ehl_film_rise) *
-                   factor;
+                   factor * mixed;
             mu = ms.power * ms.H_V > 0 ? loss / (ms.power * ms.H_V) : 0.0;  // equivalent mean friction
         }
         total += loss;
