@@ -429,3 +429,27 @@ TEST_CASE("adequacy: the fit test keeps its level on pure noise and sees a misse
     CHECK(null_rejected / 1000.0 <= 0.07);
     CHECK(offset_rejected / 1000.0 >= 0.35);  // measured 0.46 (the F test of the same estimate: 0.17)
 }
+
+TEST_CASE("adequacy: Holm's step-down holds the family of tests at its level", "[adequacy]") {
+    using gearloss::diagnosis::adequacy::holm_threshold;
+    // Hand check at 1 %, four tests: 0.001 < 0.01/4 is rejected; 0.004 > 0.01/3 stops the
+    // step-down, so 0.004 and 0.006 stand although each is below 1 %.
+    const double t = holm_threshold({0.5, 0.004, 0.001, 0.006}, 0.01);
+    CHECK(0.001 < t);
+    CHECK(!(0.004 < t));
+    // All below their steps (0.002 < 0.0025, 0.003 < 0.0033, 0.004 < 0.005, 0.009 < 0.01): all rejected.
+    CHECK(0.009 < holm_threshold({0.009, 0.004, 0.003, 0.002}, 0.01));
+    CHECK(holm_threshold({0.2, 0.3}, 0.01) == 0.0);
+    // Four independent tests of pure noise (uniform p-values): the family rejects anything in
+    // about 1 % of 200000 draws (binomial sd 0.022 %), where four tests at 1 % each would reject
+    // in 1 - 0.99^4 = 3.9 %.
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(0, 1);
+    int any = 0;
+    const int draws = 200000;
+    for (int d = 0; d < draws; ++d) {
+        const std::vector<double> p{u(rng), u(rng), u(rng), u(rng)};
+        any += *std::min_element(p.begin(), p.end()) < holm_threshold(p, 0.01);
+    }
+    CHECK(any / double(draws) == Approx(1 - std::pow(1 - 0.01 / 4, 4)).margin(0.001));
+}

@@ -569,4 +569,13 @@ double combined_p(const std::vector<double>& p_values) {
     return boost::math::cdf(boost::math::complement(chi2, statistic));
 }
 
+double holm_threshold(std::vector<double> p_values, double level) {
+    std::sort(p_values.begin(), p_values.end());
+    const size_t m = p_values.size();
+    double threshold = 0;
+    for (size_t k = 0; k < m && p_values[k] < level / static_cast<double>(m - k); ++k)
+        threshold = std::nextafter(p_values[k], 1.0);
+    return threshold;
+}
+
 }  // namespace gearloss::diagnosis::adequacy

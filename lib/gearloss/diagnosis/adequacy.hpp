@@ -87,4 +87,9 @@ StructureTest structure(const Channel& c, int permutations = 199, std::uint64_t 
 // docs/diagnosis-proof.md it added no false alarm at 1 %).
 double combined_p(const std::vector<double>& p_values);
 
+// Holm's (1979) step-down over a family of m tests at family-wise level `level`: the k-th
+// smallest p-value is rejected when it and every smaller one are below level / (m - k + 1).
+// Returns the bound below which a p-value of the family is rejected (0: none is).
+double holm_threshold(std::vector<double> p_values, double level);
+
 }  // namespace gearloss::diagnosis::adequacy

@@ -283,7 +283,32 @@ Signature Engine::signature(const Effect& e, const Hypothesis& base) const {
     return s;
 }
 
+Fit Engine::refit(const Effect& e, const Hypothesis& base, double near) const {
+    if (e.kind == EffectKind::pointwise || e.discrete() || !std::isfinite(near)) return fit(e, base);
+    // Three knots of the scan on either side of `near`, and `near` itself.
+    const std::vector<double> grid = scan_values(e, base);
+    const auto at = std::lower_bound(grid.begin(), grid.end(), near) - grid.begin();
+    const long first = std::max<long>(0, at - 3), last = std::min<long>(static_cast<long>(grid.size()), at + 3);
+    std::vector<double> knots(grid.begin() + first, grid.begin() + last);
+    if (near > grid.front() && near < grid.back()) knots.push_back(near);
+    std::sort(knots.begin(), knots.end());
+    knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
+    if (knots.size() < 5 || knots.size() + 2 >= grid.size()) return fit(e, base);
+    Response r;
+    Fit f = fit(e, base, &r, std::move(knots));
+    // An optimum at an inner end of the local knots may lie beyond them: the whole scan.
+    const bool inner_lo = r.lo() > grid.front(), inner_hi = r.hi() < grid.back();
+    const double tol = 1e-6 * (grid.back() - grid.front());
+    if (!f.failed.empty() || (inner_lo && f.value <= r.lo() + tol) || (inner_hi && f.value >= r.hi() - tol))
+        return fit(e, base);
+    return f;
+}
+
 Fit Engine::fit(const Effect& e, const Hypothesis& base, Response* response) const {
+    return fit(e, base, response, {});
+}
+
+Fit Engine::fit(const Effect& e, const Hypothesis& base, Response* response, std::vector<double> knots) const {
     if (e.kind == EffectKind::pointwise) return fit_unstabilised(base, all_, 0.0);
     Fit f;
     // A published form has no fitted parameter: which candidate it is, is the choice every
@@ -291,7 +316,7 @@ Fit Engine::fit(const Effect& e, const Hypothesis& base, Response* response) con
     f.k = e.discrete() ? 0 : 1;
     Response local;
     Response& r = response ? *response : local;
-    r = Response(*this, e, base);
+    r = knots.empty() ? Response(*this, e, base) : Response(*this, e, base, knots);
     auto rejected = [&](const std::string& why) {
         f.failed = why;
         f.nll = kFailedNll;

@@ -12,8 +12,10 @@
 namespace gearloss::diagnosis::detail {
 
 Response::Response(const Engine& E, const Effect& e, const Hypothesis& base)
+    : Response(E, e, base, E.scan_values(e, base)) {}
+
+Response::Response(const Engine& E, const Effect& e, const Hypothesis& base, const std::vector<double>& grid)
     : E_(&E), e_(&e), base_(std::make_shared<const Hypothesis>(base)) {
-    const std::vector<double> grid = E.scan_values(e, base);
     std::vector<Pred> pred(grid.size());
     RegionErrors errors;
 #pragma omp parallel for num_threads(E.threads()) schedule(dynamic, 1)

@@ -128,6 +128,8 @@ public:
     Response() = default;
     // Evaluates the knots (in parallel over them); `failed` says why none could be.
     Response(const Engine& E, const Effect& e, const Hypothesis& base);
+    // The same on given knots (sorted; a part of scan_values around a known optimum).
+    Response(const Engine& E, const Effect& e, const Hypothesis& base, const std::vector<double>& grid);
     const std::string& failed() const { return failed_; }
     // Why the scan stops short of the parameter's range (a value the model cannot be evaluated at), or empty.
     const std::string& narrowed() const { return narrowed_; }
@@ -190,9 +192,15 @@ public:
     Signature signature(const Effect& e, const Hypothesis& base) const;
     // Fits one effect's parameter on top of `base` using all points, with its response.
     Fit fit(const Effect& e, const Hypothesis& base, Response* response = nullptr) const;
+    // The same starting from a value known to be near the optimum (a joint refit, where the
+    // others moved a little): the scan's knots around `near` only, the whole scan when the
+    // optimum leaves them. Same result within the refinement's tolerance, fewer model solves.
+    Fit refit(const Effect& e, const Hypothesis& base, double near) const;
     Fit fit_unstabilised(const Hypothesis& base, const std::vector<int>& idx, double loss_noise) const;
 
 private:
+    // fit() on the given knots (empty: the whole scan).
+    Fit fit(const Effect& e, const Hypothesis& base, Response* response, std::vector<double> knots) const;
     // The working model of thread `tid` for the tests of oil `oil`, and a hypothesis written
     // into every oil's model of that thread.
     solver::Model& model(int tid, int oil) const { return work_[static_cast<size_t>(tid * n_oils_ + oil)]; }

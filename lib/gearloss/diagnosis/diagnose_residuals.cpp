@@ -104,7 +104,18 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
         }
         return n;
     };
-    std::vector<std::string> left;
+    // Each channel's tests (goodness of fit, structure): the family is judged at `level` as a
+    // whole (Holm 1979: the k-th smallest p against level / (m - k + 1)), so that a campaign
+    // of pure noise is called a mismatch at the stated level, not at m times it.
+    struct Result {
+        std::string what, unit, noise_text;
+        double rms = 0, unit_scale = 1;
+        const adequacy::FitTest* fit = nullptr;        // null when the noise is unknown
+        const adequacy::StructureTest* structure = nullptr;
+        bool bad_fit = false, bad_structure = false;
+    };
+    std::vector<Result> results;
+    results.reserve(2);
     std::vector<double> p_values;
     std::vector<std::string> tested;  // "loss fit p = 0.03", ... for the combined test's sentence
     auto test = [&](const adequacy::Channel& c, const std::vector<int>& oil, adequacy::NoiseEstimate& n, adequacy::FitTest& fit,
@@ -114,37 +125,44 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
         n = noise(c, oil, declared, floor);
         if (n.known()) fit = adequacy::goodness_of_fit(c.residual, n, fitted);
         st = adequacy::structure(c, 999);
-        double ms = 0;
-        for (double r : c.residual) ms += r * r / c.residual.size();
+        Result r{what, unit, "", 0.0, unit_scale, n.known() ? &fit : nullptr, &st};
+        for (double x : c.residual) r.rms += x * x / c.residual.size();
+        r.rms = std::sqrt(r.rms);
+        r.noise_text = n.known() ? fmt::format("{:.3g} {} ({})", n.sigma * unit_scale, unit, n.source) : "unknown";
         if (n.known()) {
             p_values.push_back(fit.p_value);
             tested.push_back(fmt::format("{} fit p = {:.2g}", what, fit.p_value));
         }
         p_values.push_back(st.p_value);
         tested.push_back(fmt::format("{} structure p = {:.2g}", what, st.p_value));
-        const bool bad_fit = n.known() && fit.p_value < level, bad_structure = st.p_value < level;
-        if (!bad_fit && !bad_structure) return;
-        A.adequate = false;
-        std::string s = fmt::format("{} residual RMS {:.3g} {} against a noise of {}", what, std::sqrt(ms) * unit_scale, unit,
-                                    n.known() ? fmt::format("{:.3g} {} ({})", n.sigma * unit_scale, unit, n.source)
-                                              : std::string("unknown"));
-        if (bad_fit) s += fmt::format(", p = {:.2g}", fit.p_value);
-        if (bad_structure)
-            s += fmt::format("; systematic along {} (a smoother explains {:.0f} % of it, p = {:.2g})", st.coordinate,
-                             100 * st.gain, st.p_value);
-        left.push_back(s);
+        results.push_back(std::move(r));
     };
     test(cl, oil_l, A.noise_loss, A.fit_loss, A.structure_loss, opt.loss_uncertainty, kFloorLoss, "loss", 100.0, "%");
     if (E.has_temperature())
         test(ct, oil_t, A.noise_temp, A.fit_temp, A.structure_temp, opt.temp_uncertainty, kFloorTemp, "oil temperature", 1.0, "K");
+    const double threshold = adequacy::holm_threshold(p_values, level);  // p-values below it are rejected
+    std::vector<std::string> left;
+    for (auto& r : results) {
+        r.bad_fit = r.fit && r.fit->p_value < threshold;
+        r.bad_structure = r.structure->p_value < threshold;
+        if (!r.bad_fit && !r.bad_structure) continue;
+        A.adequate = false;
+        std::string s = fmt::format("{} residual RMS {:.3g} {} against a noise of {}", r.what, r.rms * r.unit_scale, r.unit,
+                                    r.noise_text);
+        if (r.bad_fit) s += fmt::format(", p = {:.2g}", r.fit->p_value);
+        if (r.bad_structure)
+            s += fmt::format("; systematic along {} (a smoother explains {:.0f} % of it, p = {:.2g})", r.structure->coordinate,
+                             100 * r.structure->gain, r.structure->p_value);
+        left.push_back(s);
+    }
     if (p_values.size() > 1) {
         A.combined_p = adequacy::combined_p(p_values);
         if (A.adequate && A.combined_p < combined_level) {
             A.adequate = false;
             std::string list;
             for (const auto& t : tested) list += (list.empty() ? "" : ", ") + t;
-            left.push_back(fmt::format("no single test fails at {:g}, but together they do (Fisher's combination of {} tests, "
-                                       "p = {:.2g} < {:g}): {}",
+            left.push_back(fmt::format("no single test fails at {:g} (Holm over {} tests), but together they do (Fisher's "
+                                       "combination, p = {:.2g} < {:g}): {}",
                                        level, p_values.size(), A.combined_p, combined_level, list));
         }
     }

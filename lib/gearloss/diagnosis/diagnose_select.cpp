@@ -45,6 +45,23 @@ bool taken(const std::vector<Term>& terms, const Effect& e, int skip) {
 // kFailedNll when the combination cannot be evaluated (a trial is then rejected, not fatal).
 double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
                      const DiagnoseOptions& opt, bool refit_flags, int skip) {
+    size_t continuous = 0;
+    bool pointwise = false;
+    for (size_t j = 0; j < terms.size(); ++j) {
+        if (static_cast<int>(j) == skip) continue;
+        pointwise |= terms[j].effect->kind == EffectKind::pointwise;
+        continuous += terms[j].effect->kind != EffectKind::pointwise && !terms[j].effect->discrete();
+    }
+    if (continuous >= 2) {
+        const double f = joint_gauss_newton(E, neutral, terms, flags, skip);
+        if (f >= kFailedNll || !pointwise || !refit_flags) return f;
+        // The flagged points chosen again on top of the refitted laws, then the laws once more.
+        Hypothesis clean = with_terms(neutral, terms, flags, skip);
+        clean.unstabilised.clear();
+        const Fit fl = E.fit_unstabilised(clean, E.all(), opt.loss_uncertainty);
+        if (fl.failed.empty()) flags = fl.h.unstabilised;
+        return joint_gauss_newton(E, neutral, terms, flags, skip);
+    }
     double last = kFailedNll;
     for (int sweep = 0; sweep < 4; ++sweep) {
         for (size_t j = 0; j < terms.size(); ++j) {
@@ -58,7 +75,7 @@ double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Ter
                 if (f.failed.empty()) flags = f.h.unstabilised;
                 continue;
             }
-            const Fit f = E.fit(*terms[j].effect, h);
+            const Fit f = E.refit(*terms[j].effect, h, terms[j].value);
             if (f.failed.empty()) terms[j].value = f.value;
         }
         const Hypothesis h = with_terms(neutral, terms, flags, skip);

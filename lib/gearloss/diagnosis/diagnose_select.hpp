@@ -23,10 +23,16 @@ Hypothesis with_terms(const Hypothesis& neutral, const std::vector<Term>& terms,
 // Whether e is already among the terms or excluded by one of them (another form of its axis,
 // the same effect for every oil and for one); `skip`: a term being replaced.
 bool taken(const std::vector<Term>& terms, const Effect& e, int skip = -1);
-// Coordinate descent over the terms' parameters (kFailedNll when the combination cannot be
-// evaluated); the flagged points are chosen again only when `refit_flags`.
+// The terms' parameters refitted jointly (kFailedNll when the combination cannot be
+// evaluated): Gauss-Newton for two or more continuous parameters, else coordinate descent;
+// the flagged points are chosen again only when `refit_flags`.
 double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
                      const DiagnoseOptions& opt, bool refit_flags, int skip = -1);
+// Gauss-Newton with Levenberg-Marquardt damping over the terms' continuous parameters at once
+// (forms and flagged points held), within their ranges; the likelihood reached, kFailedNll
+// when the start cannot be evaluated (diagnose_joint.cpp).
+double joint_gauss_newton(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms,
+                          const std::vector<char>& flags, int skip = -1);
 // A finding's before/after figures: without it (predictions pb) and with it (h).
 void record_fit(Finding& f, const Engine& E, const Pred& pb, const Hypothesis& without, const Hypothesis& h,
                 const CvResult& cv_without, const CvResult& cv_with);
