@@ -35,9 +35,9 @@ network), whose correlations are not documented. So most stabilised campaigns ru
 DERIVED case: the shipped gearbox with its `thermal` block replaced by a rig-measured
 thermal resistance (`heat_rejection: resistance`, optionally speed-dependent), which this
 script reproduces exactly (checked against the binary's stabilised map: <= 0.3 K). The
-*_housing cases run the shipped files as they are, with the textbook housing written
-here; its heat flow is within about 2 % of the binary's, so their null campaigns carry
-that small heat-path error (--housing-check prints the comparison). Derived case files
+*_housing cases run the shipped files as they are, with the housing correlations that
+README.md documents written here with the script's own air data; its heat flow is within
+0.5 % of the binary's (--housing-check prints the comparison). Derived case files
 are written to OUT/cases/ and are exactly what `diagnose` receives.
 
 Usage:

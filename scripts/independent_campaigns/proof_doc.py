@@ -46,8 +46,8 @@ the tool's coupled solve or its noise. Method and effect forms in detail:
 2. **Concealed effects** in perturbed forms written in the script (other exponents, thresholds, speed or load
    dependences than the candidates), effects outside the library, and per-oil effects.
 3. **Heat balance** solved in the script: the first crossing P_heat(T) = Q(T) warming up from ambient, with Q
-   from a rig-measured resistance on derived cases (exact, checked against the binary within 0.3 K), a textbook
-   housing on the *_housing cases (within about 2 % of the binary's heat flow: not an exact null), or a fixed
+   from a rig-measured resistance on derived cases (exact, checked against the binary within 0.3 K), the housing
+   correlations README.md documents on the *_housing cases (own air data: within 0.5 % of the binary's heat flow), or a fixed
    oil temperature.
 4. **Recordings:** rig-like sub-grids of 9-30 points (3-5 speeds x 3-6 torques; 9 = a rig's 3 x 3), speed outer /
    torque inner or shuffled, loss noise 1-3 %, oil temperature noise 0.3-0.5 K, an ambient drifting by up to
