@@ -64,10 +64,12 @@ double joint_gauss_newton(const Engine& E, const Hypothesis& neutral, std::vecto
         for (size_t q = 0; q < k; ++q) {
             const Effect& e = *terms[J[q]].effect;
             const auto [a, b] = E.range(e, h);
-            lg[q] = e.multiplicative && a > 0 && terms[J[q]].value > 0;
+            // A value that could not be fitted alone starts from the case's.
+            const double start = std::isfinite(terms[J[q]].value) ? terms[J[q]].value : e.neutral;
+            lg[q] = e.multiplicative && a > 0 && start > 0;
             lo(q) = lg[q] ? std::log(a) : a;
             hi(q) = lg[q] ? std::log(b) : b;
-            u(q) = std::clamp(lg[q] ? std::log(terms[J[q]].value) : terms[J[q]].value, lo(q), hi(q));
+            u(q) = std::clamp(lg[q] ? std::log(start) : start, lo(q), hi(q));
             step(q) = 1e-3 * (hi(q) - lo(q));
             if (!(step(q) > 0)) return kFailedNll;
         }
@@ -99,7 +101,8 @@ double joint_gauss_newton(const Engine& E, const Hypothesis& neutral, std::vecto
     Residuals cur = residuals(E, p[0], flags);
     double f = cur.nll();
     double lambda = 1e-3;
-    for (int iter = 0; iter < 12; ++iter) {
+    bool converged = false;
+    for (int iter = 0; iter < 12 && !converged; ++iter) {
         // The Jacobian of the predictions by forward differences, stepping inwards at a bound.
         std::vector<Eigen::VectorXd> xs(k, u);
         Eigen::VectorXd h(k);
@@ -150,7 +153,7 @@ double joint_gauss_newton(const Engine& E, const Hypothesis& neutral, std::vecto
                     f = ft;
                     lambda = std::max(lambda / 4, 1e-6);
                     improved = true;
-                    if (gain < 0.01) iter = 1 << 20;  // converged (the loop's end)
+                    converged = gain < 0.01;  // nats: the likelihood no longer moves
                     break;
                 }
             }

@@ -38,8 +38,10 @@ bool taken(const std::vector<Term>& terms, const Effect& e, int skip) {
     return false;
 }
 
-// Coordinate descent over the accepted parameters: each refitted with the others held,
-// until the likelihood stops improving (a few sweeps; every step is a one-parameter fit).
+// Two or more continuous parameters: Gauss-Newton over all of them at once (diagnose_joint.cpp).
+// Otherwise coordinate descent: each refitted with the others held (forms, flagged points),
+// until the likelihood stops improving (a few sweeps; every step a one-parameter fit near
+// the value it had).
 // The flagged points of an unstabilised-test term are chosen again only when `refit_flags`
 // (after an addition); trial fits keep them, so that no trial gains flags it does not pay for.
 // kFailedNll when the combination cannot be evaluated (a trial is then rejected, not fatal).
