@@ -116,9 +116,46 @@ void Engine::apply(const Hypothesis& h, int tid) const {
     for (int j = 0; j < n_oils_; ++j) h.apply_to(model(tid, j), j);
 }
 
+std::vector<Pred> Engine::predict_many(size_t count, const std::function<Hypothesis(size_t)>& make) const {
+    std::vector<Pred> out(count);
+    if (count == 1 && threads_ > 1) {
+        // One hypothesis: the points in contiguous runs, one per thread, merged in point order
+        // (the first failing point is the one predict() would stop at).
+        const Hypothesis h = make(0);
+        std::vector<Pred> part(static_cast<size_t>(threads_));
+        std::vector<std::vector<int>> run(static_cast<size_t>(threads_));
+        for (size_t q = 0; q < all_.size(); ++q) run[q * run.size() / all_.size()].push_back(all_[q]);
+#pragma omp parallel for num_threads(threads_) schedule(static, 1)
+        for (long t = 0; t < threads_; ++t) predict(h, run[static_cast<size_t>(t)], part[static_cast<size_t>(t)], omp_get_thread_num());
+        Pred& p = out[0];
+        p.loss.assign(obs_.size(), 0.0);
+        p.temp.assign(obs_.size(), 0.0);
+        for (size_t t = 0; t < part.size() && p.failure.empty(); ++t) {
+            for (int i : run[t]) {
+                p.loss[i] = part[t].loss[i];
+                p.temp[i] = part[t].temp[i];
+            }
+            p.failure = part[t].failure;
+        }
+        return out;
+    }
+    RegionErrors errors;
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
+    for (long c = 0; c < static_cast<long>(count); ++c) {
+        try {
+            predict(make(static_cast<size_t>(c)), all_, out[static_cast<size_t>(c)], omp_get_thread_num());
+        } catch (...) {
+            errors.capture();  // an exception must not leave the region (std::terminate)
+        }
+    }
+    errors.rethrow();
+    return out;
+}
+
 Pred Engine::predict_checked(const Hypothesis& h, const std::vector<int>& idx) const {
     Pred p;
-    predict(h, idx, p, 0);
+    if (idx == all_) p = std::move(predict_many(1, [&](size_t) { return h; })[0]);
+    else predict(h, idx, p, 0);
     io::throw_if_interrupted();
     if (!p.failure.empty()) throw std::runtime_error("diagnose: a fitted hypothesis failed at " + p.failure);
     return p;

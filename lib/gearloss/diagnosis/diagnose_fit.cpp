@@ -5,7 +5,6 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <numeric>
-#include <omp.h>
 
 #include "gearloss/diagnosis/diagnose_internal.hpp"
 
@@ -16,19 +15,11 @@ Response::Response(const Engine& E, const Effect& e, const Hypothesis& base)
 
 Response::Response(const Engine& E, const Effect& e, const Hypothesis& base, const std::vector<double>& grid)
     : E_(&E), e_(&e), base_(std::make_shared<const Hypothesis>(base)) {
-    std::vector<Pred> pred(grid.size());
-    RegionErrors errors;
-#pragma omp parallel for num_threads(E.threads()) schedule(dynamic, 1)
-    for (long k = 0; k < static_cast<long>(grid.size()); ++k) {
-        try {
-            Hypothesis h = base;
-            e.apply(h, grid[k]);
-            E.predict(h, E.all(), pred[k], omp_get_thread_num());
-        } catch (...) {
-            errors.capture();  // an exception must not leave the region (std::terminate)
-        }
-    }
-    errors.rethrow();
+    std::vector<Pred> pred = E.predict_many(grid.size(), [&](size_t k) {
+        Hypothesis h = base;
+        e.apply(h, grid[k]);
+        return h;
+    });
     // The knots that can be evaluated, contiguous around the value of the case.
     size_t c = 0;
     for (size_t k = 0; k < grid.size(); ++k)
@@ -137,8 +128,7 @@ void Response::refine(double x) {
         if (std::abs(k - x) <= 1e-7 * (std::abs(k) + (knots_.back() - knots_.front()))) return;
     Hypothesis h = *base_;
     e_->apply(h, x);
-    Pred p;
-    E_->predict(h, E_->all(), p, 0);
+    Pred p = std::move(E_->predict_many(1, [&](size_t) { return h; })[0]);
     io::throw_if_interrupted();
     if (!p.failure.empty()) {
         failed_ = fmt::format("{} = {:.4g}: {}", e_->parameter, x, p.failure);

@@ -4,6 +4,7 @@
 #include <exception>
 #include <memory>
 #include <numbers>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -94,6 +95,20 @@ double profiled(double rss, int n, double floor);
 // each point's scale, the oil temperature where it is equilibrium evidence (a point flagged
 // unstabilised has its own temperature: residual 0), each channel's variance profiled out.
 // `predict(i, loss, temp)` gives point i's prediction: the model's, a response's, or a sum.
+// One point's residuals under a prediction (L, T): the loss relative to the point's scale;
+// the oil temperature where it is equilibrium evidence (0 for a point flagged unstabilised).
+struct ScaledResidual {
+    double loss = 0, temp = 0;
+    bool has_temp = false;
+};
+inline ScaledResidual scaled_residual(const Obs& o, const std::vector<char>& flagged, int i, double L, double T) {
+    ScaledResidual r;
+    r.loss = (o.loss - L) / o.scale;
+    r.has_temp = o.T_evidence;
+    if (r.has_temp) r.temp = !flagged.empty() && flagged[i] ? 0.0 : o.T_oil - T;
+    return r;
+}
+
 template <class Predict>
 Score score_points(const std::vector<Obs>& obs, const std::vector<char>& flagged, const std::vector<int>& idx,
                    Predict&& predict) {
@@ -103,12 +118,11 @@ Score score_points(const std::vector<Obs>& obs, const std::vector<char>& flagged
         const Obs& o = obs[i];
         double L, T;
         predict(i, L, T);
-        const double eP = (o.loss - L) / o.scale;
-        rP += eP * eP;
+        const ScaledResidual r = scaled_residual(o, flagged, i, L, T);
+        rP += r.loss * r.loss;
         ++s.nP;
-        if (o.T_evidence) {
-            const double eT = !flagged.empty() && flagged[i] ? 0.0 : o.T_oil - T;
-            rT += eT * eT;
+        if (r.has_temp) {
+            rT += r.temp * r.temp;
             ++s.nT;
         }
     }
@@ -178,6 +192,10 @@ public:
     // Never throws (it runs inside parallel regions): a point that cannot be evaluated, or an
     // interrupt (polled per point), ends the prediction with `out.failure` set.
     void predict(const Hypothesis& h, const std::vector<int>& idx, Pred& out, int tid) const;
+    // Predictions at every point of `count` hypotheses (make(c) builds the c-th), using every
+    // thread: over the hypotheses, or over the points for a single one (same values as
+    // predict(): each point is solved on its own). Not from inside a parallel region.
+    std::vector<Pred> predict_many(size_t count, const std::function<Hypothesis(size_t)>& make) const;
     // A prediction outside parallel regions of a hypothesis evaluated before: an interrupt throws.
     Pred predict_checked(const Hypothesis& h, const std::vector<int>& idx) const;
     Score score(const Hypothesis& h, const Pred& p, const std::vector<int>& idx) const;

@@ -8,7 +8,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <omp.h>
 
 #include "gearloss/diagnosis/diagnose_select.hpp"
 #include "gearloss/io/interrupt.hpp"
@@ -30,17 +29,15 @@ struct Residuals {
 Residuals residuals(const Engine& E, const Pred& p, const std::vector<char>& flags) {
     Residuals res;
     for (int i : E.all()) {
-        const Obs& o = E.obs()[i];
-        const double eP = (o.loss - p.loss[i]) / o.scale;
-        res.r.push_back(eP);
+        const ScaledResidual e = scaled_residual(E.obs()[i], flags, i, p.loss[i], p.temp[i]);
+        res.r.push_back(e.loss);
         res.temp.push_back(0);
-        res.rss_loss += eP * eP;
+        res.rss_loss += e.loss * e.loss;
         ++res.n_loss;
-        if (o.T_evidence) {
-            const double eT = !flags.empty() && flags[i] ? 0.0 : o.T_oil - p.temp[i];
-            res.r.push_back(eT);
+        if (e.has_temp) {
+            res.r.push_back(e.temp);
             res.temp.push_back(1);
-            res.rss_temp += eT * eT;
+            res.rss_temp += e.temp * e.temp;
             ++res.n_temp;
         }
     }
@@ -80,19 +77,9 @@ double joint_gauss_newton(const Engine& E, const Hypothesis& neutral, std::vecto
         for (size_t q = 0; q < k; ++q) t[J[q]].value = value(q, x(q));
         return with_terms(neutral, t, flags, skip);
     };
-    // Several hypotheses at once, one per thread (a Jacobian's columns).
+    // Several hypotheses at once (a Jacobian's columns), or one over the points.
     auto predict_all = [&](const std::vector<Eigen::VectorXd>& xs, std::vector<Pred>& out) {
-        out.assign(xs.size(), Pred{});
-        RegionErrors errors;
-#pragma omp parallel for num_threads(E.threads()) schedule(dynamic, 1)
-        for (long c = 0; c < static_cast<long>(xs.size()); ++c) {
-            try {
-                E.predict(hypothesis(xs[static_cast<size_t>(c)]), E.all(), out[static_cast<size_t>(c)], omp_get_thread_num());
-            } catch (...) {
-                errors.capture();
-            }
-        }
-        errors.rethrow();
+        out = E.predict_many(xs.size(), [&](size_t c) { return hypothesis(xs[c]); });
     };
 
     std::vector<Pred> p;

@@ -162,8 +162,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
         const double gain = nll_full - best_nll;
         // The exchanged finding's evidence, on top of the other accepted effects.
         const Hypothesis others = with_terms(neutral, best_terms, best_flags, static_cast<int>(j));
-        Pred po;
-        E.predict(others, E.all(), po, 0);
+        Pred po = std::move(E.predict_many(1, [&](size_t) { return others; })[0]);
         io::throw_if_interrupted();
         if (!po.failure.empty()) continue;
         const double nll_o = E.score(others, po, E.all()).nll;
