@@ -43,7 +43,7 @@ are written to OUT/cases/ and are exactly what `diagnose` receives.
 Usage:
   scripts/independent-campaigns.py [--binary build/app/gearloss] [--cases transfer,fzg]
         [--seeds N] [--quick] [--categories single,two,...] [--out DIR] [--jobs N] [--reuse]
-        [--only TAGS] [--housing-check] [--proof-doc FILE]
+        [--only TAGS] [--noise-scale F] [--housing-check] [--proof-doc FILE]
 Outputs in OUT: scores.md (the tables), failures.md (every campaign not scored correct),
 results.json, and per campaign recordings.csv (+ oils/ for multi-oil), truth.json,
 diagnose.json, diagnose.txt. --proof-doc writes docs/diagnosis-proof.md's tables (proof_doc.py).
@@ -64,6 +64,7 @@ from pathlib import Path
 sys.dont_write_bytecode = True  # no __pycache__ left in scripts/
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # the package, from any working directory
 
+from independent_campaigns import campaigns  # noqa: E402
 from independent_campaigns.campaigns import CATEGORIES, build_campaign, plan, prepare_case  # noqa: E402
 from independent_campaigns.cases import CASES, DEFAULT_CASES, ROOT  # noqa: E402
 from independent_campaigns.heat_balance import housing_check  # noqa: E402
@@ -98,6 +99,8 @@ def main():
     ap.add_argument("--only", default=None,
                     help="comma list of campaign tags, effect names or categories to run (e.g. aero_drag,null0,form)")
     ap.add_argument("--proof-doc", default=None, help="also write the proof document (docs/diagnosis-proof.md) here")
+    ap.add_argument("--noise-scale", type=float, default=1.0,
+                    help="multiply the drawn loss and temperature noise (e.g. 0.1: which misses the noise causes)")
     ap.add_argument("--housing-check", action="store_true",
                     help="compare the textbook housing model written here with the binary's stabilised map")
     args = ap.parse_args()
@@ -116,6 +119,11 @@ def main():
     for c in categories:
         if c not in CATEGORIES:
             sys.exit(f"unknown category {c}; known: {', '.join(CATEGORIES)}")
+    if not 0 < args.noise_scale <= 10:
+        sys.exit("--noise-scale must be in (0, 10]")
+    if args.noise_scale != 1 and args.proof_doc:
+        sys.exit("--proof-doc reports the proof's own noise levels: not with --noise-scale")
+    campaigns.NOISE_SCALE = args.noise_scale
     out = Path(args.out) if args.out else Path(tempfile.mkdtemp(prefix="indep-camp-"))
     out.mkdir(parents=True, exist_ok=True)
     log = lambda s: print(s, file=sys.stderr, flush=True)

@@ -90,7 +90,26 @@ TEST_CASE("diagnose on the six-speed manual and automatic above 1100 rpm: a verd
 TEST_CASE("diagnose finds a concealed speed-dependent cooling in a campaign up to 2000 rpm", "[diagnose_robust]") {
     const auto c = load("configs/manual-6speed.yaml");
     diagnosis::SynthOptions so;
-    so.effects = {{"speed_dependent_cooling", -0.3}};  // hotter oil: 150 N m at 2000 rpm has no equilibrium
+    so.effects = {{"speed_dependent_cooling", 0.3}};
+    const auto rec = diagnosis::read_recordings_text(
+        diagnosis::synthesize(c.model, rpm_grid({800, 1100, 1400, 1700, 2000}, {40, 70, 100}), so), "c.csv");
+    const auto d = diagnosis::diagnose(c.model, rec);
+    REQUIRE(d.verdict == "missing_physics");
+    REQUIRE(!d.findings.empty());
+    CHECK(d.findings.front().effect == "speed_dependent_cooling");
+    CHECK(d.findings.front().parameter.value == Approx(0.3).epsilon(0.05));
+}
+
+TEST_CASE("less cooling at speed is a finding only against a heat path that grows with speed", "[diagnose_robust]") {
+    // The case's rig resistance falls with speed, R = R0 (n/1000 rpm)^-0.4 above 1000 rpm: the
+    // rig's cooling grows less than that (a = -0.3 per 1000 rpm) is found, negative. On the
+    // housing surface (no speed dependence) the same recordings cannot make the candidate
+    // negative: forced convection only adds cooling.
+    auto c = load("configs/manual-6speed.yaml");
+    c.model.thermal.rejection.model = thermal::ThermalResistance{0.06, 1000 * rpm, 0.4};
+    REQUIRE(c.model.thermal.rejection.depends_on_speed());
+    diagnosis::SynthOptions so;
+    so.effects = {{"speed_dependent_cooling", -0.3}};  // hotter oil at speed
     const auto rec = diagnosis::read_recordings_text(
         diagnosis::synthesize(c.model, rpm_grid({800, 1100, 1400, 1700, 2000}, {40, 70, 100}), so), "c.csv");
     const auto d = diagnosis::diagnose(c.model, rec);
@@ -98,6 +117,16 @@ TEST_CASE("diagnose finds a concealed speed-dependent cooling in a campaign up t
     REQUIRE(!d.findings.empty());
     CHECK(d.findings.front().effect == "speed_dependent_cooling");
     CHECK(d.findings.front().parameter.value == Approx(-0.3).epsilon(0.05));
+
+    const auto housing = load("configs/manual-6speed.yaml");
+    REQUIRE_FALSE(housing.model.thermal.rejection.depends_on_speed());
+    diagnosis::DiagnoseOptions opt;
+    opt.bootstrap = 8;
+    const auto h = diagnosis::diagnose(housing.model, rec, opt);
+    for (const auto& cand : h.candidates)
+        if (cand.effect == "speed_dependent_cooling") CHECK(cand.value >= 0.0);
+    for (const auto& f : h.findings)
+        if (f.effect == "speed_dependent_cooling") CHECK(f.parameter.value >= 0.0);
 }
 
 TEST_CASE("the physical scan range keeps the heat flow to ambient positive at the fastest point", "[diagnose_robust]") {

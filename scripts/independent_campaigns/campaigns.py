@@ -20,6 +20,8 @@ from .heat_balance import T_MAX_NULL, Heat, heat_check, steady_temperature
 from .model_table import ModelTable
 from .numerics import mean
 
+# An effect must show on its own at least this many noise standard deviations per point (below_noise).
+DETECTABLE = 1.0
 CATEGORIES = ["single", "outside", "two", "three", "form", "form_effect", "multi_oil", "null"]
 MULTI_OIL_KINDS = ["common", "per_oil", "both"]
 
@@ -191,11 +193,17 @@ def choose_points(model, rng, max_points=30):
     return [si * len(ts) + ti for si in sn for ti in st]
 
 
+# Multiplies the drawn noise levels (--noise-scale): the same campaigns with less noise tell a
+# miss the noise causes from one the truth's form causes (a perturbed form closer to another
+# candidate's); the draws themselves are unchanged.
+NOISE_SCALE = 1.0
+
+
 def draw_conditions(rng):
     """Ambient drift over the campaign (half of them), loss and temperature noise, recorded format."""
     drift = rng.uniform(-4, 4) if rng.random() < 0.5 else 0.0
-    s_loss = rng.uniform(0.01, 0.03)
-    s_temp = rng.uniform(0.3, 0.5)
+    s_loss = rng.uniform(0.01, 0.03) * NOISE_SCALE
+    s_temp = rng.uniform(0.3, 0.5) * NOISE_SCALE
     fmt = "torques" if rng.random() < 0.3 else "ploss"
     return drift, s_loss, s_temp, fmt
 
@@ -251,6 +259,36 @@ def visible_size(kept, fixed):
     size_temp = math.sqrt(mean((x["oil_temp_C"] - x["null_oil_temp_C"]) ** 2 for x in kept
                                if x["null_oil_temp_C"] is not None)) if not fixed else 0.0
     return size_loss, size_temp
+
+
+def below_noise(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, fixed):
+    """Why the campaign is not a test of the diagnosis, or None: an effect is a test only when it
+    shows on its own at least DETECTABLE x the noise per point, in the recorded loss (its own loss
+    and torque artefact at the point's oil temperature, mean over the points, relative to the model)
+    or, stabilised, in the oil temperature (RMS change of the balance with that effect alone). No
+    method can name an effect the noise hides; the multi-oil campaigns gate their per-oil effects
+    the same way (multi_oil.VISIBLE)."""
+    nrows = len(order)
+    for e in effects:
+        dl, dt = [], []
+        for k, (i, x) in enumerate(zip(order, truth_rows)):  # truth_rows[k] is row k's point, order[k]
+            if "dropped" in x:
+                continue
+            t = x["oil_temp_C"]
+            own = (e.dloss(ctx, i, t, k) if e.heats else 0.0) + (e.torque_rec(ctx, i, ctx.tq[i], k, nrows) - ctx.tq[i]) * ctx.omega(i)
+            dl.append(abs(own) / x["P_model_W"])
+            if not fixed:
+                ta = ambient + drift * (k / max(nrows - 1, 1) - 0.5)
+                t_alone, t_null = steady_temperature(ctx, i, ta, [e], k), steady_temperature(ctx, i, ta, [], k)
+                if t_alone is not None and t_null is not None:
+                    dt.append(t_alone - t_null)
+        v_loss = mean(dl) if dl else 0.0
+        v_temp = math.sqrt(mean(d * d for d in dt)) if dt else 0.0
+        e.params["visible_loss_rel"], e.params["visible_temp_rms_K"] = v_loss, v_temp
+        if v_loss < DETECTABLE * s_loss and v_temp < DETECTABLE * s_temp:
+            return (f"{e.name} below the noise on its own: loss {100 * v_loss:.2f} % vs {100 * s_loss:.2f} %, "
+                    f"oil temperature {v_temp:.2f} K vs {s_temp:.2f} K (RMS)")
+    return None
 
 
 def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
@@ -320,6 +358,9 @@ def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
             trow["P_case_model_W"] = case_model.get("P_total_W", i, trow["oil_temp_C"])
     if len(rows) < 9:
         return None, "fewer than 9 points with an equilibrium"
+    why = below_noise(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, heat.kind == "fixed")
+    if why:
+        return None, why
     fmt, unchanged = write_recordings(outdir, rows, fmt)
     size_loss, size_temp = visible_size([x for x in truth_rows if "dropped" not in x], heat.kind == "fixed")
     truth = {"case": spec["case"], "tag": spec["tag"], "seed": spec["seed"], "category": spec["category"],

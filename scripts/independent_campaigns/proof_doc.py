@@ -182,7 +182,8 @@ def failure_summary(results):
             by[r["truth"]["category"]] = by.get(r["truth"]["category"], 0) + 1
         out.append(f"\n{len(skipped)} planned campaigns were not built ("
                    + ", ".join(f"{CATEGORY_TITLES.get(k, k)} {v}" for k, v in by.items())
-                   + "): effects not applicable to the case, too few points below 125 degC, form changes under 3x the "
+                   + "): effects not applicable to the case, too few points below 125 degC, an effect that shows on "
+                     "its own less than the noise per point (loss and oil temperature), form changes under 3x the "
                      "noise; reasons in OUT/scores.md.")
     return out
 

@@ -66,7 +66,9 @@ double profiled(double rss, int n, double floor) {
 
 Engine::Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool physical_range,
                const std::vector<solver::Model>& per_oil)
-    : obs_(std::move(obs)), physical_range_(physical_range) {
+    : obs_(std::move(obs)),
+      physical_range_(physical_range),
+      heat_path_speed_dependent_(m.thermal.rejection.depends_on_speed()) {
     threads_ = threads > 0 ? threads : omp_get_max_threads();
     n_oils_ = per_oil.empty() ? 1 : static_cast<int>(per_oil.size());
     work_.reserve(static_cast<size_t>(threads_ * n_oils_));
@@ -211,6 +213,12 @@ bool Engine::relative_bounds(const Effect& e) const {
 
 std::pair<double, double> Engine::range_for(const Effect& e, double s) const {
     auto [lo, hi] = physical_range_ ? valid_range(e, max_rpm_) : std::make_pair(e.lower, e.upper);
+    // Air stirred by rotating parts or a rig fan adds cooling; it cannot take any away. A
+    // negative value is a correction only to a heat path that already grows with speed (or
+    // to a calibrated value the case carries): elsewhere it would stand in for a heat path
+    // that changes with oil temperature (a thermal_resistance that is not constant).
+    if (physical_range_ && e.id == "speed_dependent_cooling" && !heat_path_speed_dependent_)
+        lo = std::max(lo, std::min(0.0, e.neutral));
     if (!relative_bounds(e) || !(s > 0) || !std::isfinite(s)) return {lo, hi};
     // An added (or removed) loss of at most 3x (1.5x) the mean recorded loss: relative to the
     // gearbox, so a 2.5 MW box and a bench gearbox get bounds of the same meaning.

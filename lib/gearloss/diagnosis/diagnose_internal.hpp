@@ -235,6 +235,9 @@ private:
     mutable std::vector<solver::PointState> states_;
     double mean_loss_ = 0, mean_power_ = 0, mean_omega_ = 0, max_rpm_ = 0;
     bool physical_range_ = true;
+    // The case's heat path already changes with speed, so a diagnosis may find that it
+    // overstates it (negative speed_dependent_cooling); otherwise cooling can only grow.
+    bool heat_path_speed_dependent_ = false;
     int n_T_ = 0, n_oils_ = 1;
 };
 

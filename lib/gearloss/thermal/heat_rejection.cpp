@@ -22,6 +22,11 @@ struct Air {
 };
 }  // namespace
 
+bool HeatRejection::depends_on_speed() const {
+    const auto* r = std::get_if<ThermalResistance>(&model);
+    return r && r->n_ref > 0.0 && r->exponent != 0.0;
+}
+
 double ThermalResistance::resistance(double omega) const {
     const double w = std::abs(omega);
     if (n_ref <= 0.0 || exponent == 0.0 || w <= n_ref) return R0;

@@ -31,6 +31,9 @@ struct HeatRejection {
     // housing surface sees at least `air_speed` [m/s] (e.g. the under-body flow of a moving
     // vehicle) when it exceeds its own.
     double heat_flow(double T_oil, double T_amb, double omega_in, double air_speed = 0.0) const;
+    // Whether the heat flow at a given oil temperature changes with the input speed (a
+    // resistance falling with speed); a housing surface's air speed is imposed from outside.
+    bool depends_on_speed() const;
 };
 
 }  // namespace gearloss::thermal
