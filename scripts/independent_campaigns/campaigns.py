@@ -275,7 +275,8 @@ def below_noise(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp,
             if "dropped" in x:
                 continue
             t = x["oil_temp_C"]
-            own = (e.dloss(ctx, i, t, k) if e.heats else 0.0) + (e.torque_rec(ctx, i, ctx.tq[i], k, nrows) - ctx.tq[i]) * ctx.omega(i)
+            artefact = (e.torque_rec(ctx, i, ctx.tq[i], k, nrows) - ctx.tq[i]) * ctx.omega(i)
+            own = (e.dloss(ctx, i, t, k) if e.heats else 0.0) + artefact
             dl.append(abs(own) / x["P_model_W"])
             if not fixed:
                 ta = ambient + drift * (k / max(nrows - 1, 1) - 0.5)
