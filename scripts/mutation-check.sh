@@ -125,8 +125,8 @@ mut K1 clutch lib/gearloss/clutch/wet_clutch.cpp "Patir-Cheng exponent 2.31 -> 2
     '11.1 * std::pow(H, 2.31)' '11.1 * std::pow(H, 2.13)'
 mut Q1 torque_converter lib/gearloss/torque_converter/torque_converter.cpp "HI 9.6.7 C_eta constant 0.0547 -> 0.0574" \
     'std::exp(-0.0547 * std::exp' 'std::exp(-0.0574 * std::exp'
-mut D1 diagnosis lib/gearloss/diagnosis/diagnose_engine.cpp "forced convection may take cooling away on any heat path" \
-    'if (physical_range_ && e.id == "speed_dependent_cooling" && !heat_path_speed_dependent_)' 'if (physical_range_ && e.id == "speed_dependent_cooling" && false)'
+mut D1 diagnosis lib/gearloss/diagnosis/effects.cpp "forced convection may take cooling away on any heat path" \
+    'if (!cooling_may_fall) lo = std::max(lo, std::min(0.0, e.neutral));' 'if (false) lo = std::max(lo, std::min(0.0, e.neutral));'
 mut V1 vehicle lib/gearloss/vehicle/vehicle.cpp "rotating-mass factor subtracted instead of added" \
     'mass * (1.0 + rotating_mass_factor) * a' 'mass * (1.0 - rotating_mass_factor) * a'
 

@@ -87,17 +87,25 @@ TEST_CASE("diagnose on the six-speed manual and automatic above 1100 rpm: a verd
     }
 }
 
-TEST_CASE("diagnose finds a concealed speed-dependent cooling in a campaign up to 2000 rpm", "[diagnose_robust]") {
-    const auto c = load("configs/manual-6speed.yaml");
+namespace {
+// A campaign 800-2000 rpm x 40-100 N m on `model` with speed_dependent_cooling = a concealed;
+// the diagnosis must name it first with a within 5 %. Returns the recordings.
+diagnosis::Recordings find_concealed_cooling(const solver::Model& model, double a) {
     diagnosis::SynthOptions so;
-    so.effects = {{"speed_dependent_cooling", 0.3}};
-    const auto rec = diagnosis::read_recordings_text(
-        diagnosis::synthesize(c.model, rpm_grid({800, 1100, 1400, 1700, 2000}, {40, 70, 100}), so), "c.csv");
-    const auto d = diagnosis::diagnose(c.model, rec);
+    so.effects = {{"speed_dependent_cooling", a}};
+    auto rec = diagnosis::read_recordings_text(
+        diagnosis::synthesize(model, rpm_grid({800, 1100, 1400, 1700, 2000}, {40, 70, 100}), so), "c.csv");
+    const auto d = diagnosis::diagnose(model, rec);
     REQUIRE(d.verdict == "missing_physics");
     REQUIRE(!d.findings.empty());
     CHECK(d.findings.front().effect == "speed_dependent_cooling");
-    CHECK(d.findings.front().parameter.value == Approx(0.3).epsilon(0.05));
+    CHECK(d.findings.front().parameter.value == Approx(a).epsilon(0.05));
+    return rec;
+}
+}  // namespace
+
+TEST_CASE("diagnose finds a concealed speed-dependent cooling in a campaign up to 2000 rpm", "[diagnose_robust]") {
+    find_concealed_cooling(load("configs/manual-6speed.yaml").model, 0.3);
 }
 
 TEST_CASE("less cooling at speed is a finding only against a heat path that grows with speed", "[diagnose_robust]") {
@@ -108,15 +116,7 @@ TEST_CASE("less cooling at speed is a finding only against a heat path that grow
     auto c = load("configs/manual-6speed.yaml");
     c.model.thermal.rejection.model = thermal::ThermalResistance{0.06, 1000 * rpm, 0.4};
     REQUIRE(c.model.thermal.rejection.depends_on_speed());
-    diagnosis::SynthOptions so;
-    so.effects = {{"speed_dependent_cooling", -0.3}};  // hotter oil at speed
-    const auto rec = diagnosis::read_recordings_text(
-        diagnosis::synthesize(c.model, rpm_grid({800, 1100, 1400, 1700, 2000}, {40, 70, 100}), so), "c.csv");
-    const auto d = diagnosis::diagnose(c.model, rec);
-    REQUIRE(d.verdict == "missing_physics");
-    REQUIRE(!d.findings.empty());
-    CHECK(d.findings.front().effect == "speed_dependent_cooling");
-    CHECK(d.findings.front().parameter.value == Approx(-0.3).epsilon(0.05));
+    const auto rec = find_concealed_cooling(c.model, -0.3);  // hotter oil at speed
 
     const auto housing = load("configs/manual-6speed.yaml");
     REQUIRE_FALSE(housing.model.thermal.rejection.depends_on_speed());

@@ -212,13 +212,8 @@ bool Engine::relative_bounds(const Effect& e) const {
 }
 
 std::pair<double, double> Engine::range_for(const Effect& e, double s) const {
-    auto [lo, hi] = physical_range_ ? valid_range(e, max_rpm_) : std::make_pair(e.lower, e.upper);
-    // Air stirred by rotating parts or a rig fan adds cooling; it cannot take any away. A
-    // negative value is a correction only to a heat path that already grows with speed (or
-    // to a calibrated value the case carries): elsewhere it would stand in for a heat path
-    // that changes with oil temperature (a thermal_resistance that is not constant).
-    if (physical_range_ && e.id == "speed_dependent_cooling" && !heat_path_speed_dependent_)
-        lo = std::max(lo, std::min(0.0, e.neutral));
+    const auto [lo, hi] = physical_range_ ? valid_range(e, max_rpm_, heat_path_speed_dependent_)
+                                          : std::make_pair(e.lower, e.upper);
     if (!relative_bounds(e) || !(s > 0) || !std::isfinite(s)) return {lo, hi};
     // An added (or removed) loss of at most 3x (1.5x) the mean recorded loss: relative to the
     // gearbox, so a 2.5 MW box and a bench gearbox get bounds of the same meaning.

@@ -176,10 +176,11 @@ std::string effect_names(const solver::Model& m) {
     return all;
 }
 
-std::pair<double, double> valid_range(const Effect& e, double max_speed_rpm) {
+std::pair<double, double> valid_range(const Effect& e, double max_speed_rpm, bool cooling_may_fall) {
     double lo = e.lower;
-    if (e.id == "speed_dependent_cooling" && max_speed_rpm > 0 && std::isfinite(max_speed_rpm))
-        lo = std::max(lo, -0.9 * 1000.0 / max_speed_rpm);
+    if (e.id != "speed_dependent_cooling") return {lo, e.upper};
+    if (max_speed_rpm > 0 && std::isfinite(max_speed_rpm)) lo = std::max(lo, -0.9 * 1000.0 / max_speed_rpm);
+    if (!cooling_may_fall) lo = std::max(lo, std::min(0.0, e.neutral));
     return {lo, e.upper};
 }
 

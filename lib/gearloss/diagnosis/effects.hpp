@@ -113,8 +113,12 @@ std::string effect_names(const solver::Model& m);
 // The part of [lower, upper] in which the model stays physical at every input speed up to
 // `max_speed_rpm`: speed_dependent_cooling multiplies the heat flow to ambient by
 // (1 + a n/1000 rpm), so a >= -0.9 (1000 rpm / n_max) keeps at least a tenth of it (positive,
-// the coupled solve well posed); the other parameters keep their bounds.
-std::pair<double, double> valid_range(const Effect& e, double max_speed_rpm);
+// the coupled solve well posed); the other parameters keep their bounds. With
+// `cooling_may_fall` false (a diagnosis of a case whose heat path has no speed dependence)
+// a >= 0, or the case's calibrated value: air stirred by rotating parts or a rig fan adds
+// cooling and cannot take any away; a negative value there would stand in for a heat path
+// that changes with oil temperature (a thermal_resistance that is not constant).
+std::pair<double, double> valid_range(const Effect& e, double max_speed_rpm, bool cooling_may_fall = true);
 
 // Suggests the measurement that would tell two effects apart.
 std::string separating_measurement(const Signature& a, const Signature& b);
