@@ -453,3 +453,43 @@ TEST_CASE("adequacy: Holm's step-down holds the family of tests at its level", "
     }
     CHECK(any / double(draws) == Approx(1 - std::pow(1 - 0.01 / 4, 4)).margin(0.001));
 }
+
+TEST_CASE("adequacy: the fit test's power against chi-squared tables and by simulation", "[adequacy]") {
+    const double sigma = 0.02;
+    const NoiseEstimate declared{sigma, std::numeric_limits<double>::infinity(), "declared", 0};
+    // 9 points, 1 fitted parameter, declared noise: chi-squared on 8 dof, whose 95 % point is
+    // 15.507 and median 7.344 (tables): a remainder of variance v sigma^2 lifts the median to
+    // the critical value when 1 + v = 15.507 / 7.344, v = 1.1115: RMS 1.0543 sigma.
+    const auto nine = goodness_of_fit(std::vector<double>(9, sigma), declared, 1);
+    CHECK_THAT(nine.detectable, WithinRel(1.0543, 1e-3));
+    // Two such channels together: the sum of two chi-squared on 8 dof is chi-squared on 16
+    // (95 % point 26.296, median 15.338): v = 0.7144, RMS 0.8452 sigma (the pairing of the two
+    // null samples is drawn, hence the margin).
+    CHECK_THAT(detectable_remainder({&nine, &nine}), WithinAbs(0.8452, 0.03));
+    CHECK(detectable_remainder({}) == std::numeric_limits<double>::infinity());
+    CHECK(goodness_of_fit({sigma, sigma, sigma}, NoiseEstimate{}, 0).detectable == std::numeric_limits<double>::infinity());
+
+    // What the number means, with the noise estimated from the campaign's own neighbour
+    // differences (5 x 6 grid): a remainder of `detectable` times the noise fails the test at
+    // 5 % in about half the campaigns, none in about 5 %, twice it in most. A constant is a
+    // remainder no neighbour difference sees (as a smooth model error).
+    const Channel probe = grid(1, sigma, [](double, double) { return 0.0; });
+    const double d = goodness_of_fit(probe.residual, estimate_noise(probe), 0).detectable;
+    INFO("detectable remainder on a 5 x 6 grid: " << d << " times the noise");
+    CHECK(d > 0.5);
+    CHECK(d < 1.5);
+    int seen0 = 0, seen1 = 0, seen2 = 0;
+    const int campaigns = 300;
+    for (std::uint64_t seed = 1; seed <= campaigns; ++seed) {
+        auto seen = [&](double rms) {
+            const Channel c = grid(seed, sigma, [&](double, double) { return rms * sigma; });
+            return goodness_of_fit(c.residual, estimate_noise(c), 0).p_value < 0.05;
+        };
+        seen0 += seen(0), seen1 += seen(d), seen2 += seen(2 * d);
+    }
+    INFO("rejected: none " << seen0 << ", detectable " << seen1 << ", twice it " << seen2 << " of " << campaigns);
+    CHECK(seen0 < 0.1 * campaigns);
+    CHECK(seen1 > 0.35 * campaigns);
+    CHECK(seen1 < 0.65 * campaigns);
+    CHECK(seen2 > 0.85 * campaigns);
+}

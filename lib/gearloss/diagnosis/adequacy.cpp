@@ -1,6 +1,7 @@
-// The absolute adequacy test: noise of a residual channel, goodness of fit against it, and a
-// permutation test for structure left over the campaign's coordinates (see adequacy.hpp).
+// The absolute adequacy test, part 1: the noise of a residual channel, goodness of fit against
+// it and the fit test's power (see adequacy.hpp; structure and combination: adequacy_structure.cpp).
 #include "gearloss/diagnosis/adequacy.hpp"
+#include "gearloss/diagnosis/adequacy_detail.hpp"
 
 #include <algorithm>
 #include <array>
@@ -20,27 +21,8 @@
 #include <utility>
 
 namespace gearloss::diagnosis::adequacy {
-namespace {
 
-using Index = std::vector<std::size_t>;
-
-// 1 / Phi^-1(3/4): makes the median of |e| a consistent estimate of sigma for Gaussian e.
-constexpr double mad_consistency = 1.4826;
-// Huber's (1981, sec. 5.4) "proposal 2" scale: the root of mean(min(e^2, (c s)^2)) = kappa s^2,
-// kappa = E[min(Z^2, c^2)] for a standard normal Z (consistency). With c = 2 a value beyond
-// 2 s counts as 2 s, so a few points off the rest (a step, a band, an outlier) move the scale
-// by a bounded amount (about a fifth of the values may be such before it breaks down), while
-// for Gaussian values it is worth a standard deviation from about 88 % as many (the median
-// absolute value: 37 %, Rousseeuw & Croux (1993), and biased upward by 12 % on 7 values).
-// That efficiency is part of its dof.
-constexpr double huber_c = 2.0;
-constexpr double huber_efficiency = 0.88;
-
-double huber_kappa() {
-    const double c = huber_c, phi = std::exp(-0.5 * c * c) / std::sqrt(2 * std::numbers::pi);
-    const double tail = 0.5 * std::erfc(c / std::sqrt(2.0));  // P(Z > c)
-    return std::erf(c / std::sqrt(2.0)) - 2 * c * phi + 2 * c * c * tail;
-}
+namespace detail {
 
 // A coordinate is either absent (empty) or one value per point; anything else is a caller
 // error. Non-finite values would make the sorts and medians below undefined, so they are too.
@@ -61,6 +43,42 @@ void check_channel(const Channel& c) {
     check_vector(c.oil_temp, n, "oil temperature", true);
     check_vector(c.order, n, "run order", true);
 }
+
+// `idx` sorted by x, ties by index (a stable order, so results do not depend on the sort).
+void sort_by(Index& idx, const std::vector<double>& x) {
+    std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
+}
+
+Index all_points(std::size_t n) {
+    Index idx(n);
+    std::iota(idx.begin(), idx.end(), std::size_t{0});
+    return idx;
+}
+
+}  // namespace detail
+
+using namespace detail;
+
+namespace {
+
+// 1 / Phi^-1(3/4): makes the median of |e| a consistent estimate of sigma for Gaussian e.
+constexpr double mad_consistency = 1.4826;
+// Huber's (1981, sec. 5.4) "proposal 2" scale: the root of mean(min(e^2, (c s)^2)) = kappa s^2,
+// kappa = E[min(Z^2, c^2)] for a standard normal Z (consistency). With c = 2 a value beyond
+// 2 s counts as 2 s, so a few points off the rest (a step, a band, an outlier) move the scale
+// by a bounded amount (about a fifth of the values may be such before it breaks down), while
+// for Gaussian values it is worth a standard deviation from about 88 % as many (the median
+// absolute value: 37 %, Rousseeuw & Croux (1993), and biased upward by 12 % on 7 values).
+// That efficiency is part of its dof.
+constexpr double huber_c = 2.0;
+constexpr double huber_efficiency = 0.88;
+
+double huber_kappa() {
+    const double c = huber_c, phi = std::exp(-0.5 * c * c) / std::sqrt(2 * std::numbers::pi);
+    const double tail = 0.5 * std::erfc(c / std::sqrt(2.0));  // P(Z > c)
+    return std::erf(c / std::sqrt(2.0)) - 2 * c * phi + 2 * c * c * tail;
+}
+
 
 double median_of(std::vector<double> v) {
     const std::size_t m = v.size() / 2;
@@ -95,10 +113,6 @@ double robust_scale(const std::vector<double>& e) {
     return s;
 }
 
-// `idx` sorted by x, ties by index (a stable order, so results do not depend on the sort).
-void sort_by(Index& idx, const std::vector<double>& x) {
-    std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
-}
 
 // Levels of a coordinate among the points `idx`: sorted by x, a new level where the gap to the
 // previous value exceeds rel_tol of their magnitude. The magnitude has a floor (a thousandth
@@ -120,11 +134,6 @@ std::vector<Index> split_levels(const std::vector<double>& x, Index idx, double 
     return out;
 }
 
-Index all_points(std::size_t n) {
-    Index idx(n);
-    std::iota(idx.begin(), idx.end(), std::size_t{0});
-    return idx;
-}
 
 // Level number of each point in a coordinate (all 0 when it is absent).
 std::vector<int> level_ids(const std::vector<double>& x, std::size_t n, double rel_tol) {
@@ -383,7 +392,68 @@ NoiseEstimate estimate_noise(const Channel& c, double rel_tol) {
     return out;
 }
 
-FitTest goodness_of_fit(const std::vector<double>& residual, const NoiseEstimate& noise, int fitted_parameters) {
+namespace {
+
+// A test's null distribution at `draws` evenly spaced probabilities (sorted): the drawn ratios
+// themselves, or the quantiles of chi-squared / dof or F.
+std::vector<double> null_sample(const FitTest& t, std::size_t draws) {
+    if (t.null == FitTest::Null::drawn) return *t.drawn;
+    std::vector<double> q(draws);
+    const double dof = t.dof;
+    for (std::size_t j = 0; j < draws; ++j) {
+        const double p = (static_cast<double>(j) + 0.5) / static_cast<double>(draws);
+        q[j] = t.null == FitTest::Null::chi_squared ? boost::math::quantile(boost::math::chi_squared(dof), p) / dof
+                                                    : boost::math::quantile(boost::math::fisher_f(dof, t.noise_dof), p);
+    }
+    return q;
+}
+
+}  // namespace
+
+double detectable_remainder(const std::vector<const FitTest*>& tests, double level) {
+    // Under a remainder of variance v sigma^2 in each channel every statistic is about (1 + v)
+    // times its null value (the noise estimate, from contrasts, does not see a smooth
+    // remainder), so the sum is too: v = critical / median - 1 of the null sum.
+    constexpr std::size_t draws = 999, pairings = 8;
+    std::vector<double> sum;
+    std::mt19937_64 rng(20261124);
+    for (const FitTest* t : tests) {
+        if (!t || t->null == FitTest::Null::none) continue;
+        const std::vector<double> x = null_sample(*t, draws);
+        if (sum.empty()) {
+            sum = x;
+            continue;
+        }
+        // Independent channels: the sum so far paired with this sample in shuffled orders
+        // (the drawn samples of two channels on the same points are the same sequence).
+        std::vector<double> next;
+        for (std::size_t k = 0; k < pairings; ++k) {
+            std::vector<double> y = x;
+            std::shuffle(y.begin(), y.end(), rng);
+            for (std::size_t j = 0; j < sum.size(); ++j) next.push_back(sum[j] + y[j % y.size()]);
+        }
+        sum = std::move(next);
+        if (sum.size() > 8 * draws) {  // three or more channels: keep the sample's size bounded
+            std::shuffle(sum.begin(), sum.end(), rng);
+            sum.resize(8 * draws);
+        }
+    }
+    if (sum.empty()) return std::numeric_limits<double>::infinity();
+    std::sort(sum.begin(), sum.end());
+    // The sample's quantile at q, its j-th value taken at probability (j + 1/2) / size.
+    const auto at = [&](double q) {
+        const double last = static_cast<double>(sum.size() - 1);
+        const double pos = std::clamp(q * static_cast<double>(sum.size()) - 0.5, 0.0, last);
+        const std::size_t j = static_cast<std::size_t>(std::min(pos, std::max(last - 1, 0.0)));
+        return j + 1 < sum.size() ? sum[j] + (pos - static_cast<double>(j)) * (sum[j + 1] - sum[j]) : sum[j];
+    };
+    const double critical = at(1 - level), median = at(0.5);
+    if (!(median > 0) || !std::isfinite(critical)) return std::numeric_limits<double>::infinity();
+    return std::sqrt(std::max(0.0, critical / median - 1));
+}
+
+FitTest goodness_of_fit(const std::vector<double>& residual, const NoiseEstimate& noise, int fitted_parameters,
+                        double level) {
     check_vector(residual, residual.size(), "residual", false);
     if (fitted_parameters < 0) throw std::invalid_argument("adequacy: negative number of fitted parameters");
     FitTest t;
@@ -400,182 +470,20 @@ FitTest goodness_of_fit(const std::vector<double>& residual, const NoiseEstimate
     // A declared noise is known exactly: RSS / sigma^2 is chi-squared. An estimated one has
     // its own chi-squared of noise.dof in the denominator: the ratio is Fisher's F, or, for
     // neighbour differences of these residuals, its distribution drawn through their contrasts.
-    if (std::isinf(noise.dof))
+    if (std::isinf(noise.dof)) {
+        t.null = FitTest::Null::chi_squared;
         t.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(dof), chi2));
-    else if (noise.contrasts && noise.contrasts->points == residual.size() && residual.size() <= 400)
+    } else if (noise.contrasts && noise.contrasts->points == residual.size() && residual.size() <= 400) {
+        t.null = FitTest::Null::drawn;
+        t.drawn = null_ratios(noise.contrasts);
         t.p_value = drawn_fit_p(noise.contrasts, t.statistic);
-    else
+    } else {
+        t.null = FitTest::Null::fisher;
         t.p_value = boost::math::cdf(boost::math::complement(boost::math::fisher_f(dof, noise.dof), t.statistic));
+    }
+    t.noise_dof = noise.dof;
+    t.detectable = detectable_remainder({&t}, level);
     return t;
-}
-
-namespace {
-
-// One coordinate of the structure test: the points in its order (sorted once) and, for each
-// window size, where each position's window starts in that order.
-struct Axis {
-    const char* name;
-    Index order;
-    std::vector<Index> start;  // start[w][j]: first position of the window of size ks[w] around j
-};
-
-// The window of position j: the k points nearest to it in the coordinate, the point itself
-// included. In a sorted order they are consecutive, grown one point at a time towards the
-// nearer value. Tied values are at distance zero, so the points of one speed level fill
-// each other's windows before any point of the next level comes in: a step of one level is
-// then seen by whole windows and not smeared over the level's edges. Between candidates at
-// equal distance (inside a level, or equal spacing such as the run order) the side with
-// fewer positions so far is taken, which centres the window.
-Index window_starts(const std::vector<double>& x, const Index& order, std::size_t k) {
-    const std::size_t n = order.size();
-    Index start(n);
-    for (std::size_t j = 0; j < n; ++j) {
-        const double xj = x[order[j]];
-        std::size_t lo = j, hi = j + 1;  // [lo, hi)
-        while (hi - lo < k) {
-            if (lo == 0) { ++hi; continue; }
-            if (hi == n) { --lo; continue; }
-            const double left = xj - x[order[lo - 1]], right = x[order[hi]] - xj;
-            if (left < right || (left == right && j - lo <= hi - 1 - j)) --lo;
-            else ++hi;
-        }
-        start[j] = lo;
-    }
-    return start;
-}
-
-struct Best {
-    double gain = 0;
-    int axis = -1;
-    std::size_t w = 0;  // index into the window sizes
-};
-
-// The best relative LOO gain over the axes and window sizes for residuals r (centred).
-// err_mean is that of the mean of the others, the same for every ordering of r. Only sums
-// over the precomputed windows: O(n) per axis and window size.
-Best best_gain(const std::vector<double>& r, const std::vector<Axis>& axes, const std::vector<std::size_t>& ks,
-               double err_mean, std::vector<double>& prefix) {
-    const std::size_t n = r.size();
-    Best best;
-    for (std::size_t a = 0; a < axes.size(); ++a) {
-        const Index& order = axes[a].order;
-        prefix.assign(n + 1, 0.0);
-        for (std::size_t j = 0; j < n; ++j) prefix[j + 1] = prefix[j] + r[order[j]];
-        for (std::size_t w = 0; w < ks.size(); ++w) {
-            const std::size_t k = ks[w];
-            const Index& start = axes[a].start[w];
-            double err = 0;
-            for (std::size_t j = 0; j < n; ++j) {
-                const double y = r[order[j]];
-                // Leave-one-out: the point's own value is not in its prediction.
-                const double loo = (prefix[start[j] + k] - prefix[start[j]] - y) / static_cast<double>(k - 1);
-                err += (y - loo) * (y - loo);
-            }
-            const double gain = 1 - err / err_mean;
-            // Strictly better only: on a tie the earlier coordinate (speed first) is named.
-            if (gain > best.gain) best = {gain, static_cast<int>(a), w};
-        }
-    }
-    return best;
-}
-
-// The coordinates to test: given, one value per point, more than one distinct value.
-std::vector<Axis> structure_axes(const Channel& c, const std::vector<std::size_t>& ks) {
-    const std::size_t n = c.residual.size();
-    const std::pair<const char*, const std::vector<double>*> all[] = {
-        {"speed", &c.speed}, {"torque", &c.torque}, {"oil temperature", &c.oil_temp}, {"run order", &c.order}};
-    std::vector<Axis> axes;
-    for (const auto& [name, x] : all) {
-        if (x->empty()) continue;
-        const auto [lo, hi] = std::minmax_element(x->begin(), x->end());
-        if (*lo == *hi) continue;
-        Axis axis{name, all_points(n), {}};
-        sort_by(axis.order, *x);
-        for (std::size_t k : ks) axis.start.push_back(window_starts(*x, axis.order, k));
-        axes.push_back(std::move(axis));
-    }
-    return axes;
-}
-
-}  // namespace
-
-StructureTest structure(const Channel& c, int permutations, std::uint64_t seed) {
-    check_channel(c);
-    StructureTest t;
-    const std::size_t n = c.residual.size();
-    if (n == 0) return t;
-    const double mean = std::accumulate(c.residual.begin(), c.residual.end(), 0.0) / static_cast<double>(n);
-    t.smooth.assign(n, mean);
-    // Below 6 points a window of 2..5 is nearly the whole campaign: nothing to compare.
-    if (n < 6) return t;
-
-    // Both the smoother and the mean of the others follow an added constant: centring first
-    // only keeps the sums of large channels (temperatures in K) accurate.
-    std::vector<double> r(n);
-    for (std::size_t i = 0; i < n; ++i) r[i] = c.residual[i] - mean;
-    double err_mean = 0;
-    const double total = std::accumulate(r.begin(), r.end(), 0.0);
-    for (double y : r) {
-        const double loo = (total - y) / static_cast<double>(n - 1);
-        err_mean += (y - loo) * (y - loo);
-    }
-    if (!(err_mean > 0)) return t;
-
-    // Narrow windows for a step, wide ones for a drift; a quarter of the points for large
-    // campaigns. Clipped so that a window holds one other point at least and not all.
-    std::vector<std::size_t> ks;
-    for (std::size_t k : {std::size_t{3}, std::size_t{5}, std::size_t{9}, n / 4}) ks.push_back(std::clamp(k, std::size_t{2}, n - 1));
-    std::sort(ks.begin(), ks.end());
-    ks.erase(std::unique(ks.begin(), ks.end()), ks.end());
-    const auto axes = structure_axes(c, ks);
-    if (axes.empty()) return t;
-
-    std::vector<double> prefix;
-    const Best observed = best_gain(r, axes, ks, err_mean, prefix);
-    if (observed.axis < 0) return t;
-    const Axis& winner = axes[static_cast<std::size_t>(observed.axis)];
-    t.gain = observed.gain;
-    t.coordinate = winner.name;
-
-    // In-sample fit of the winner, for reports: the window mean including the point itself.
-    const std::size_t k = ks[observed.w];
-    prefix.assign(n + 1, 0.0);
-    for (std::size_t j = 0; j < n; ++j) prefix[j + 1] = prefix[j] + r[winner.order[j]];
-    for (std::size_t j = 0; j < n; ++j) {
-        const std::size_t lo = winner.start[observed.w][j];
-        t.smooth[winner.order[j]] = mean + (prefix[lo + k] - prefix[lo]) / static_cast<double>(k);
-    }
-
-    // The permutation distribution of the whole statistic (best of the coordinates and the
-    // windows), so that choosing the best is paid for: the p-value holds for any exchangeable
-    // noise. Counting the observed one among them keeps it above zero and the test exact.
-    const int perms = std::max(permutations, 0);
-    std::mt19937_64 rng(seed);
-    std::vector<double> shuffled = r;
-    int at_least = 0;
-    for (int p = 0; p < perms; ++p) {
-        std::shuffle(shuffled.begin(), shuffled.end(), rng);
-        if (best_gain(shuffled, axes, ks, err_mean, prefix).gain >= observed.gain) ++at_least;
-    }
-    t.p_value = (1.0 + at_least) / (1.0 + perms);
-    return t;
-}
-
-double combined_p(const std::vector<double>& p_values) {
-    if (p_values.empty()) return 1;
-    double statistic = 0;
-    for (double p : p_values) statistic -= 2 * std::log(std::clamp(p, 1e-300, 1.0));
-    const boost::math::chi_squared chi2(2.0 * static_cast<double>(p_values.size()));
-    return boost::math::cdf(boost::math::complement(chi2, statistic));
-}
-
-double holm_threshold(std::vector<double> p_values, double level) {
-    std::sort(p_values.begin(), p_values.end());
-    const size_t m = p_values.size();
-    double threshold = 0;
-    for (size_t k = 0; k < m && p_values[k] < level / static_cast<double>(m - k); ++k)
-        threshold = std::nextafter(p_values[k], 1.0);
-    return threshold;
 }
 
 }  // namespace gearloss::diagnosis::adequacy

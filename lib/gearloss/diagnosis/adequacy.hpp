@@ -8,6 +8,7 @@
 // Everything here works on plain vectors: one channel (the relative loss residual, or the oil
 // temperature residual in K) of one campaign at a time.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,12 +59,29 @@ NoiseEstimate estimate_noise(const Channel& c, double rel_tol = 0.01);
 // rejects 1 % of pure-noise 3 x 4 grids and so misses most remainders). Up to 400 points its
 // p-value is drawn instead: 999 Gaussian residual vectors through the same contrasts and the
 // same robust scale, the share whose ratio is at least the one observed (deterministic).
+// `detectable`: the power of the test, as the RMS of a systematic remainder (in units of the
+// noise) that lifts the statistic's median to the test's critical value at `level`, so that it
+// is seen in half the campaigns; a smaller one mostly passes. It is large when the noise is
+// estimated from few contrasts (a 3 x 3 grid: a remainder as large as the noise goes unseen).
 struct FitTest {
     double statistic = 0;    // mean square of the residuals / sigma^2
     double p_value = 1;      // of a value at least this large if the residuals are noise only
     int n = 0, dof = 0;
+    double detectable = std::numeric_limits<double>::infinity();
+    // The statistic's null distribution: chi-squared / dof, Fisher's F(dof, noise dof), or the
+    // drawn ratios (sorted); none when nothing was tested.
+    enum class Null { none, chi_squared, fisher, drawn } null = Null::none;
+    double noise_dof = 0;
+    std::shared_ptr<const std::vector<double>> drawn;
 };
-FitTest goodness_of_fit(const std::vector<double>& residual, const NoiseEstimate& noise, int fitted_parameters);
+FitTest goodness_of_fit(const std::vector<double>& residual, const NoiseEstimate& noise, int fitted_parameters,
+                        double level = 0.05);
+
+// The power of several fit tests together (the loss and the oil temperature of one campaign):
+// the RMS of a remainder, the same multiple of each channel's noise in every channel, that
+// lifts the median of the sum of their statistics to the sum's critical value at `level`
+// (null: the tests independent). One test: its own `detectable`. Infinite when none tested.
+double detectable_remainder(const std::vector<const FitTest*>& tests, double level = 0.05);
 
 // Structure left in the residuals: for each coordinate (speed, torque, oil temperature, run
 // order) a 1-D smoother in that coordinate (a running mean over the k nearest points in its

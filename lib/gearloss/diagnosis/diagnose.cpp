@@ -35,6 +35,7 @@ void DiagnoseOptions::validate() const {
     if (!(adequacy_level > 0 && adequacy_level < 0.5)) bad("adequacy_level", "must be within 0..0.5");
     if (!(confidence_level >= adequacy_level && confidence_level < 0.5))
         bad("confidence_level", "must be within adequacy_level..0.5");
+    if (!(confident_detectable > 0)) bad("confident_detectable", "must be positive (infinity: not required)");
 }
 
 Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const DiagnoseOptions& opt) {
@@ -145,16 +146,33 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         c.noise = n.sigma;
         c.noise_source = n.source.empty() ? "none" : n.source;
         c.fit_p = f.p_value;
+        c.fit_detectable = f.detectable;
         c.structure_p = st.p_value;
         c.structure_along = st.coordinate;
         return c;
     };
     d.adequacy_loss = channel(ad.noise_loss, ad.fit_loss, ad.structure_loss);
     d.adequacy_temp = channel(ad.noise_temp, ad.fit_temp, ad.structure_temp);
+    d.detectable = ad.detectable;
+    // What the findings leave passes the tests, but the tests could not have seen a remainder
+    // of the noise's size: the findings are named, not as the whole cause.
+    const bool weak_test = ad.adequate && !(ad.detectable <= opt.confident_detectable);
+    std::string weak_text;
+    if (weak_test) {
+        const bool estimated = ad.noise_loss.source != "declared" || (E.has_temperature() && ad.noise_temp.source != "declared");
+        weak_text = fmt::format(
+            "What the findings leave passes the tests against the noise, but {} {} points those tests see little: a "
+            "remainder of {:.2g} times the noise would pass them in half such campaigns (a confident name needs {:.2g}). "
+            "{} or record more points to test whether the findings are the whole cause",
+            estimated ? "with the noise estimated from" : "on", d.points, ad.detectable, opt.confident_detectable,
+            estimated ? "Declare the rig's measurement uncertainty (--loss-uncertainty, --temp-uncertainty)" : "Repeat points");
+    }
     if (!d.findings.empty()) {
-        d.verdict = ad.adequate ? "missing_physics" : "partly_explained";
+        d.verdict = ad.adequate && !weak_test ? "missing_physics" : "partly_explained";
         if (!ad.adequate)
             d.remaining = "a systematic residual remains after the findings:\n" + ad.text + "\n" + locate(E, pf, base, model).text;
+        else if (weak_test)
+            d.remaining = "not shown to be the whole cause. " + weak_text;
     } else if (!ad.adequate) {
         d.verdict = "unexplained_mismatch";
         d.remaining = ad.text + "\n" + d.location;
@@ -249,7 +267,9 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             const auto& f = d.findings[k];
             if (k == 0) s += baseline_clause + " -> ";
             else s += "; then ";
-            const char* verb = d.verdict == "missing_physics" ? "was left out" : "explains part of it";
+            const char* verb = d.verdict == "missing_physics" ? "was left out"
+                               : weak_test                    ? "explains it as far as these points can tell"
+                                                              : "explains part of it";
             const std::string name = f.oil.empty() ? f.effect : f.effect + " of oil " + f.oil;
             if (f.equivalent.empty()) {
                 s += fmt::format("{} {} ({})", name, verb, f.description);
@@ -275,7 +295,9 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
                 s += fmt::format(", oil temperature RMSE {:.2f} K -> {:.2f} K", f.temp_rmse_before, f.temp_rmse_after);
             if (!f.equivalent.empty()) s += fmt::format(". To separate them: {}", f.separating_measurement);
         }
-        if (d.verdict == "partly_explained")
+        if (d.verdict == "partly_explained" && weak_test)
+            s += ". " + weak_text + ". The names above may be the whole cause or part of it";
+        else if (d.verdict == "partly_explained")
             s += ". But what is left is not measurement noise: " + ad.text +
                  ". The names above are partial explanations, not the cause of the whole mismatch";
         d.summary = s + ".";

@@ -16,6 +16,7 @@
 // (missing_physics) only when the remainder is noise; otherwise the verdict is
 // partly_explained and says where the remainder lives.
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,13 @@ struct DiagnoseOptions {
     // than adequacy_level on purpose: naming a cause demands that nothing systematic is left,
     // and several tests each just short of failing are a remainder, not noise.
     double confidence_level = 0.05;
+    // ... and only when those tests could have seen a remainder: one of this RMS (a multiple of
+    // each channel's noise) must fail them in at least half such campaigns (adequacy.hpp
+    // detectable_remainder). With the noise estimated from a few points' neighbour differences
+    // a remainder as large as the noise itself passes unseen (3 x 3: 2.3 times it); the
+    // findings are then named, but not as the whole cause (`partly_explained`, saying why).
+    // A declared noise (loss_uncertainty, temp_uncertainty) is known better, so tests more.
+    double confident_detectable = 1.0;
     // Progress messages (a terminal shows them); called from the calling thread only.
     std::function<void(const std::string&)> progress;
     // Candidate scans stay where the model is physical at every recorded point (effects.hpp
@@ -123,8 +131,12 @@ struct Diagnosis {
         double noise = 0;          // relative (loss) or K (oil temperature)
         std::string noise_source;  // declared | replicates | neighbour differences | none
         double fit_p = 1, structure_p = 1;
+        // The smallest systematic remainder (RMS over the noise) the fit test sees half the time.
+        double fit_detectable = std::numeric_limits<double>::infinity();
         std::string structure_along;  // speed | torque | oil temperature | run order
     } adequacy_loss, adequacy_temp;
+    // The fit tests' joint power: the remainder (RMS over the noise) they see half the time.
+    double detectable = std::numeric_limits<double>::infinity();
     // For a remainder no candidate explains (partly_explained, unexplained_mismatch): a compact
     // formula by sparse regression over the operating point, a hypothesis, never a finding.
     std::optional<hypothesis::Proposal> remainder;

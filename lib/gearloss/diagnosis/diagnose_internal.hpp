@@ -265,6 +265,8 @@ struct Adequacy {
     adequacy::FitTest fit_loss, fit_temp;
     adequacy::StructureTest structure_loss, structure_temp;
     double combined_p = 1;  // Fisher's combination of the tests' p-values
+    // The fit tests' joint power at the confidence level (adequacy::detectable_remainder).
+    double detectable = std::numeric_limits<double>::infinity();
     bool adequate = true;
     std::string text;  // what is left and where, when not adequate
 };

@@ -123,7 +123,7 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
                     const char* unit) {
         if (c.residual.size() < 6) return;
         n = noise(c, oil, declared, floor);
-        if (n.known()) fit = adequacy::goodness_of_fit(c.residual, n, fitted);
+        if (n.known()) fit = adequacy::goodness_of_fit(c.residual, n, fitted, opt.confidence_level);
         st = adequacy::structure(c, 999);
         Result r{what, unit, "", 0.0, unit_scale, n.known() ? &fit : nullptr, &st};
         for (double x : c.residual) r.rms += x * x / c.residual.size();
@@ -167,6 +167,10 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
         }
     }
     for (const auto& s : left) A.text += (A.text.empty() ? "" : "\n") + s;
+    std::vector<const adequacy::FitTest*> fits;
+    for (const auto& r : results)
+        if (r.fit) fits.push_back(r.fit);
+    A.detectable = adequacy::detectable_remainder(fits, opt.confidence_level);
     return A;
 }
 

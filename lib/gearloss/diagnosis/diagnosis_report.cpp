@@ -2,6 +2,7 @@
 #include "gearloss/io/mechanism_config.hpp"
 
 // The diagnosis as text, JSON and a residuals table, and the calibrated case file.
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -73,6 +74,9 @@ std::string diagnosis_text(const Diagnosis& d) {
         s += fmt::format("       oil temperature {:.3g} K ({}), fit p = {:.2g}, structure p = {:.2g}{}\n", d.adequacy_temp.noise,
                          d.adequacy_temp.noise_source, d.adequacy_temp.fit_p, d.adequacy_temp.structure_p,
                          d.adequacy_temp.structure_along.empty() ? "" : " (along " + d.adequacy_temp.structure_along + ")");
+    if (std::isfinite(d.detectable))
+        s += fmt::format("       power: a remainder of {:.2g} times the noise fails the fit test{} in half such campaigns\n",
+                         d.detectable, d.has_temperature ? "s" : "");
     s += "\ncandidates (delta BIC, > 10 is very strong evidence):\n";
     for (const auto& c : d.candidates) {
         if (c.rejected.empty()) s += fmt::format("  {:<24} {:8.1f}   fitted {:.4g}\n", c.effect, c.delta_bic, c.value);
@@ -108,12 +112,14 @@ std::string diagnosis_json(const Diagnosis& d) {
         j.key("noise").value(c.noise);
         j.key("noise_source").value(c.noise_source);
         j.key("fit_p").value(c.fit_p);
+        if (std::isfinite(c.fit_detectable)) j.key("fit_detectable").value(c.fit_detectable);
         j.key("structure_p").value(c.structure_p);
         j.key("structure_along").value(c.structure_along);
         j.end_object();
     };
     channel("loss_relative", d.adequacy_loss);
     if (d.has_temperature) channel("oil_temperature_K", d.adequacy_temp);
+    if (std::isfinite(d.detectable)) j.key("detectable_remainder").value(d.detectable);
     j.end_object();
     if (d.remainder) {
         j.key("remainder_hypothesis").begin_object();
