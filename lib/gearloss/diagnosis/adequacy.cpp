@@ -79,7 +79,6 @@ double huber_kappa() {
     return std::erf(c / std::sqrt(2.0)) - 2 * c * phi + 2 * c * c * tail;
 }
 
-
 double median_of(std::vector<double> v) {
     const std::size_t m = v.size() / 2;
     std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end());
@@ -113,7 +112,6 @@ double robust_scale(const std::vector<double>& e) {
     return s;
 }
 
-
 // Levels of a coordinate among the points `idx`: sorted by x, a new level where the gap to the
 // previous value exceeds rel_tol of their magnitude. The magnitude has a floor (a thousandth
 // of the coordinate's largest) so that set points at zero jittering around it stay one level.
@@ -133,7 +131,6 @@ std::vector<Index> split_levels(const std::vector<double>& x, Index idx, double 
     }
     return out;
 }
-
 
 // Level number of each point in a coordinate (all 0 when it is absent).
 std::vector<int> level_ids(const std::vector<double>& x, std::size_t n, double rel_tol) {
@@ -433,9 +430,9 @@ double detectable_remainder(const std::vector<const FitTest*>& tests, double lev
             for (std::size_t j = 0; j < sum.size(); ++j) next.push_back(sum[j] + y[j % y.size()]);
         }
         sum = std::move(next);
-        if (sum.size() > 8 * draws) {  // three or more channels: keep the sample's size bounded
+        if (sum.size() > pairings * draws) {  // three or more channels: keep the sample's size bounded
             std::shuffle(sum.begin(), sum.end(), rng);
-            sum.resize(8 * draws);
+            sum.resize(pairings * draws);
         }
     }
     if (sum.empty()) return std::numeric_limits<double>::infinity();
