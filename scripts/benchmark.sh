@@ -105,25 +105,35 @@ print(f"local thermal-EHL map (seed 000 spur, 100 x 100), best of 3: {best[1]:,.
 PY
 
 # Diagnosis of campaigns of 30 (6 speeds x 5 torques), 300 (20 x 15) and 1000 (40 x 25) points with a
-# concealed windage (issue 15: 30 points < 1 s, 1000 points < 5 s on 2 cores).
+# concealed windage, 1000 points with two correlated effects (a torque-sensor gain and offset: the joint
+# refits), and a raw 0.5 Hz rig log of 16 tests, 115 200 rows (issue 15: 30 points < 1 s, 1000 points
+# < 5 s, a 10^5-row raw log < 10 s on 2 cores).
 build/app/gearloss synth configs/transfer-box.yaml --speed 400,550,700,850,1000,1150rpm --torque 100,160,220,280,340Nm \
     --effect windage=25W --seed 7 -o "$tmp/rec30.csv"
 build/app/gearloss synth configs/transfer-box.yaml --speed "$(python3 -c "print(','.join(str(400 + 80 * i) for i in range(20)))")rpm" \
     --torque "$(python3 -c "print(','.join(str(25 + 20 * i) for i in range(15)))")Nm" --effect windage=25W --seed 7 -o "$tmp/rec300.csv"
 build/app/gearloss synth configs/transfer-box.yaml --speed "$(python3 -c "print(','.join(str(400 + 40 * i) for i in range(40)))")rpm" \
     --torque "$(python3 -c "print(','.join(str(20 + 12 * i) for i in range(25)))")Nm" --effect windage=25W --seed 7 -o "$tmp/rec1000.csv"
+build/app/gearloss synth configs/transfer-box.yaml --speed "$(python3 -c "print(','.join(str(400 + 40 * i) for i in range(40)))")rpm" \
+    --torque "$(python3 -c "print(','.join(str(20 + 12 * i) for i in range(25)))")Nm" \
+    --effect torque_sensor_gain=1.02 --effect torque_sensor_offset=1.5 --seed 7 -o "$tmp/rec1000go.csv"
+build/app/gearloss synth configs/transfer-box.yaml --format log --speed 400,700,1000,1300rpm --torque 100,175,250,325Nm \
+    --effect windage=25W --seed 7 -o "$tmp/reclog.csv"
 python3 - "$tmp" <<'PY'
 import statistics, subprocess, sys, time
 d = sys.argv[1]
-for n, runs, target in ((30, 5, 1.0), (300, 3, None), (1000, 3, 5.0)):
+for name, what, runs, target in (("30", "30-point campaign", 5, 1.0), ("300", "300-point campaign", 3, None),
+                                  ("1000", "1000-point campaign", 3, 5.0),
+                                  ("1000go", "1000-point campaign, gain + offset", 3, 5.0),
+                                  ("log", "raw log of 115 200 rows", 3, 10.0)):
     times = []
     for _ in range(runs):
         t0 = time.perf_counter()
-        subprocess.run(["build/app/gearloss", "diagnose", "configs/transfer-box.yaml", f"{d}/rec{n}.csv"], check=True,
+        subprocess.run(["build/app/gearloss", "diagnose", "configs/transfer-box.yaml", f"{d}/rec{name}.csv"], check=True,
                        stdout=subprocess.DEVNULL)
         times.append(time.perf_counter() - t0)
     goal = f"; target < {target:g} s" if target else ""
-    print(f"diagnose, {n}-point campaign: median {statistics.median(times):.2f} s (min {min(times):.2f}, max {max(times):.2f}{goal})")
+    print(f"diagnose, {what}: median {statistics.median(times):.2f} s (min {min(times):.2f}, max {max(times):.2f}{goal})")
 PY
 
 # Drive cycle: one WLTC run (1800 steps) of each shipped transmission from -10 degC, timed

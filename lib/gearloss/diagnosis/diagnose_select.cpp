@@ -217,6 +217,28 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         if (opt.progress) opt.progress(what);
     };
     std::vector<size_t> lead_partners;  // the first round's leader's best partners (select_pair)
+    // The first round's responses and delta BIC of the model forms: a form far worse than the
+    // case's there is screened in later rounds on an additive surrogate (what it changed at
+    // each point added to the round's base prediction) instead of a model evaluation, which
+    // for a form such as the local thermal EHL costs as much as all other candidates together.
+    std::vector<Response> form_response(lib.size());
+    std::vector<double> form_dbic(lib.size(), 0.0);
+    auto screened_out = [&](size_t k, const Pred& pb, double nll_base) {
+        const Response& R = form_response[k];
+        if (!lib[k].discrete() || !R.discrete() || R.knots().size() != 2 || !(form_dbic[k] < 0)) return false;
+        const size_t c = std::abs(R.knots()[0] - lib[k].neutral) <= std::abs(R.knots()[1] - lib[k].neutral) ? 0 : 1;
+        Pred sp = pb;
+        for (int i : all) {
+            sp.loss[i] += R.loss_at_knot(1 - c)[i] - R.loss_at_knot(c)[i];
+            sp.temp[i] += R.temp_at_knot(1 - c)[i] - R.temp_at_knot(c)[i];
+            if (!std::isfinite(sp.loss[i]) || !std::isfinite(sp.temp[i])) return false;
+        }
+        Fit f;
+        f.k = 0;
+        f.nll = E.score(base, sp, all).nll;
+        // Generous for the surrogate's error: half of what the form changed on its own.
+        return delta_bic(nll_base, f, N) < -(opt.bic_threshold + 0.5 * std::abs(form_dbic[k]));
+    };
     for (int round = 0; round < opt.max_findings; ++round) {
         const Pred pb = E.predict_checked(base, all);
         const double nll_base = E.score(base, pb, all).nll;
@@ -228,6 +250,11 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         for (size_t k = 0; k < lib.size(); ++k) {
             io::throw_if_interrupted();
             if (taken(terms, lib[k])) continue;
+            if (round > 0 && screened_out(k, pb, nll_base)) {
+                fits[k].failed = "far worse than the case's form in the first round and on this round's surrogate";
+                fits[k].value = std::nan("");
+                continue;
+            }
             report(fmt::format("diagnose: finding {}: candidate {} of {} ({})", round + 1, k + 1, lib.size(), lib[k].id));
             fits[k] = lib[k].kind == EffectKind::pointwise ? E.fit_unstabilised(base, all, opt.loss_uncertainty)
                                                            : E.fit(lib[k], base, &resp[k]);
@@ -280,6 +307,8 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
             std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dbic[a] > dbic[b]; });
         }
         if (round == 0) {
+            for (size_t k = 0; k < lib.size(); ++k)
+                if (lib[k].discrete() && fits[k].failed.empty()) form_response[k] = resp[k], form_dbic[k] = dbic[k];
             for (size_t k : order) S.candidates.push_back({lib[k].id, fits[k].value, dbic[k], fits[k].failed});
             report("diagnose: pairs of candidates");
             if (select_pair(E, lib, neutral, {fits, resp, dbic, order, pb, nll_base}, opt, S, terms, lead_partners)) {
