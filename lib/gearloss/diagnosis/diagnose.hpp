@@ -13,8 +13,9 @@
 // addition is followed by a joint refit and a test of whether every earlier
 // effect is still needed. What the accepted hypothesis leaves is then tested
 // against the measurement noise (adequacy.hpp): a name is confident
-// (missing_physics) only when the remainder is noise; otherwise the verdict is
-// partly_explained and says where the remainder lives.
+// (missing_physics) only when the remainder is noise and the tests had the power
+// to see one as large as the noise; otherwise the verdict is partly_explained and
+// says where the remainder lives, or that the campaign could not show it.
 #include <functional>
 #include <limits>
 #include <optional>
@@ -52,7 +53,7 @@ struct DiagnoseOptions {
     // ... and only when those tests could have seen a remainder: one of this RMS (a multiple of
     // each channel's noise) must fail them in at least half such campaigns (adequacy.hpp
     // detectable_remainder). With the noise estimated from a few points' neighbour differences
-    // a remainder as large as the noise itself passes unseen (3 x 3: 2.3 times it); the
+    // a remainder as large as the noise itself passes unseen (3 x 3: about twice it); the
     // findings are then named, but not as the whole cause (`partly_explained`, saying why).
     // A declared noise (loss_uncertainty, temp_uncertainty) is known better, so tests more.
     double confident_detectable = 1.0;
