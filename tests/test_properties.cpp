@@ -113,6 +113,35 @@ TEST_CASE("property: results are independent of grid order and thread count", "[
     }
 }
 
+TEST_CASE("property: rows formatted in parallel are the rows one after the other", "[properties]") {
+    // 5 x 1000 points: several chunks of rows (2048 each) and a short last one; a prefix as a
+    // sweep's leading cells; every thread count and a sub-range give the serial text.
+    auto c = io::load_case(test_support::source_path("configs/transfer-box.yaml"));
+    io::OperatingGrid grid;
+    for (double n : {300.0, 900.0, 1500.0, 2100.0, 2700.0}) grid.speeds.push_back(n * rpm);
+    for (int k = 0; k < 1000; ++k) grid.torques.push_back(10 + 0.39 * k);
+    map::MapOptions opt;
+    opt.detail = true;
+    const auto res = map::run_map(c.model, grid, opt);
+    REQUIRE(res.size() == 5000);
+    std::string serial, part;
+    size_t at_4000 = 0;
+    for (size_t i = 0; i < res.size(); ++i) {
+        if (i == 4000) at_4000 = serial.size();
+        const std::string row = "a,b," + map::csv_row(c.model, res[i], true);
+        serial += row;
+        if (i >= 100 && i < 4200) part += row;
+    }
+    for (int threads : {1, 2, 3}) {
+        INFO(threads << " threads");
+        CHECK(map::csv_rows(c.model, res, 0, res.size(), true, "a,b,", threads) == serial);
+        CHECK(map::csv_rows(c.model, res, 100, 4200, true, "a,b,", threads) == part);
+    }
+    // A range past the end stops at the last row; an empty one is no text.
+    CHECK(map::csv_rows(c.model, res, 4000, 9000, true, "a,b,", 2) == serial.substr(at_4000));
+    CHECK(map::csv_rows(c.model, res, 5000, 6000, true).empty());
+}
+
 TEST_CASE("stress map: extreme but legal inputs give finite numbers or an explicit status", "[properties]") {
     const std::vector<double> speeds = {0, 1e-3, 1, 100, 3000, 20000, 60000};
     const std::vector<double> torques = {-2000, -1, 0, 1e-6, 1, 500, 5000};

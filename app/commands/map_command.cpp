@@ -206,15 +206,19 @@ private:
             return line + "," + (i == size_t(-1) ? map::spread_csv_header() : map::spread_csv_cells(axes, spread.points[i])) + "\n";
         };
         io::AtomicFile f(out_);
-        std::string buf = with_spread(map::csv_header(k.model, detail_), size_t(-1));
-        for (size_t i = 0; i < results.size(); ++i) {
-            buf += with_spread(map::csv_row(k.model, results[i], detail_), i);
-            if (buf.size() > (1u << 20)) {
-                f.write(buf);
-                buf.clear();
+        f.write(with_spread(map::csv_header(k.model, detail_), size_t(-1)));
+        constexpr size_t kBlock = 1 << 16;  // rows formatted in parallel, a block at a time
+        for (size_t i0 = 0; i0 < results.size(); i0 += kBlock) {
+            io::throw_if_interrupted();
+            if (!spread_) {
+                f.write(map::csv_rows(k.model, results, i0, i0 + kBlock, detail_, {}, threads_));
+                continue;
             }
+            std::string buf;
+            for (size_t i = i0; i < std::min(results.size(), i0 + kBlock); ++i)
+                buf += with_spread(map::csv_row(k.model, results[i], detail_), i);
+            f.write(buf);
         }
-        f.write(buf);
         f.commit();
         std::function<void(io::Json&)> more;
         if (spread_) more = [&](io::Json& j) { map::spread_summary_json(j, axes, spread, results); };

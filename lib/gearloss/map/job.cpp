@@ -121,9 +121,10 @@ JobOutput run_job(const MapJob& job, const MapOptions& opt, const std::optional<
             const auto results = run_map(v.c.model, part, part_opt);
             io::throw_if_interrupted();  // the points run_map skipped are not rows
             const std::string p = prefix(v.values);
-            for (size_t i = 0; i < results.size(); ++i) {
-                if ((i & 4095) == 0) io::throw_if_interrupted();
-                out += p + csv_row(v.c.model, results[i], opt.detail);
+            constexpr size_t kBlock = 1 << 16;  // an interrupt is seen between blocks
+            for (size_t i = 0; i < results.size(); i += kBlock) {
+                io::throw_if_interrupted();
+                out += csv_rows(v.c.model, results, i, i + kBlock, opt.detail, p, opt.threads);
             }
             res.results.insert(res.results.end(), results.begin(), results.end());
         }

@@ -49,6 +49,10 @@ std::vector<solver::PointResult> run_map(const solver::Model& m, const io::Opera
 
 std::string csv_header(const solver::Model& m, bool detail);
 std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail);
+// Rows [begin, end) of `results`, each led by `prefix`, formatted on `threads` threads (0: all)
+// and joined in order: the same text as csv_row one after the other, at any thread count.
+std::string csv_rows(const solver::Model& m, const std::vector<solver::PointResult>& results, size_t begin, size_t end,
+                     bool detail, const std::string& prefix = {}, int threads = 0);
 
 // Summary for scripts: point counts, efficiency, loss and oil-temperature ranges, solve time.
 // `more` adds members to the object (e.g. the form spread).
