@@ -2,8 +2,11 @@
 # Map throughput: a 100 x 100 grid of the transfer gearbox (300-3000 rpm x
 # 10-400 N m) with thermal coupling, on 1 and on 2 threads, REPS runs each
 # (default 25), alternating; the solve is timed inside gearloss (start-up and
-# CSV writing excluded). Reported: best and median points/s, and the speed-up. Then the time of `gearloss diagnose` on 30-, 300- and 1000-point
-# campaigns (medians, wall clock including start-up).
+# CSV writing excluded). Reported: best and median points/s, and the speed-up. Then the whole
+# process (CSV included) on a 300 x 300 map and the peak memory of 10^5- and 10^6-point maps
+# (10^7 with GEARLOSS_BENCH_LARGE=1), the local thermal-EHL map, the time of `gearloss diagnose`
+# on 30-, 300- and 1000-point campaigns and a raw log (medians, wall clock including start-up),
+# and WLTC cycles.
 # Usage: scripts/benchmark.sh [REPS]
 #        scripts/benchmark.sh --against OLD_GEARLOSS [REPS]
 #   Before/after a change: REPS (default 9) alternating runs of this build and of another
@@ -90,6 +93,42 @@ print(f"speed-up 1 -> 2 threads (100 x 100): {best[2] / best[1]:.2f} best-of-{le
 long = {t: max(rates(f"long-{t}.txt")[0]) for t in (1, 2)}
 print(f"300 x 300 map, best of 5: {long[1]:,.0f} -> {long[2]:,.0f} points/s, speed-up 1 -> 2 threads: {long[2] / long[1]:.2f}")
 PY
+
+# Whole process, as a user runs it (start-up, solve, CSV formatting and the written file): the
+# 300 x 300 map on 1 and 2 threads, 7 alternating runs each, medians (issue 16: >= 250 000
+# points/s on 2 threads and a 1 -> 2 speed-up >= 1.8); then the peak memory (maximum resident
+# set of /usr/bin/time -v, 2 threads) of maps of 10^5 and 10^6 points, and of 10^7 with
+# GEARLOSS_BENCH_LARGE=1 (about a minute; issue 16: <= 64 MiB at 10^7).
+python3 - "$tmp" "$speeds3" "$torques3" <<'PY'
+import statistics, subprocess, sys, time
+d, sp, tq = sys.argv[1:4]
+wall = {1: [], 2: []}
+for _ in range(7):
+    for t in (1, 2):
+        t0 = time.perf_counter()
+        subprocess.run(["build/app/gearloss", "map", "configs/transfer-box.yaml", "--speed", sp, "--torque", tq,
+                        "--threads", str(t), "-o", f"{d}/whole.csv"], check=True)
+        wall[t].append(time.perf_counter() - t0)
+m = {t: statistics.median(wall[t]) for t in (1, 2)}
+print(f"300 x 300 map, whole process, medians of 7: 1 thread {m[1]:.3f} s ({90000 / m[1]:,.0f} points/s), "
+      f"2 threads {m[2]:.3f} s ({90000 / m[2]:,.0f} points/s), speed-up {m[1] / m[2]:.2f}")
+PY
+if [ -x /usr/bin/time ]; then
+    sizes="100x1000 1000x1000"
+    [ "${GEARLOSS_BENCH_LARGE:-0}" = 1 ] && sizes="$sizes 2500x4000"
+    for size in $sizes; do
+        ns=${size%x*} nt=${size#*x}
+        sp=$(python3 -c "print(','.join(f'{300+i*2700/($ns-1):.4f}' for i in range($ns)))")rpm
+        tq=$(python3 -c "print(','.join(f'{10+i*390/($nt-1):.4f}' for i in range($nt)))")Nm
+        /usr/bin/time -v build/app/gearloss map configs/transfer-box.yaml --speed "$sp" --torque "$tq" --threads 2 \
+            -o "$tmp/mem.csv" 2> "$tmp/mem.txt"
+        rss=$(awk '/Maximum resident/ {print $NF}' "$tmp/mem.txt")
+        echo "map of $((ns * nt)) points, 2 threads: peak memory $((rss / 1024)) MiB ($((rss * 1024 / (ns * nt))) B a point)"
+        rm -f "$tmp/mem.csv"
+    done
+else
+    echo "peak memory: /usr/bin/time not installed (Debian package time), not measured"
+fi
 
 # Local thermal-EHL mesh friction: 100 x 100 map of the seed 000 spur gearbox (200-1600 rpm x
 # 50-800 N m), coupled, best of 3 runs per thread count (target >= 10 000 points/s on 2 cores).

@@ -211,7 +211,8 @@ private:
         for (size_t i0 = 0; i0 < results.size(); i0 += kBlock) {
             io::throw_if_interrupted();
             if (!spread_) {
-                f.write(map::csv_rows(k.model, results, i0, i0 + kBlock, detail_, {}, threads_));
+                for (const auto& chunk : map::csv_row_chunks(k.model, results, i0, i0 + kBlock, detail_, {}, threads_))
+                    f.write(chunk);
                 continue;
             }
             std::string buf;

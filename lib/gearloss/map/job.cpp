@@ -124,7 +124,8 @@ JobOutput run_job(const MapJob& job, const MapOptions& opt, const std::optional<
             constexpr size_t kBlock = 1 << 16;  // an interrupt is seen between blocks
             for (size_t i = 0; i < results.size(); i += kBlock) {
                 io::throw_if_interrupted();
-                out += csv_rows(v.c.model, results, i, i + kBlock, opt.detail, p, opt.threads);
+                for (const auto& chunk : csv_row_chunks(v.c.model, results, i, i + kBlock, opt.detail, p, opt.threads))
+                    out += chunk;
             }
             res.results.insert(res.results.end(), results.begin(), results.end());
         }

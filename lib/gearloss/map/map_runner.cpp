@@ -242,15 +242,15 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
     return s + "\n";
 }
 
-std::string csv_rows(const solver::Model& m, const std::vector<solver::PointResult>& results, size_t begin, size_t end,
-                     bool detail, const std::string& prefix, int threads) {
+std::vector<std::string> csv_row_chunks(const solver::Model& m, const std::vector<solver::PointResult>& results,
+                                        size_t begin, size_t end, bool detail, const std::string& prefix, int threads) {
     // Formatting on one thread took up to 40 % of a large map's wall time: chunks of rows in
     // parallel, each into its own string, joined in row order (so the text does not depend on
     // the threads). An exception (out of memory) must not leave the region: it is kept per
     // chunk and the first rethrown after it.
     end = std::min(end, results.size());
     if (begin >= end) return {};
-    constexpr size_t kChunk = 2048;
+    constexpr size_t kChunk = 2048;  // rows; ~0.2-1 MB of text
     const size_t chunks = (end - begin + kChunk - 1) / kChunk;
     std::vector<std::string> part(chunks);
     std::vector<std::exception_ptr> failed(chunks);
@@ -270,6 +270,12 @@ std::string csv_rows(const solver::Model& m, const std::vector<solver::PointResu
     }
     for (const auto& e : failed)
         if (e) std::rethrow_exception(e);
+    return part;
+}
+
+std::string csv_rows(const solver::Model& m, const std::vector<solver::PointResult>& results, size_t begin, size_t end,
+                     bool detail, const std::string& prefix, int threads) {
+    const auto part = csv_row_chunks(m, results, begin, end, detail, prefix, threads);
     size_t bytes = 0;
     for (const auto& s : part) bytes += s.size();
     std::string out;

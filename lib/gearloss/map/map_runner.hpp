@@ -50,7 +50,12 @@ std::vector<solver::PointResult> run_map(const solver::Model& m, const io::Opera
 std::string csv_header(const solver::Model& m, bool detail);
 std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail);
 // Rows [begin, end) of `results`, each led by `prefix`, formatted on `threads` threads (0: all)
-// and joined in order: the same text as csv_row one after the other, at any thread count.
+// in consecutive chunks: joined in order they are the text of csv_row one after the other, at
+// any thread count. Written chunk by chunk, the block's text is never held twice.
+std::vector<std::string> csv_row_chunks(const solver::Model& m, const std::vector<solver::PointResult>& results,
+                                        size_t begin, size_t end, bool detail, const std::string& prefix = {},
+                                        int threads = 0);
+// The chunks joined.
 std::string csv_rows(const solver::Model& m, const std::vector<solver::PointResult>& results, size_t begin, size_t end,
                      bool detail, const std::string& prefix = {}, int threads = 0);
 
