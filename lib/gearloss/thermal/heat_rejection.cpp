@@ -24,12 +24,12 @@ struct Air {
 
 bool HeatRejection::depends_on_speed() const {
     const auto* r = std::get_if<ThermalResistance>(&model);
-    return r && r->n_ref > 0.0 && r->exponent != 0.0;
+    return r && r->depends_on_speed();
 }
 
 double ThermalResistance::resistance(double omega) const {
     const double w = std::abs(omega);
-    if (n_ref <= 0.0 || exponent == 0.0 || w <= n_ref) return R0;
+    if (!depends_on_speed() || w <= n_ref) return R0;
     return R0 * std::pow(w / n_ref, -exponent);
 }
 

@@ -11,6 +11,8 @@ struct ThermalResistance {
     double n_ref = 0;      // rad/s; 0 = no speed dependence
     double exponent = 0;   // b
     double resistance(double omega_in) const;
+    // R falls with speed above n_ref (both n_ref and b given); else R = R0 at every speed.
+    bool depends_on_speed() const { return n_ref > 0.0 && exponent != 0.0; }
 };
 
 // Housing surface: convection (free/forced, mixed by the cube rule) and
