@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
                  "  gearloss cycle configs/automatic-6speed.yaml --cycle wltc --start-temp -10degC\n"
                  "  gearloss map configs/fzg-c40-paor.yaml --speed 500,1000,1500rpm --torque 100,200Nm --oil-temp 90degC"};
     cli.footer("Exit codes: 0 success, 1 usage error, 2 input error (file:line:column: key: message), 3 output not "
-               "writable, 4 internal error, 130/143 interrupted (no output written).\nEvery command: gearloss COMMAND --help");
+               "writable, 4 internal error, 130/143 interrupted (no output file written; a pipe stops part-way).\nEvery command: gearloss COMMAND --help");
     cli.set_version_flag("--version", std::string("gearloss ") + GEARLOSS_VERSION);
     cli.require_subcommand(1);
 

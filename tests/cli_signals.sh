@@ -62,6 +62,42 @@ big_speeds="$(list 300 1 2000)rpm"
 big_torques="$(list 10 0.1 2000)Nm"
 after=0.3 stopped "map 4e6 points" INT 130 "$bin" map "$tb" --speed "$big_speeds" --torque "$big_torques" -o out/big.csv
 
+# map streamed to standard output redirected to a file: an interrupt cuts the file back to
+# what it held (empty after `>`, the old text after `>>`); to a FIFO, which cannot be taken
+# back, the rows sent stay sent and the message says the output stops part-way.
+rm -rf out && mkdir out
+for mode in new append; do
+    if [ $mode = new ]; then
+        "$bin" map "$tb" --speed "$big_speeds" --torque "$big_torques" > out/redirected.csv 2> stderr.txt &
+    else
+        echo "kept" > out/redirected.csv
+        "$bin" map "$tb" --speed "$big_speeds" --torque "$big_torques" >> out/redirected.csv 2> stderr.txt &
+    fi
+    pid=$!
+    sleep 1.5
+    kill -INT $pid
+    wait $pid
+    rc=$?
+    check "map > file ($mode), interrupted after rows were written: exit 130 (got $rc)" test $rc -eq 130
+    check "map > file ($mode): the file holds what it held before" \
+        test "$(cat out/redirected.csv)" = "$([ $mode = new ] || echo kept)"
+    check "map > file ($mode): no output written" grep -q "interrupted (signal 2); no output written" stderr.txt
+done
+mkfifo out/rows.fifo
+cat out/rows.fifo > fifo-rows.csv &
+reader=$!
+"$bin" map "$tb" --speed "$big_speeds" --torque "$big_torques" -o out/rows.fifo 2> stderr.txt &
+pid=$!
+sleep 1.5
+kill -TERM $pid
+wait $pid
+rc=$?
+wait $reader
+check "map -o FIFO, interrupted: exit 143 (got $rc)" test $rc -eq 143
+check "map -o FIFO: the rows sent arrived" test "$(head -c 12 fifo-rows.csv)" = "speed_in_rpm"
+check "map -o FIFO: says the output stops part-way" grep -q "the output 'out/rows.fifo' stops part-way" stderr.txt
+rm -rf out
+
 # map with a sweep of 2000 variants (the expansion re-reads each variant) and a shard
 mkdir -p sweep
 cp -r "$src/configs/oils" sweep/

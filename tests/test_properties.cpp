@@ -9,6 +9,7 @@
 
 #include "gearloss/io/config.hpp"
 #include "gearloss/map/map_runner.hpp"
+#include "gearloss/map/map_stream.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
@@ -113,33 +114,58 @@ TEST_CASE("property: results are independent of grid order and thread count", "[
     }
 }
 
-TEST_CASE("property: rows formatted in parallel are the rows one after the other", "[properties]") {
-    // 5 x 1000 points: several chunks of rows (2048 each) and a short last one; a prefix as a
-    // sweep's leading cells; every thread count and a sub-range give the serial text.
+TEST_CASE("property: a map streamed block by block is the map held whole, at every thread count", "[properties]") {
+    // 5 x 2000 points: two blocks of 8192 rows and a short one after, near the oil limit at
+    // high torque (points without equilibrium) as well; a prefix as a sweep's leading cells.
+    // Truth: run_map (every result held), then csv_row and the summary in row order.
     auto c = io::load_case(test_support::source_path("configs/transfer-box.yaml"));
     io::OperatingGrid grid;
     for (double n : {300.0, 900.0, 1500.0, 2100.0, 2700.0}) grid.speeds.push_back(n * rpm);
-    for (int k = 0; k < 1000; ++k) grid.torques.push_back(10 + 0.39 * k);
+    for (int k = 0; k < 2000; ++k) grid.torques.push_back(10 + 0.3 * k);
     map::MapOptions opt;
     opt.detail = true;
     const auto res = map::run_map(c.model, grid, opt);
-    REQUIRE(res.size() == 5000);
-    std::string serial, part;
-    size_t at_4000 = 0;
-    for (size_t i = 0; i < res.size(); ++i) {
-        if (i == 4000) at_4000 = serial.size();
-        const std::string row = "a,b," + map::csv_row(c.model, res[i], true);
-        serial += row;
-        if (i >= 100 && i < 4200) part += row;
-    }
+    REQUIRE(res.size() == 10000);
+    std::vector<std::string> rows;
+    for (const auto& r : res) rows.push_back("a,b," + map::csv_row(c.model, r, true));
+    const auto joined = [&](size_t a, size_t b) {
+        std::string s;
+        for (size_t i = a; i < b; ++i) s += rows[i];
+        return s;
+    };
+    size_t no_equilibrium = 0;
+    for (const auto& r : res) no_equilibrium += r.status == solver::PointStatus::no_equilibrium;
+    CHECK(no_equilibrium > 0);
+    const auto fmt = map::csv_formatter(c.model, true, "a,b,");
     for (int threads : {1, 2, 3}) {
         INFO(threads << " threads");
-        CHECK(map::csv_rows(c.model, res, 0, res.size(), true, "a,b,", threads) == serial);
-        CHECK(map::csv_rows(c.model, res, 100, 4200, true, "a,b,", threads) == part);
+        opt.threads = threads;
+        for (const auto& [a, b] : std::vector<std::pair<size_t, size_t>>{{0, 10000}, {100, 8300}, {8191, 8193}, {9999, 20000}}) {
+            INFO("rows " << a << "-" << b);
+            std::string text;
+            map::MapSummary summary;
+            map::stream_rows(c.model, grid, a, b, opt, fmt, [&](std::string_view s) { text += s; }, &summary);
+            CHECK(text == joined(a, std::min<size_t>(b, 10000)));
+            if (a == 0 && b == 10000) CHECK(summary.json(0.1) == map::map_summary_json(res, 0.1));
+        }
     }
-    // A range past the end stops at the last row; an empty one is no text.
-    CHECK(map::csv_rows(c.model, res, 4000, 9000, true, "a,b,", 2) == serial.substr(at_4000));
-    CHECK(map::csv_rows(c.model, res, 5000, 6000, true).empty());
+    // A row that fails: the first failure in row order is thrown and its block is not
+    // written (rows 9000 and 9500 fail in the second block: the first block alone is written).
+    for (size_t bad : {size_t(70), size_t(9000)}) {
+        std::string text;
+        const map::RowFormatter failing = [&](const solver::PointResult& r, size_t i, std::string& out) {
+            if (i == bad || i == bad + 500) throw InputError("", 0, 0, "", "row " + std::to_string(i));
+            fmt(r, i, out);
+        };
+        opt.threads = 2;
+        try {
+            map::stream_rows(c.model, grid, 0, 10000, opt, failing, [&](std::string_view s) { text += s; }, nullptr);
+            FAIL("no error");
+        } catch (const InputError& e) {
+            CHECK(e.message == "row " + std::to_string(bad));
+        }
+        CHECK(text == (bad < 8192 ? std::string() : joined(0, 8192)));
+    }
 }
 
 TEST_CASE("stress map: extreme but legal inputs give finite numbers or an explicit status", "[properties]") {

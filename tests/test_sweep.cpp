@@ -49,17 +49,17 @@ TEST_CASE("sweep: a path that names nothing is an input error at its line", "[sw
 
 TEST_CASE("shards of a sweep job joined by merge equal the single run", "[sweep]") {
     TempConfig cfg(with_sweep("  - {parameter: housing.oil_level, values: [-30 mm, -10 mm]}\n"));
-    map::MapJob job;
-    job.sweep_labels = {"housing.oil_level"};
-    for (auto& v : io::expand_sweep(cfg.path, std::nullopt)) job.variants.push_back({v.values, std::move(v.c)});
+    std::vector<map::MapJob::Variant> variants;
+    for (auto& v : io::expand_sweep(cfg.path, std::nullopt)) variants.push_back({v.values, std::move(v.c)});
+    const map::MapJob job({"housing.oil_level"}, variants);
     map::MapOptions opt;
     opt.detail = true;
-    const std::string single = map::run_job(job, opt, std::nullopt).csv;
+    const std::string single = map::run_job(job, opt, std::nullopt);
     REQUIRE(job.total_points() == 18);
     std::vector<std::string> files;
     for (int k = 4; k >= 1; --k) {  // written in reverse: merge must order them
         const std::string f = cfg.path + ".shard" + std::to_string(k);
-        std::ofstream(f) << map::run_job(job, opt, map::Shard{k, 4}).csv;
+        std::ofstream(f) << map::run_job(job, opt, map::Shard{k, 4});
         files.push_back(f);
     }
     CHECK(map::merge_shards(files) == single);
@@ -67,9 +67,9 @@ TEST_CASE("shards of a sweep job joined by merge equal the single run", "[sweep]
     CHECK(single.find("\n-30 mm,600,150,") != std::string::npos);
     CHECK(single.find("\n-10 mm,600,150,") != std::string::npos);
     // A shard of another job is refused.
-    auto other = job;
-    other.variants.pop_back();
-    std::ofstream(files[0]) << map::run_job(other, opt, map::Shard{4, 4}).csv;
+    variants.pop_back();
+    const map::MapJob other({"housing.oil_level"}, variants);
+    std::ofstream(files[0]) << map::run_job(other, opt, map::Shard{4, 4});
     CHECK_THROWS_AS(map::merge_shards(files), InputError);
     for (const auto& f : files) std::filesystem::remove(f);
     CHECK_THROWS_AS(map::parse_shard("5/4"), InputError);

@@ -121,24 +121,35 @@ void ProgressMeter::update(size_t done, size_t total) {
                  total ? 100.0 * done / total : 100.0, rate, eta);
 }
 
+namespace {
+// An error after part of a direct output was written (a pipe cannot be taken back).
+void note_incomplete_stream() {
+    if (const std::string s = io::incomplete_stream(); !s.empty())
+        std::fprintf(stderr, "gearloss: the output %s stops part-way\n", s.c_str());
+}
+}  // namespace
+
 int run_command(const std::function<int()>& body) {
     try {
         io::OutputTransaction outputs;  // files renamed together by publish(), discarded on error or signal
         const int rc = body();
-        if (io::interrupted()) return io::report_interrupt();
+        if (io::interrupted()) return io::report_interrupt(io::incomplete_stream());
         outputs.publish();
         return rc;
     } catch (const InputError& e) {
-        if (io::interrupted()) return io::report_interrupt();  // an error the interrupt caused
+        if (io::interrupted()) return io::report_interrupt(io::incomplete_stream());  // an error the interrupt caused
         std::fprintf(stderr, "gearloss: error: %s\n", e.what());
+        note_incomplete_stream();
         return kInput;
     } catch (const io::IoError& e) {
-        if (io::interrupted()) return io::report_interrupt();  // io::Interrupted, or a write the signal stopped
+        if (io::interrupted()) return io::report_interrupt(io::incomplete_stream());  // io::Interrupted, or a write the signal stopped
         std::fprintf(stderr, "gearloss: error: %s\n", e.what());
+        note_incomplete_stream();
         return kOutput;
     } catch (const std::exception& e) {
-        if (io::interrupted()) return io::report_interrupt();
+        if (io::interrupted()) return io::report_interrupt(io::incomplete_stream());
         std::fprintf(stderr, "gearloss: internal error: %s\n", e.what());
+        note_incomplete_stream();
         return kInternal;
     }
 }

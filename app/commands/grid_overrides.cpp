@@ -34,9 +34,11 @@ map::CaseOverrides GridOverrides::case_overrides() const {
     return o;
 }
 
-void GridOverrides::apply_checked(io::Case& k, Examples ex) const {
+void GridOverrides::apply_checked(io::Case& k, Examples ex, size_t max_points) const {
     apply(k, ex);
-    map::validate_case(k, case_overrides());
+    auto o = case_overrides();
+    o.max_points = max_points;
+    map::validate_case(k, o);
 }
 
 double point_speed(const std::string& text, const char* example) {

@@ -38,7 +38,7 @@ public:
     map::CaseOverrides case_overrides() const;
 
     // apply(), then map::validate_case(k) on the grid (naming --speed / --torque).
-    void apply_checked(io::Case& k, Examples ex) const;
+    void apply_checked(io::Case& k, Examples ex, size_t max_points = map::kMaxGridPoints) const;
 
 private:
     std::string speeds_, torques_;

@@ -18,6 +18,7 @@
 #include "gearloss/map/form_spread.hpp"
 #include "gearloss/map/job.hpp"
 #include "gearloss/map/map_runner.hpp"
+#include "gearloss/map/map_stream.hpp"
 #include "gearloss/map/vecto.hpp"
 
 namespace gearloss::app {
@@ -114,56 +115,65 @@ private:
         opt.threads = threads_;
         for (const auto& ratio : ratios) {
             if (!ratio.empty()) k.model.select_ratio(ratio);
-            const auto rows = map::vecto_loss_map(k.model, k.grid.speeds, k.grid.torques, opt);
-            io::throw_if_interrupted();
             std::string file = out_;
             if (ratios.size() > 1) {
                 const bool vtlm = out_.size() > 5 && out_.substr(out_.size() - 5) == ".vtlm";
                 const std::string stem = vtlm ? out_.substr(0, out_.size() - 5) : out_;
                 file = stem + "_" + ratio + ".vtlm";
             }
-            write_file(file, map::vecto_csv(rows));
+            io::AtomicFile f(file);
+            map::write_vecto_table(k.model, k.grid.speeds, k.grid.torques, opt, [&f](std::string_view s) { f.write(s); });
+            f.commit();
         }
         return kOk;
     }
 
-    // Sweep variants and/or one shard of the job (gearloss merge joins the shards).
+    // The map streamed to its file: the case's grid, every sweep variant, or one shard of
+    // the job (gearloss merge joins the shards).
     int run_job(io::Case k, const map::MapOptions& opt, std::optional<double> oil_temp) {
-        map::MapJob job;
+        std::vector<std::string> labels;
+        std::vector<map::MapJob::Variant> variants;
         if (k.sweep.empty()) {
-            job.variants.push_back({{}, std::move(k)});
+            variants.push_back({{}, std::move(k)});
         } else {
-            for (const auto& a : k.sweep) job.sweep_labels.push_back(a.label);
+            for (const auto& a : k.sweep) labels.push_back(a.label);
             const auto ratio = common_.ratio.empty() ? std::nullopt : std::optional<std::string>(common_.ratio);
             for (auto& v : io::expand_sweep(common_.config, ratio)) {
                 apply_case_options(v.c, common_);
-                grid_.apply_checked(v.c, kMapExamples);
-                job.variants.push_back({v.values, std::move(v.c)});
+                grid_.apply_checked(v.c, kMapExamples, map::kMaxStreamedPoints);
+                variants.push_back({v.values, std::move(v.c)});
             }
         }
+        map::MapJob job(std::move(labels), std::move(variants));
         std::optional<map::Shard> sh;
         if (!shard_.empty()) {
             sh = map::parse_shard(shard_);
             job.inputs = map::input_fingerprint({.config = common_.config, .oil_file = common_.oil, .oil_temperature = oil_temp,
                                                  .ratio = common_.ratio, .format = "csv", .detail = detail_});
         }
+        io::AtomicFile f(out_);
+        map::MapSummary summary;
         const auto t0 = std::chrono::steady_clock::now();
-        const auto res = map::run_job(job, opt, sh);
+        map::run_job(job, opt, sh, [&f](std::string_view s) { f.write(s); }, &summary);
         io::throw_if_interrupted();
         const double seconds = seconds_since(t0);
         if (stats_) {
-            const size_t n = res.results.size();
-            std::fprintf(stderr, "points %zu of %zu (%zu sweep variants), %.4f s, %.0f points/s\n", n, job.total_points(),
-                         job.variants.size(), seconds, n / seconds);
+            const size_t n = summary.points();
+            std::string of;
+            if (sh || job.variant_count() > 1)
+                of = fmt::format(" of {} ({} sweep variants)", job.total_points(), job.variant_count());
+            std::fprintf(stderr, "points %zu%s, %.4f s (solved and written), %.0f points/s, %.2f loss evaluations/point, "
+                         "%zu without equilibrium\n", n, of.c_str(), seconds, n / seconds,
+                         n ? double(summary.evaluations()) / n : 0.0, summary.no_equilibrium());
         }
-        write_file(out_, res.csv);
-        write_optional_file(json_, map::map_summary_json(res.results, seconds));
+        f.commit();
+        write_optional_file(json_, summary.json(seconds));
         return kOk;
     }
 
     int run_csv() {
         io::Case k = load_with_options(common_);
-        grid_.apply_checked(k, kMapExamples);
+        grid_.apply_checked(k, kMapExamples, spread_ ? map::kMaxGridPoints : map::kMaxStreamedPoints);
         const auto oil_temp = common_.oil_temp.empty() ? std::nullopt : std::optional<double>(k.model.thermal.oil_temperature);
         map::MapOptions opt;
         opt.threads = threads_;
@@ -172,58 +182,49 @@ private:
         opt.progress = meter.callback();
         if (spread_ && !k.sweep.empty())
             throw InputError(k.file, 0, 0, "--spread", "a spread map of a sweep is not supported: spread one variant");
-        if (!k.sweep.empty() || !shard_.empty()) return run_job(std::move(k), opt, oil_temp);
-        std::vector<map::SpreadAxis> axes;
-        if (spread_) {
-            axes = map::spread_axes(k.model, spread_axes_);
-            if (axes.empty()) throw InputError(k.file, 0, 0, "--spread", "no mechanism of this case has alternative forms");
-            map::require_spread_size(axes);  // before the nominal map, not after it
-            const auto note = map::not_applicable_note(axes, map::not_applicable_combinations(k.model, axes));
-            if (!note.empty()) std::fprintf(stderr, "gearloss: map --spread: %s\n", note.c_str());
-        }
+        if (!spread_) return run_job(std::move(k), opt, oil_temp);
+        return run_spread(k, opt);
+    }
+
+    // The nominal map and, per point, the range over every form combination: the spread
+    // solves each combination of each point, so the map is held whole, not streamed.
+    int run_spread(const io::Case& k, const map::MapOptions& opt) {
+        const auto axes = map::spread_axes(k.model, spread_axes_);
+        if (axes.empty()) throw InputError(k.file, 0, 0, "--spread", "no mechanism of this case has alternative forms");
+        map::require_spread_size(axes);  // before the nominal map, not after it
+        const auto note = map::not_applicable_note(axes, map::not_applicable_combinations(k.model, axes));
+        if (!note.empty()) std::fprintf(stderr, "gearloss: map --spread: %s\n", note.c_str());
         const auto t0 = std::chrono::steady_clock::now();
         const auto results = map::run_map(k.model, k.grid, opt);
         const double seconds = seconds_since(t0);
         io::throw_if_interrupted();
-        if (stats_) {
-            size_t evals = 0, no_eq = 0;
-            for (const auto& r : results) {
-                evals += static_cast<size_t>(r.evaluations);
-                no_eq += !solver::has_values(r.status);
-            }
+        map::MapSummary summary;
+        for (const auto& r : results) summary.add(r);
+        if (stats_)
             std::fprintf(stderr, "points %zu, solve %.4f s, %.0f points/s, %.2f loss evaluations/point, %zu without equilibrium\n",
-                         results.size(), seconds, results.size() / seconds, double(evals) / results.size(), no_eq);
-        }
-        map::SpreadResult spread;
-        if (spread_) {
-            spread = map::run_spread(k.model, k.grid, axes, opt);
-            io::throw_if_interrupted();
-        }
+                         results.size(), seconds, results.size() / seconds, double(summary.evaluations()) / results.size(),
+                         summary.no_equilibrium());
+        const map::SpreadResult spread = map::run_spread(k.model, k.grid, axes, opt);
+        io::throw_if_interrupted();
         // The spread's cells go after the map's, before the row's end.
-        auto with_spread = [&](std::string line, size_t i) {
-            if (!spread_) return line;
+        auto with_spread = [](std::string line, const std::string& cells) {
             line.pop_back();
-            return line + "," + (i == size_t(-1) ? map::spread_csv_header() : map::spread_csv_cells(axes, spread.points[i])) + "\n";
+            return line + "," + cells + "\n";
         };
         io::AtomicFile f(out_);
-        f.write(with_spread(map::csv_header(k.model, detail_), size_t(-1)));
-        constexpr size_t kBlock = 1 << 16;  // rows formatted in parallel, a block at a time
-        for (size_t i0 = 0; i0 < results.size(); i0 += kBlock) {
-            io::throw_if_interrupted();
-            if (!spread_) {
-                for (const auto& chunk : map::csv_row_chunks(k.model, results, i0, i0 + kBlock, detail_, {}, threads_))
-                    f.write(chunk);
-                continue;
+        f.write(with_spread(map::csv_header(k.model, detail_), map::spread_csv_header()));
+        std::string buf;
+        for (size_t i = 0; i < results.size(); ++i) {
+            if ((i & 4095) == 0) io::throw_if_interrupted();
+            buf += with_spread(map::csv_row(k.model, results[i], detail_), map::spread_csv_cells(axes, spread.points[i]));
+            if (buf.size() >= (size_t{1} << 20)) {
+                f.write(buf);
+                buf.clear();
             }
-            std::string buf;
-            for (size_t i = i0; i < std::min(results.size(), i0 + kBlock); ++i)
-                buf += with_spread(map::csv_row(k.model, results[i], detail_), i);
-            f.write(buf);
         }
+        f.write(buf);
         f.commit();
-        std::function<void(io::Json&)> more;
-        if (spread_) more = [&](io::Json& j) { map::spread_summary_json(j, axes, spread, results); };
-        write_optional_file(json_, map::map_summary_json(results, seconds, more));
+        write_optional_file(json_, summary.json(seconds, [&](io::Json& j) { map::spread_summary_json(j, axes, spread, results); }));
         return kOk;
     }
 };

@@ -1,6 +1,7 @@
 // gearloss merge: the shards of `map --shard K/N` joined into the file a single run writes.
 #include "commands/command.hpp"
 #include "commands/common.hpp"
+#include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/output_paths.hpp"
 #include "gearloss/map/job.hpp"
 
@@ -22,7 +23,9 @@ public:
         std::vector<std::pair<std::string, std::string>> inputs;
         for (const auto& f : shards_) inputs.emplace_back("shards", f);
         io::require_outputs_not_inputs({{"--output", out_}}, inputs);
-        write_file(out_, map::merge_shards(shards_));
+        io::AtomicFile f(out_);
+        map::merge_shards(shards_, [&f](std::string_view s) { f.write(s); });
+        f.commit();
         return kOk;
     }
 

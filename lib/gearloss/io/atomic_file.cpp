@@ -17,6 +17,7 @@ namespace gearloss::io {
 namespace {
 
 std::atomic<bool> g_stdout_closed{false};
+std::string g_incomplete_stream;  // the main thread's: outputs are written by one thread
 
 // A completed temporary file waiting for its rename.
 struct Pending {
@@ -118,6 +119,11 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), label_("'" + 
         struct stat s {};
         if (::fstat(fd_, &s) != 0) throw IoError("cannot write " + label_ + ": " + why(errno));
         waitable_ = !S_ISREG(s.st_mode);
+        if (S_ISREG(s.st_mode)) {  // `> out.csv` (or `>>`): where to cut back an abandoned output
+            const int flags = ::fcntl(fd_, F_GETFL);
+            rewind_to_ = flags >= 0 && (flags & O_APPEND) ? static_cast<long long>(s.st_size)
+                                                           : static_cast<long long>(::lseek(fd_, 0, SEEK_CUR));
+        }
         break;
     }
     case OutputTarget::Kind::direct:
@@ -189,6 +195,14 @@ void AtomicFile::create_temporary() {
 }
 
 AtomicFile::~AtomicFile() {
+    if (!committed_ && wrote_ && tmp_.empty() && fd_ >= 0) {
+        // A direct output abandoned part-way: a regular file is cut back (a shell's `> out.csv`
+        // then holds what it held before); a stream cannot be, and the messages say so.
+        if (rewind_to_ >= 0 && ::ftruncate(fd_, static_cast<off_t>(rewind_to_)) == 0)
+            (void)::lseek(fd_, static_cast<off_t>(rewind_to_), SEEK_SET);
+        else
+            g_incomplete_stream = label_;
+    }
     if (own_fd_ && fd_ >= 0) ::close(fd_);
     if (!committed_ && !tmp_.empty()) ::unlink(tmp_.c_str());
 }
@@ -201,6 +215,7 @@ void AtomicFile::write(std::string_view s) {
 }
 
 void AtomicFile::flush_buffer() {
+    wrote_ = wrote_ || (!closed_by_reader_ && !buf_.empty());
     if (!closed_by_reader_ && !buf_.empty() && !write_all(fd_, buf_.data(), buf_.size(), waitable_, label_)) {
         closed_by_reader_ = true;
         if (target_.kind == OutputTarget::Kind::descriptor && fd_ == 1) g_stdout_closed = true;
@@ -257,6 +272,8 @@ void OutputTransaction::publish() {
 }
 
 bool stdout_closed() { return g_stdout_closed; }
+
+std::string incomplete_stream() { return g_incomplete_stream; }
 
 void finish_stdout() {
     const bool flushed = std::fflush(stdout) == 0;

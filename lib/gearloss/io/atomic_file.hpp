@@ -7,7 +7,10 @@
 //    root) when it exists, else 0666 & ~umask; it is flock'ed while in use;
 //  - a symbolic link is written through: the link stays, the file it names is replaced;
 //  - "-", /dev/stdout, /dev/fd/N, a character device or a FIFO is written directly,
-//    never replaced;
+//    never replaced, as the text comes (a map streams its rows); when such a write is not
+//    committed (error, interrupt), a regular file behind the descriptor (`> out.csv`) is
+//    cut back to where it stood, and a pipe, FIFO or terminal, which cannot be taken back,
+//    is reported as incomplete (incomplete_stream);
 //  - every write, flush, fsync, close and rename is checked (IoError, exit 3); a reader
 //    that closed its pipe (EPIPE, with SIGPIPE ignored) ends that stream quietly;
 //  - an interrupt (g_interrupted) stops the writing (IoError) and nothing is renamed.
@@ -44,7 +47,13 @@ private:
     bool own_fd_ = false, waitable_ = false, closed_by_reader_ = false, committed_ = false;
     std::string tmp_;           // temporary file, empty when written directly
     std::string buf_;
+    long long rewind_to_ = -1;  // a regular file written through a descriptor: its offset before
+    bool wrote_ = false;        // bytes reached the target before commit
 };
+
+// The label ("to standard output", "'fifo'") of a direct target that received part of an
+// output that was then abandoned (error, interrupt), or empty: the messages say so.
+std::string incomplete_stream();
 
 // The files of one command appear together: while an OutputTransaction exists,
 // AtomicFile::commit() leaves the completed temporary file in place and publish()

@@ -81,8 +81,8 @@ std::string read_input_file(const std::string& file, std::size_t max_bytes) {
     return data;
 }
 
-std::string read_regular_file(const std::string& file, std::size_t max_bytes) {
-    struct stat st {};
+namespace {
+int open_checked(const std::string& file, struct stat& st) {
     // stat first: a FIFO or a device is refused without ever being opened (opening a FIFO blocks).
     if (::stat(file.c_str(), &st) != 0) {
         const int err = errno;
@@ -97,6 +97,20 @@ std::string read_regular_file(const std::string& file, std::size_t max_bytes) {
         throw InputError(file, 0, 0, "", std::string("cannot open file: ") + std::strerror(err));
     }
     if (::fstat(f.fd, &st) != 0 || !S_ISREG(st.st_mode)) not_regular(file, st.st_mode);
+    const int fd = f.fd;
+    f.fd = -1;
+    return fd;
+}
+}  // namespace
+
+int open_regular_file(const std::string& file) {
+    struct stat st {};
+    return open_checked(file, st);
+}
+
+std::string read_regular_file(const std::string& file, std::size_t max_bytes) {
+    struct stat st {};
+    Fd f{open_checked(file, st)};
     if (st.st_size < 0 || static_cast<unsigned long long>(st.st_size) > max_bytes) too_large(file, max_bytes);
     std::string data;
     data.reserve(static_cast<std::size_t>(st.st_size));
@@ -115,9 +129,9 @@ std::string read_regular_file(const std::string& file, std::size_t max_bytes) {
     return data;
 }
 
-void check_input_text(std::string_view text, const std::string& file, std::size_t max_bytes) {
+void check_input_text(std::string_view text, const std::string& file, std::size_t max_bytes, int first_line) {
     if (text.size() > max_bytes) too_large(file, max_bytes);
-    int line = 1;
+    int line = first_line;
     std::size_t line_start = 0;
     for (std::size_t i = 0; i < text.size(); ++i) {
         const unsigned char c = static_cast<unsigned char>(text[i]);

@@ -17,7 +17,6 @@ namespace gearloss::io {
 // Bounds on input files (README "Reliability").
 inline constexpr std::size_t kMaxYamlFileBytes = std::size_t{16} << 20;  // case, oil and sweep files: 16 MiB
 inline constexpr std::size_t kMaxCsvFileBytes = std::size_t{64} << 20;   // recordings and cycles: 64 MiB
-inline constexpr std::size_t kMaxShardFileBytes = std::size_t{4} << 30; // map shards (merge): 4 GiB
 inline constexpr std::size_t kMaxLineBytes = 65536;                       // any line of any input file
 inline constexpr std::size_t kExcerptChars = 60;                          // quoted input in messages
 
@@ -28,11 +27,15 @@ inline constexpr std::size_t kExcerptChars = 60;                          // quo
 std::string read_input_file(const std::string& file, std::size_t max_bytes);
 // The same without the text check, for content that is only hashed.
 std::string read_regular_file(const std::string& file, std::size_t max_bytes);
+// The file opened for reading with the same refusals (only a regular file, never blocking on
+// a FIFO); the caller owns the descriptor. For files read piece by piece (LineReader).
+int open_regular_file(const std::string& file);
 
 // The bounds on text already in memory (the *_text entry points): at most `max_bytes`,
 // every line at most kMaxLineBytes, and text only: a NUL or another control byte (other
 // than tab, CR, LF) means the file is not YAML or CSV, and it is refused without quoting it.
-void check_input_text(std::string_view text, const std::string& file, std::size_t max_bytes);
+// `first_line` numbers the first line of `text` in messages (text read piece by piece).
+void check_input_text(std::string_view text, const std::string& file, std::size_t max_bytes, int first_line = 1);
 
 // At most `max` characters of `s` for a message: control bytes and invalid UTF-8 are
 // shown as '?', and "..." marks a cut.

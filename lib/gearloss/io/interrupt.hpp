@@ -9,6 +9,7 @@
 //    command ends with interrupt_exit_code(), 130 for SIGINT and 143 for SIGTERM (128 + the
 //    signal number), after report_interrupt() said so on stderr.
 #include <atomic>
+#include <string>
 #include <csignal>
 #include <cstdio>
 
@@ -35,9 +36,15 @@ using gearloss::throw_if_interrupted;
 inline int interrupt_exit_code() noexcept { return g_interrupt_signal.load(std::memory_order_relaxed) == SIGTERM ? 143 : 130; }
 
 // "gearloss: interrupted (signal N); no output written" on stderr; returns interrupt_exit_code().
-inline int report_interrupt() noexcept {
+// `stream` names a direct output (a pipe, "to standard output") that got part of its text:
+// the message says it stops part-way instead.
+inline int report_interrupt(const std::string& stream = {}) noexcept {
     const int sig = g_interrupt_signal.load(std::memory_order_relaxed);
-    std::fprintf(stderr, "gearloss: interrupted (signal %d); no output written\n", sig ? sig : SIGINT);
+    if (stream.empty())
+        std::fprintf(stderr, "gearloss: interrupted (signal %d); no output written\n", sig ? sig : SIGINT);
+    else
+        std::fprintf(stderr, "gearloss: interrupted (signal %d); no output file written; the output %s stops part-way\n",
+                     sig ? sig : SIGINT, stream.c_str());
     return interrupt_exit_code();
 }
 

@@ -1,20 +1,11 @@
 #include "gearloss/map/job.hpp"
 
 #include <algorithm>
-#include <string_view>
-#include <cctype>
-#include <cstdlib>
-#include <cmath>
-#include <filesystem>
 #include <fmt/format.h>
-#include <fstream>
-#include <map>
 #include <numbers>
-#include <sstream>
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/csv_format.hpp"
-#include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/io/sweep.hpp"
 
@@ -28,51 +19,140 @@ std::string prefix(const std::vector<std::string>& values) {
     for (const auto& v : values) s += io::csv_cell(v) + ",";
     return s;
 }
+
+// The rows' keys of a grid as written (rounded like the CSV): its speeds and torques, or
+// its points. A grid and the point list of the same rows hash differently, which can only
+// make merge refuse shards of jobs that are the same, never join different ones.
+uint64_t grid_key(const io::OperatingGrid& g) {
+    Fnv1a f;
+    f.add(g.is_grid ? "grid" : "points");
+    if (g.is_grid) {
+        for (double w : g.speeds) f.add(io::csv_number(w * kRpm));
+        f.add("x");
+        for (double T : g.torques) f.add(io::csv_number(T));
+    } else {
+        for (const auto& [w, T] : g.points) f.add(io::csv_number(w * kRpm) + "," + io::csv_number(T));
+    }
+    return f.h;
+}
+
+std::string thermal_mode(const io::Case& c) {
+    return c.model.thermal.mode == solver::ThermalMode::fixed ? "fixed" : "stabilised";
+}
 }  // namespace
 
-size_t MapJob::total_points() const {
-    size_t n = 0;
-    for (const auto& v : variants) n += v.c.grid.size();
-    return n;
+MapJob::MapJob(std::vector<std::string> sweep_labels, Source source)
+    : labels_(std::move(sweep_labels)), source_(std::move(source)) {
+    if (source_.count == 0) throw std::logic_error("a map job without variants");
+    offsets_.reserve(source_.count + 1);
+    Fnv1a rows;
+    const uint64_t shared = source_.grid ? grid_key(*source_.grid) : 0;
+    for (size_t v = 0; v < source_.count; ++v) {
+        if ((v & 255) == 0) io::throw_if_interrupted();
+        rows.add(prefix(source_.values(v)));
+        if (source_.grid) {
+            offsets_.push_back(offsets_.back() + source_.grid->size());
+            rows.add(fmt::format("{:016x}", shared));
+        } else {
+            // The sweep may change the grid: each variant is loaded for its rows.
+            const io::Case c = source_.load(v);
+            offsets_.push_back(offsets_.back() + c.grid.size());
+            rows.add(fmt::format("{:016x}", grid_key(c.grid)));
+        }
+    }
+    rows_key_ = rows.h;
 }
+
+namespace {
+MapJob::Source held(std::shared_ptr<const std::vector<MapJob::Variant>> v) {
+    MapJob::Source s;
+    s.count = v->size();
+    s.values = [v](size_t k) { return (*v)[k].values; };
+    s.load = [v](size_t k) { return (*v)[k].c; };
+    // The case or --oil-temp decides the mode; a sweep may mix them.
+    for (const auto& x : *v) {
+        const std::string m = thermal_mode(x.c);
+        s.thermal = s.thermal.empty() || s.thermal == m ? m : "mixed";
+    }
+    return s;
+}
+}  // namespace
+
+MapJob::MapJob(std::vector<std::string> sweep_labels, std::vector<Variant> variants)
+    : MapJob(std::move(sweep_labels), held(std::make_shared<const std::vector<Variant>>(std::move(variants)))) {}
+
+io::Case MapJob::load(size_t v) const { return source_.load(v); }
 
 std::string MapJob::header(bool detail) const {
     std::string h;
-    for (const auto& l : sweep_labels) h += io::csv_cell(l) + ",";
-    const std::string body = csv_header(variants.front().c.model, detail);
-    for (const auto& v : variants)
-        if (csv_header(v.c.model, detail) != body)
-            throw InputError(v.c.file, 0, 0, "sweep",
-                             "the sweep changes the components (different --detail columns); map it without --detail");
-    return h + body;
+    for (const auto& l : labels_) h += io::csv_cell(l) + ",";
+    return h + csv_header(load(0).model, detail);
 }
 
 Fingerprint MapJob::fingerprint() const {
     Fingerprint fp = inputs;
-    // The case or --oil-temp decides the mode; a sweep may mix them.
-    std::string thermal;
-    for (const auto& v : variants) {
-        const std::string m = v.c.model.thermal.mode == solver::ThermalMode::fixed ? "fixed" : "stabilised";
-        thermal = thermal.empty() || thermal == m ? m : "mixed";
-    }
-    fp.add("thermal", thermal);
-    // The rows' keys as written (rounded like the CSV): the resolved grid and sweep.
-    Fnv1a f;
-    for (const auto& v : variants) {
-        const std::string p = prefix(v.values);
-        for (size_t i = 0; i < v.c.grid.size(); ++i) {
-            if ((i & 4095) == 0) io::throw_if_interrupted();  // a million points take a second
-            const auto [w, T] = v.c.grid.at(i);
-            f.add(p + io::csv_number(w * kRpm) + "," + io::csv_number(T));
-        }
-    }
-    fp.add("points", f.hex());
+    fp.add("thermal", source_.thermal);
+    fp.add("points", fmt::format("{:016x}", rows_key_));
     return fp;
 }
 
+namespace {
+// The variants with rows in [begin, end): the first and one past the last.
+std::pair<size_t, size_t> variants_of(const std::vector<size_t>& offsets, size_t begin, size_t end) {
+    const auto first = std::upper_bound(offsets.begin(), offsets.end() - 1, begin) - offsets.begin() - 1;
+    size_t last = static_cast<size_t>(first);
+    while (last + 1 < offsets.size() && offsets[last] < end) ++last;
+    return {static_cast<size_t>(first), last};
+}
+
+void require_columns(const io::Case& c, const std::string& columns, bool detail) {
+    if (csv_header(c.model, detail) != columns)
+        throw InputError(c.file, 0, 0, "sweep",
+                         detail ? "the sweep changes the components (different --detail columns); map it without --detail"
+                                : "the sweep changes the loss mechanisms (different CSV columns)");
+}
+}  // namespace
+
+void MapJob::check(size_t begin, size_t end, bool detail) const {
+    const std::string columns = csv_header(load(0).model, detail);
+    const auto [v0, v1] = variants_of(offsets_, begin, end);
+    for (size_t v = v0; v < v1; ++v) {
+        io::throw_if_interrupted();
+        require_columns(load(v), columns, detail);
+    }
+}
+
+size_t MapJob::run(const MapOptions& opt, size_t begin, size_t end, const TextSink& write, MapSummary* summary) const {
+    end = std::min(end, total_points());
+    if (begin >= end) return 0;
+    const std::string columns = csv_header(load(0).model, opt.detail);
+    const auto [v0, v1] = variants_of(offsets_, begin, end);
+    MapOptions part = opt;
+    for (size_t v = v0; v < v1; ++v) {
+        io::throw_if_interrupted();
+        const io::Case c = load(v);
+        require_columns(c, columns, opt.detail);
+        if (c.grid.size() != offsets_[v + 1] - offsets_[v])
+            throw std::logic_error(fmt::format("sweep variant {}: {} points, the job counted {}", v, c.grid.size(),
+                                               offsets_[v + 1] - offsets_[v]));
+        const size_t a = std::max(begin, offsets_[v]), b = std::min(end, offsets_[v + 1]);
+        // Progress over the whole job (or shard), not per variant.
+        if (opt.progress) {
+            const size_t before = a - begin, all = end - begin;
+            part.progress = [&opt, before, all](size_t d, size_t) { opt.progress(before + d, all); };
+        }
+        stream_rows(c.model, c.grid, a - offsets_[v], b - offsets_[v], part, csv_formatter(c.model, opt.detail, prefix(values(v))),
+                    write, summary);
+    }
+    return end - begin;
+}
+
 std::pair<size_t, size_t> Shard::range(size_t total) const {
-    const size_t k = static_cast<size_t>(index - 1), n = static_cast<size_t>(count);
-    return {total * k / n, total * (k + 1) / n};
+    // total * k / n, exactly and without overflow for any total: total = q n + r, r < n.
+    const size_t n = static_cast<size_t>(count), q = total / n, r = total % n;
+    const auto at = [&](size_t k) { return q * k + r * k / n; };
+    const size_t k = static_cast<size_t>(index - 1);
+    return {at(k), at(k + 1)};
 }
 
 Shard parse_shard(const std::string& text) {
@@ -92,153 +172,25 @@ Shard parse_shard(const std::string& text) {
     return s;
 }
 
-JobOutput run_job(const MapJob& job, const MapOptions& opt, const std::optional<Shard>& shard) {
+size_t run_job(const MapJob& job, const MapOptions& opt, const std::optional<Shard>& shard, const TextSink& write,
+               MapSummary* summary) {
     const size_t total = job.total_points();
     const auto [begin, end] = shard ? shard->range(total) : std::pair<size_t, size_t>{0, total};
-    JobOutput res;
-    std::string& out = res.csv;
+    const std::string header = job.header(opt.detail);
+    job.check(begin, end, opt.detail);
     if (shard) {
         // Readers that know only "... job <hash>" (older merges) still parse the line.
         const Fingerprint fp = job.fingerprint();
-        out += fmt::format("# gearloss shard {}/{}: rows {}-{} of {}, job {:016x}; {}\n", shard->index, shard->count,
-                           begin, end, total, fp.total(), fp.text());
+        write(fmt::format("# gearloss shard {}/{}: rows {}-{} of {}, job {:016x}; {}\n", shard->index, shard->count, begin,
+                          end, total, fp.total(), fp.text()));
     }
-    out += job.header(opt.detail);
-    size_t offset = 0;
-    MapOptions part_opt = opt;
-    for (const auto& v : job.variants) {
-        const size_t n = v.c.grid.size();
-        const size_t a = std::max(begin, offset), b = std::min(end, offset + n);
-        if (a < b) {
-            io::OperatingGrid part;
-            part.is_grid = false;
-            for (size_t i = a; i < b; ++i) part.points.push_back(v.c.grid.at(i - offset));
-            // Progress over the whole job (or shard), not per variant.
-            if (opt.progress) {
-                const size_t before = a - begin, all = end - begin;
-                part_opt.progress = [&opt, before, all](size_t d, size_t) { opt.progress(before + d, all); };
-            }
-            const auto results = run_map(v.c.model, part, part_opt);
-            io::throw_if_interrupted();  // the points run_map skipped are not rows
-            const std::string p = prefix(v.values);
-            constexpr size_t kBlock = 1 << 16;  // an interrupt is seen between blocks
-            for (size_t i = 0; i < results.size(); i += kBlock) {
-                io::throw_if_interrupted();
-                for (const auto& chunk : csv_row_chunks(v.c.model, results, i, i + kBlock, opt.detail, p, opt.threads))
-                    out += chunk;
-            }
-            res.results.insert(res.results.end(), results.begin(), results.end());
-        }
-        offset += n;
-    }
-    return res;
+    write(header);
+    return job.run(opt, begin, end, write, summary);
 }
 
-namespace {
-// Every row of a shard has the header's number of cells, and no cell is a value that is not
-// finite ("nan", "inf", "1e999"): an edited or damaged shard is not merged into a map.
-void check_shard_rows(const std::string& file, const std::string& header, const std::string& body) {
-    const size_t cells = static_cast<size_t>(std::count(header.begin(), header.end(), ',')) + 1;
-    int line = 3;
-    for (size_t a = 0; a < body.size(); ++line) {
-        const size_t e = body.find('\n', a);
-        const std::string_view row(body.data() + a, e - a);
-        size_t n = 0;
-        for (size_t c0 = 0;; ++n) {
-            const size_t c1 = std::min(row.find(',', c0), row.size());
-            std::string cell(row.substr(c0, c1 - c0));
-            char* end = nullptr;
-            const double v = cell.empty() ? 0.0 : std::strtod(cell.c_str(), &end);
-            if (!cell.empty() && end && *end == '\0' && !std::isfinite(v))
-                throw InputError(file, line, static_cast<int>(n + 1), "",
-                                 "'" + io::excerpt(cell) + "' is not a finite number (an edited or damaged shard)");
-            if (c1 == row.size()) break;
-            c0 = c1 + 1;
-        }
-        if (n + 1 != cells)
-            throw InputError(file, line, 0, "", fmt::format("{} cells, the header has {}", n + 1, cells));
-        a = e + 1;
-    }
-}
-}  // namespace
-
-std::string merge_shards(const std::vector<std::string>& files) {
-    struct Part {
-        int index = 0, count = 0;
-        size_t begin = 0, end = 0, total = 0;
-        std::string job, header, body, file;
-        Fingerprint fp;
-    };
-    std::vector<Part> parts;
-    for (const auto& file : files) {
-        io::throw_if_interrupted();
-        // Only a regular file: opening a FIFO would block before any interrupt could be seen.
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(file, ec))
-            throw InputError(file, 0, 0, "", std::filesystem::exists(file, ec) ? "not a regular file (a shard is a CSV file)"
-                                                                                : "cannot open shard file");
-        const std::string text = io::read_input_file(file, io::kMaxShardFileBytes);
-        Part p;
-        p.file = file;
-        const auto nl1 = text.find('\n');
-        const auto nl2 = nl1 == std::string::npos ? std::string::npos : text.find('\n', nl1 + 1);
-        char job[17] = {0};
-        if (nl2 == std::string::npos ||
-            std::sscanf(text.substr(0, nl1).c_str(), "# gearloss shard %d/%d: rows %zu-%zu of %zu, job %16s", &p.index,
-                        &p.count, &p.begin, &p.end, &p.total, job) != 6)
-            throw InputError(file, 1, 1, "", "not a shard of `gearloss map --shard K/N` (first line)");
-        p.job = job;
-        const std::string line = text.substr(0, nl1);
-        if (const auto semi = line.find("; "); semi != std::string::npos) p.fp = Fingerprint::parse(line.substr(semi + 2));
-        p.header = text.substr(nl1 + 1, nl2 - nl1);
-        p.body = text.substr(nl2 + 1);
-        const size_t rows = static_cast<size_t>(std::count(p.body.begin(), p.body.end(), '\n'));
-        if (rows != p.end - p.begin || (!p.body.empty() && p.body.back() != '\n'))
-            throw InputError(file, 0, 0, "", fmt::format("has {} rows, the shard line promises {} (incomplete run?)", rows,
-                                                         p.end - p.begin));
-        check_shard_rows(file, p.header, p.body);
-        parts.push_back(std::move(p));
-    }
-    if (parts.empty()) throw InputError("", 0, 0, "merge", "no shard files given");
-    std::sort(parts.begin(), parts.end(), [](const Part& a, const Part& b) { return a.index < b.index; });
-    const Part& f = parts.front();
-    for (const auto& p : parts) {
-        // Name what differs, so the stale or foreign shard can be found and recomputed.
-        auto diff = p.fp.differences(f.fp, p.file, f.file);
-        if (p.fp.parts().empty() != f.fp.parts().empty())  // not a list of every component
-            diff = {"program version (" + (p.fp.parts().empty() ? p.file : f.file) +
-                    " has no component fingerprint: written by an older release)"};
-        if (diff.empty() && p.job != f.job) diff.push_back("job fingerprint");
-        if (diff.empty() && p.header != f.header) diff.push_back("CSV columns");
-        if (!diff.empty()) {
-            std::string what;
-            for (const auto& d : diff) what += (what.empty() ? "" : "; ") + d;
-            throw InputError(p.file, 1, 1, "",
-                             fmt::format("shard {} differs from {} (not the same map job) in: {}", p.file, f.file, what));
-        }
-        if (p.count != f.count || p.total != f.total)
-            throw InputError(p.file, 1, 1, "",
-                             fmt::format("shard {} is {}/{} of {} rows, {} is {}/{} of {} rows: the same job cut "
-                                         "differently; recompute with one --shard K/N count",
-                                         p.file, p.index, p.count, p.total, f.file, f.index, f.count, f.total));
-    }
-    for (size_t i = 0; i < parts.size(); ++i) {
-        if (i > 0 && parts[i].index == parts[i - 1].index)
-            throw InputError(parts[i].file, 1, 1, "", fmt::format("shard {} given twice (also {})", parts[i].index,
-                                                                  parts[i - 1].file));
-    }
-    std::string missing;
-    for (int k = 1, i = 0; k <= f.count; ++k) {
-        if (i < static_cast<int>(parts.size()) && parts[i].index == k) ++i;
-        else missing += (missing.empty() ? "" : ", ") + std::to_string(k);
-    }
-    if (!missing.empty())
-        throw InputError("", 0, 0, "merge", fmt::format("missing shard(s) {} of {}", missing, f.count));
-    std::string out = f.header;
-    for (const auto& p : parts) {
-        io::throw_if_interrupted();
-        out += p.body;
-    }
+std::string run_job(const MapJob& job, const MapOptions& opt, const std::optional<Shard>& shard) {
+    std::string out;
+    run_job(job, opt, shard, [&out](std::string_view s) { out += s; });
     return out;
 }
 

@@ -74,9 +74,9 @@ void validate_case(const io::Case& k, const CaseOverrides& o) {
     std::vector<solver::Issue> issues = solver::validate(k.model);
     if (o.grid) {
         const auto& g = k.grid;
-        if (g.size() > kMaxGridPoints)
+        if (g.size() > o.max_points)
             issues.push_back({"operating", "", g.is_grid ? "speeds" : "points",
-                              fmt::format("{} operating points; a map holds at most {}", g.size(), kMaxGridPoints)});
+                              fmt::format("{} operating points; a map holds at most {}", g.size(), o.max_points)});
         auto check = [&](const std::vector<double>& v, const char* key, bool speed) {
             for (double x : v)
                 if (auto f = speed ? solver::speed_fault(x) : solver::torque_fault(x)) {
@@ -240,94 +240,6 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
         }
     }
     return s + "\n";
-}
-
-std::vector<std::string> csv_row_chunks(const solver::Model& m, const std::vector<solver::PointResult>& results,
-                                        size_t begin, size_t end, bool detail, const std::string& prefix, int threads) {
-    // Formatting on one thread took up to 40 % of a large map's wall time: chunks of rows in
-    // parallel, each into its own string, joined in row order (so the text does not depend on
-    // the threads). An exception (out of memory) must not leave the region: it is kept per
-    // chunk and the first rethrown after it.
-    end = std::min(end, results.size());
-    if (begin >= end) return {};
-    constexpr size_t kChunk = 2048;  // rows; ~0.2-1 MB of text
-    const size_t chunks = (end - begin + kChunk - 1) / kChunk;
-    std::vector<std::string> part(chunks);
-    std::vector<std::exception_ptr> failed(chunks);
-    const int team = threads > 0 ? threads : omp_get_max_threads();
-#pragma omp parallel for num_threads(team) schedule(dynamic, 1) if (chunks > 1)
-    for (long c = 0; c < static_cast<long>(chunks); ++c) {
-        const size_t k = static_cast<size_t>(c);
-        try {
-            const size_t a = begin + k * kChunk, b = std::min(end, a + kChunk);
-            for (size_t i = a; i < b; ++i) {
-                part[k] += prefix;
-                part[k] += csv_row(m, results[i], detail);
-            }
-        } catch (...) {
-            failed[k] = std::current_exception();
-        }
-    }
-    for (const auto& e : failed)
-        if (e) std::rethrow_exception(e);
-    return part;
-}
-
-std::string csv_rows(const solver::Model& m, const std::vector<solver::PointResult>& results, size_t begin, size_t end,
-                     bool detail, const std::string& prefix, int threads) {
-    const auto part = csv_row_chunks(m, results, begin, end, detail, prefix, threads);
-    size_t bytes = 0;
-    for (const auto& s : part) bytes += s.size();
-    std::string out;
-    out.reserve(bytes);
-    for (const auto& s : part) out += s;
-    return out;
-}
-
-std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds,
-                             const std::function<void(io::Json&)>& more) {
-    size_t ok = 0, above_limit = 0, no_equilibrium = 0, out_of_range = 0;
-    double eff_min = 1, eff_max = 0, eff_sum = 0, P_min = 1e300, P_max = 0, T_min = 1e300, T_max = -1e300;
-    size_t n_eff = 0;
-    for (const auto& r : results) {
-        no_equilibrium += r.status == solver::PointStatus::no_equilibrium;
-        out_of_range += r.status == solver::PointStatus::out_of_range;
-        if (!solver::has_values(r.status)) continue;
-        // A point with values has finite ones (solve_point); the ranges skip anything else.
-        if (!std::isfinite(r.losses.total()) || !std::isfinite(r.oil_temperature)) continue;
-        ++ok;
-        above_limit += r.status == solver::PointStatus::above_oil_limit;
-        const double P = r.losses.total();
-        P_min = std::min(P_min, P);
-        P_max = std::max(P_max, P);
-        T_min = std::min(T_min, r.oil_temperature);
-        T_max = std::max(T_max, r.oil_temperature);
-        if (r.has_efficiency && std::isfinite(r.efficiency)) {
-            eff_min = std::min(eff_min, r.efficiency);
-            eff_max = std::max(eff_max, r.efficiency);
-            eff_sum += r.efficiency;
-            ++n_eff;
-        }
-    }
-    io::Json j;
-    j.begin_object();
-    j.key("points").value(results.size());
-    j.key("ok").value(ok - above_limit);
-    j.key("above_oil_limit").value(above_limit);
-    j.key("no_equilibrium").value(no_equilibrium);
-    j.key("out_of_range").value(out_of_range);
-    j.key("seconds").value(seconds);
-    j.key("points_per_second").value(seconds > 0 ? results.size() / seconds : 0.0);
-    if (ok > 0) {
-        j.key("loss_W").begin_object().key("min").value(P_min).key("max").value(P_max).end_object();
-        j.key("oil_temp_C").begin_object().key("min").value(T_min - 273.15).key("max").value(T_max - 273.15).end_object();
-    }
-    if (n_eff > 0)
-        j.key("efficiency").begin_object().key("min").value(eff_min).key("max").value(eff_max).key("mean")
-            .value(eff_sum / n_eff).end_object();
-    if (more) more(j);
-    j.end_object();
-    return j.str() + "\n";
 }
 
 }  // namespace gearloss::map

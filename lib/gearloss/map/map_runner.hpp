@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "gearloss/io/config.hpp"
+#include "gearloss/map/map_summary.hpp"
 #include "gearloss/solver/operating_point.hpp"
 
 namespace gearloss::io {
@@ -22,7 +23,8 @@ struct MapOptions {
     void validate() const;
 };
 
-// Largest operating grid of one map (one sweep variant): results are held in memory.
+// Largest operating grid of a map held in memory (run_map: compare, spread, diagnosis);
+// a map streamed to its file takes kMaxStreamedPoints (gearloss/map/map_stream.hpp).
 inline constexpr size_t kMaxGridPoints = 10'000'000;
 
 // Where a case's values came from besides its file: command-line overrides.
@@ -31,6 +33,7 @@ struct CaseOverrides {
     std::string oil;                       // --oil FILE (empty: none)
     bool speeds = false, torques = false;  // --speed / --torque given
     bool grid = true;                      // also check the operating points of k.grid
+    size_t max_points = kMaxGridPoints;    // a streamed map takes more (kMaxStreamedPoints)
 };
 
 // solver::validate on the model, and the stated range of every operating point of the grid
@@ -49,19 +52,5 @@ std::vector<solver::PointResult> run_map(const solver::Model& m, const io::Opera
 
 std::string csv_header(const solver::Model& m, bool detail);
 std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail);
-// Rows [begin, end) of `results`, each led by `prefix`, formatted on `threads` threads (0: all)
-// in consecutive chunks: joined in order they are the text of csv_row one after the other, at
-// any thread count. Written chunk by chunk, the block's text is never held twice.
-std::vector<std::string> csv_row_chunks(const solver::Model& m, const std::vector<solver::PointResult>& results,
-                                        size_t begin, size_t end, bool detail, const std::string& prefix = {},
-                                        int threads = 0);
-// The chunks joined.
-std::string csv_rows(const solver::Model& m, const std::vector<solver::PointResult>& results, size_t begin, size_t end,
-                     bool detail, const std::string& prefix = {}, int threads = 0);
-
-// Summary for scripts: point counts, efficiency, loss and oil-temperature ranges, solve time.
-// `more` adds members to the object (e.g. the form spread).
-std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds,
-                             const std::function<void(io::Json&)>& more = {});
 
 }  // namespace gearloss::map

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gearloss/map/map_runner.hpp"
+#include "gearloss/map/map_stream.hpp"
 
 namespace gearloss::map {
 
@@ -25,5 +26,10 @@ struct VectoRow {
 std::vector<VectoRow> vecto_loss_map(const solver::Model& m, const std::vector<double>& speeds,
                                      const std::vector<double>& torques, const MapOptions& opt);
 std::string vecto_csv(const std::vector<VectoRow>& rows);
+
+// The table of vecto_csv(vecto_loss_map(...)) streamed to `write` a block at a time (memory
+// does not grow with the table); the same InputError at the first hole in row order.
+void write_vecto_table(const solver::Model& m, const std::vector<double>& speeds, const std::vector<double>& torques,
+                       const MapOptions& opt, const TextSink& write);
 
 }  // namespace gearloss::map
