@@ -26,9 +26,6 @@ namespace gearloss::map {
 
 namespace {
 constexpr double rpm = 30.0 / std::numbers::pi;
-using io::csv_number;
-std::string num(double v) { return csv_number(v); }
-std::string fixed(double v, int d) { return io::csv_fixed(v, d); }
 }  // namespace
 
 namespace {
@@ -210,19 +207,37 @@ std::string csv_header(const solver::Model& m, bool detail) {
     return h + "\n";
 }
 
-std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail) {
+void append_csv_row(std::string& s, const solver::Model& m, const solver::PointResult& r, bool detail) {
+    // Appended cell by cell into one string: a map formats a row per point.
+    using io::append_csv_fixed;
+    using io::append_csv_number;
     const bool ok = solver::has_values(r.status);
     const auto& L = r.losses;
-    std::string s = fmt::format("{},{},{},{},", num(r.speed_in * rpm), num(r.torque_in), num(r.power_in),
-                                fixed(r.ambient - 273.15, 2));
+    append_csv_number(s, r.speed_in * rpm);
+    s += ',';
+    append_csv_number(s, r.torque_in);
+    s += ',';
+    append_csv_number(s, r.power_in);
+    s += ',';
+    append_csv_fixed(s, r.ambient - 273.15, 2);
+    s += ',';
     if (ok) {
-        s += fixed(r.oil_temperature - 273.15, 3);
-        for (double P : L.power) s += "," + num(P);
-        s += fmt::format(",{},{},{},{},{},", num(L.total()), num(r.power_out), num(r.torque_out),
-                         r.has_efficiency ? fmt::format("{:.6f}", r.efficiency) : std::string(),
-                         L.has_lambda ? num(L.lambda_min) : std::string());
+        append_csv_fixed(s, r.oil_temperature - 273.15, 3);
+        for (double P : L.power) {
+            s += ',';
+            append_csv_number(s, P);
+        }
+        for (double v : {L.total(), r.power_out, r.torque_out}) {
+            s += ',';
+            append_csv_number(s, v);
+        }
+        s += ',';
+        if (r.has_efficiency) append_csv_fixed(s, r.efficiency, 6);
+        s += ',';
+        if (L.has_lambda) append_csv_number(s, L.lambda_min);
+        s += ',';
     } else {
-        s += std::string(m.mechanisms.size() + 6, ',');
+        s.append(m.mechanisms.size() + 6, ',');
     }
     s += solver::status_text(r);
     if (detail) {
@@ -235,11 +250,18 @@ std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool d
                 for (size_t q = 0; q < quantities.size(); ++q) {
                     if (quantities[q].column.empty()) continue;
                     const double v = have ? L.detail[i].at(c, q) : std::nan("");
-                    s += "," + (std::isfinite(v) ? num(v * quantities[q].csv_scale) : std::string());
+                    s += ',';
+                    if (std::isfinite(v)) append_csv_number(s, v * quantities[q].csv_scale);
                 }
         }
     }
-    return s + "\n";
+    s += '\n';
+}
+
+std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail) {
+    std::string s;
+    append_csv_row(s, m, r, detail);
+    return s;
 }
 
 }  // namespace gearloss::map

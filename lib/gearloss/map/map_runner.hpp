@@ -52,5 +52,7 @@ std::vector<solver::PointResult> run_map(const solver::Model& m, const io::Opera
 
 std::string csv_header(const solver::Model& m, bool detail);
 std::string csv_row(const solver::Model& m, const solver::PointResult& r, bool detail);
+// The same appended to `out` (no temporary string: the map's formatting loop).
+void append_csv_row(std::string& out, const solver::Model& m, const solver::PointResult& r, bool detail);
 
 }  // namespace gearloss::map
