@@ -3,8 +3,8 @@
 # 10-400 N m) with thermal coupling, on 1 and on 2 threads, REPS runs each
 # (default 25), alternating; the solve is timed inside gearloss (start-up and
 # CSV writing excluded). Reported: best and median points/s, and the speed-up. Then the whole
-# process (CSV included) on a 300 x 300 map and the peak memory of 10^5- and 10^6-point maps
-# (10^7 with GEARLOSS_BENCH_LARGE=1), the local thermal-EHL map, the time of `gearloss diagnose`
+# process (CSV included) on a 300 x 300 map, the peak memory of 10^5-, 10^6- and 10^7-point
+# maps, a shard of a 10^9-point job and a streamed merge, the local thermal-EHL map, the time of `gearloss diagnose`
 # on 30-, 300- and 1000-point campaigns and a raw log (medians, wall clock including start-up),
 # and WLTC cycles.
 # Usage: scripts/benchmark.sh [REPS]
@@ -97,8 +97,8 @@ PY
 # Whole process, as a user runs it (start-up, solve, CSV formatting and the written file): the
 # 300 x 300 map on 1 and 2 threads, 7 alternating runs each, medians (issue 16: >= 250 000
 # points/s on 2 threads and a 1 -> 2 speed-up >= 1.8); then the peak memory (maximum resident
-# set of /usr/bin/time -v, 2 threads) of maps of 10^5 and 10^6 points, and of 10^7 with
-# GEARLOSS_BENCH_LARGE=1 (about a minute; issue 16: <= 64 MiB at 10^7).
+# set of /usr/bin/time -v, 2 threads) of maps of 10^5, 10^6 (also with --detail) and 10^7
+# points (the last takes ~40 s and writes 1.2 GB; issue 16: <= 64 MiB at 10^7).
 python3 - "$tmp" "$speeds3" "$torques3" <<'PY'
 import statistics, subprocess, sys, time
 d, sp, tq = sys.argv[1:4]
@@ -113,22 +113,66 @@ m = {t: statistics.median(wall[t]) for t in (1, 2)}
 print(f"300 x 300 map, whole process, medians of 7: 1 thread {m[1]:.3f} s ({90000 / m[1]:,.0f} points/s), "
       f"2 threads {m[2]:.3f} s ({90000 / m[2]:,.0f} points/s), speed-up {m[1] / m[2]:.2f}")
 PY
+# peak_of LABEL POINTS COMMAND...: the command's maximum resident set (/usr/bin/time -v).
+peak_of() {
+    local label=$1 points=$2
+    shift 2
+    /usr/bin/time -v "$@" 2> "$tmp/mem.txt" > /dev/null
+    local rss
+    rss=$(awk '/Maximum resident/ {print $NF}' "$tmp/mem.txt")
+    echo "$label: peak memory $((rss / 1024)) MiB ($((rss * 1024 / points)) B a point)"
+}
 if [ -x /usr/bin/time ]; then
-    sizes="100x1000 1000x1000"
-    [ "${GEARLOSS_BENCH_LARGE:-0}" = 1 ] && sizes="$sizes 2500x4000"
-    for size in $sizes; do
+    for size in 100x1000 1000x1000 2500x4000; do
         ns=${size%x*} nt=${size#*x}
         sp=$(python3 -c "print(','.join(f'{300+i*2700/($ns-1):.4f}' for i in range($ns)))")rpm
         tq=$(python3 -c "print(','.join(f'{10+i*390/($nt-1):.4f}' for i in range($nt)))")Nm
-        /usr/bin/time -v build/app/gearloss map configs/transfer-box.yaml --speed "$sp" --torque "$tq" --threads 2 \
-            -o "$tmp/mem.csv" 2> "$tmp/mem.txt"
-        rss=$(awk '/Maximum resident/ {print $NF}' "$tmp/mem.txt")
-        echo "map of $((ns * nt)) points, 2 threads: peak memory $((rss / 1024)) MiB ($((rss * 1024 / (ns * nt))) B a point)"
+        peak_of "map of $((ns * nt)) points, 2 threads" $((ns * nt)) \
+            build/app/gearloss map configs/transfer-box.yaml --speed "$sp" --torque "$tq" --threads 2 -o "$tmp/mem.csv"
+        [ "$size" = 1000x1000 ] && peak_of "map --detail of $((ns * nt)) points, 2 threads" $((ns * nt)) \
+            build/app/gearloss map configs/transfer-box.yaml --speed "$sp" --torque "$tq" --threads 2 --detail -o "$tmp/mem.csv"
         rm -f "$tmp/mem.csv"
     done
 else
     echo "peak memory: /usr/bin/time not installed (Debian package time), not measured"
 fi
+
+# Shards and merge (issue 16): a shard of a 10^9-point job (a 31 623 x 31 623 grid in the case
+# file) computes its range and the job's fingerprint without listing the rows: the whole run
+# of shard 50 000 of 100 000 (10 000 points solved) must take < 1 s; then 16 shards of a
+# 10^6-point map merged, with the merge's peak memory (it streams: independent of the size).
+mkdir -p "$tmp/big"
+cp -r configs/oils "$tmp/big/"
+python3 - configs/transfer-box.yaml "$tmp/big/case.yaml" <<'PY'
+import re, sys
+s = open(sys.argv[1]).read()
+sp = "\n".join(f"    - {300 + i * 0.05:.2f} rpm" for i in range(31623))
+tq = "\n".join(f"    - {10 + i * 0.01:.2f} N*m" for i in range(31623))
+s = re.sub(r"operating:.*?\n  speeds: \[.*?\]\n  torques: \[.*?\]\n", f"operating:\n  speeds:\n{sp}\n  torques:\n{tq}\n",
+           s, flags=re.S)
+open(sys.argv[2], "w").write(s)
+PY
+python3 - "$tmp" <<'PY'
+import statistics, subprocess, sys, time
+d = sys.argv[1]
+wall = []
+for _ in range(5):
+    t0 = time.perf_counter()
+    subprocess.run(["build/app/gearloss", "map", f"{d}/big/case.yaml", "--shard", "50000/100000", "-o", f"{d}/shard.csv"],
+                   check=True)
+    wall.append(time.perf_counter() - t0)
+rows = sum(1 for _ in open(f"{d}/shard.csv")) - 2
+print(f"shard 50000/100000 of a 1,000,014,129-point job ({rows:,} rows): median {statistics.median(wall):.2f} s "
+      f"(of 5) from start to the written file")
+PY
+sp=$(python3 -c "print(','.join(f'{300+i*2700/999:.4f}' for i in range(1000)))")rpm
+tq=$(python3 -c "print(','.join(f'{10+i*390/999:.4f}' for i in range(1000)))")Nm
+for k in $(seq 16); do
+    build/app/gearloss map configs/transfer-box.yaml --speed "$sp" --torque "$tq" --shard "$k/16" -o "$tmp/part$k.csv"
+done
+[ -x /usr/bin/time ] && peak_of "merge of 16 shards, 10^6 rows ($(du -cm "$tmp"/part*.csv | tail -1 | cut -f1) MB)" 1000000 \
+    build/app/gearloss merge "$tmp"/part*.csv -o "$tmp/merged.csv"
+rm -f "$tmp"/part*.csv "$tmp/merged.csv" "$tmp/shard.csv"
 
 # Local thermal-EHL mesh friction: 100 x 100 map of the seed 000 spur gearbox (200-1600 rpm x
 # 50-800 N m), coupled, best of 3 runs per thread count (target >= 10 000 points/s on 2 cores).

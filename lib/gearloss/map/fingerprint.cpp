@@ -39,7 +39,9 @@ std::string token(std::string s) {
 // resolves it) is an input: its content is hashed under the key path that names it, so
 // neither the working directory nor the path used for the case enters the fingerprint.
 void add_named_files(const YAML::Node& n, const std::string& path, const fs::path& base, Fingerprint& fp, int depth) {
-    if (depth > 64) return;
+    // The operating grid holds speeds and torques, never files: a grid of 10^4 values would
+    // cost a file lookup each when a shard starts.
+    if (depth > 64 || path == "operating") return;
     if (n.IsScalar()) {
         const std::string& v = n.Scalar();
         std::error_code ec;
