@@ -110,27 +110,40 @@ Case load_case(const std::string& file, const std::optional<std::string>& ratio_
 }
 
 namespace {
-Case load_case_impl(const std::string& text, const std::string& file, const std::string& base_dir,
-                    const std::optional<std::string>& ratio_override);
+Case build_case(const YamlNode& root, const std::string& file, const std::string& base_dir,
+                const std::optional<std::string>& ratio_override, const OilFileReader& read_oil);
+
+// Any structural surprise inside yaml-cpp is still an input error with its position.
+[[noreturn]] void unexpected_structure(const std::string& file, const YAML::Exception& e) {
+    throw InputError(file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1, "",
+                     "unexpected YAML structure: " + e.msg);
 }
+}  // namespace
 
 Case load_case_text(const std::string& text, const std::string& file, const std::string& base_dir,
                     const std::optional<std::string>& ratio_override) {
     try {
-        return load_case_impl(text, file, base_dir, ratio_override);
+        const YamlNode root = YamlNode::load_text(text, file);
+        return build_case(root, file, base_dir, ratio_override, {});
     } catch (const YAML::Exception& e) {
-        // Any structural surprise inside yaml-cpp is still an input error with its position.
-        throw InputError(file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1, "",
-                         "unexpected YAML structure: " + e.msg);
+        unexpected_structure(file, e);
+    }
+}
+
+Case load_case_node(const YamlNode& root, const std::string& file, const std::string& base_dir,
+                    const std::optional<std::string>& ratio_override, const OilFileReader& read_oil) {
+    try {
+        return build_case(root, file, base_dir, ratio_override, read_oil);
+    } catch (const YAML::Exception& e) {
+        unexpected_structure(file, e);
     }
 }
 
 namespace {
-Case load_case_impl(const std::string& text, const std::string& file, const std::string& base_dir,
-                    const std::optional<std::string>& ratio_override) {
+Case build_case(const YamlNode& root, const std::string& file, const std::string& base_dir,
+                const std::optional<std::string>& ratio_override, const OilFileReader& read_oil) {
     Case c;
     c.file = file;
-    const YamlNode root = YamlNode::load_text(text, file);
     // Where every item and key was written, kept with the model for errors found later.
     auto source = std::make_shared<SourceIndex>();
     source->set_file(file);
@@ -147,7 +160,7 @@ Case load_case_impl(const std::string& text, const std::string& file, const std:
         const fs::path p = fs::path(base_dir) / oil.as_string();
         std::error_code ec;  // non-throwing: a malformed name is an input error, not a crash
         if (!fs::is_regular_file(p, ec)) oil.fail("oil file '" + excerpt(p.string(), 200) + "' does not exist or is not a file");
-        const YamlNode oil_root = YamlNode::load_file(p.string());
+        const YamlNode oil_root = read_oil ? read_oil(p.string()) : YamlNode::load_file(p.string());
         const YamlNode oil_node = oil_root.has("oil") ? oil_root.at("oil") : oil_root;
         m.oil = load_oil(oil_node);
         index_sources(oil_node, "oil", *source);  // the oil's keys in their own file

@@ -1,5 +1,6 @@
 #pragma once
 // YAML case description -> solver::Model + operating grid (docs/config.md).
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -52,6 +53,14 @@ Case load_case(const std::string& file, const std::optional<std::string>& ratio 
 // Same from text; `name` appears in messages, relative oil files resolve against `base_dir`.
 Case load_case_text(const std::string& text, const std::string& name, const std::string& base_dir,
                     const std::optional<std::string>& ratio = std::nullopt);
+// The parsed document of an oil file named by a case (`oil: oils/X.yaml`), given its path
+// (already known to be a regular file); a sweep passes one that keeps each file it has read.
+using OilFileReader = std::function<YamlNode(const std::string& path)>;
+// Same from a parsed document (load_case_text parses, then calls this): every check of
+// load_case applies and errors point at the lines the nodes carry. `name` is Case::file and
+// appears in messages; oil files are read by `read_oil` (YamlNode::load_file when empty).
+Case load_case_node(const YamlNode& root, const std::string& name, const std::string& base_dir,
+                    const std::optional<std::string>& ratio = std::nullopt, const OilFileReader& read_oil = {});
 // Loads an oil from a YAML mapping (inline or a separate file).
 lubricant::Oil load_oil(const YamlNode& node);
 lubricant::Oil load_oil_file(const std::string& file);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 #include <yaml-cpp/eventhandler.h>
@@ -13,7 +14,35 @@
 
 #include "gearloss/io/csv_read.hpp"
 
+namespace gearloss::io::detail {
+// A key looked up in a mapping by YAML::Node's const operator[] (value_of below), found as a
+// std::string key is (the first scalar key equal to it) without two costs of that one, which
+// made up a quarter of the time of building a parsed case (a sweep variant): each key compared
+// is not copied out of the document (convert<std::string> would copy it), and a key that is
+// absent is not turned into text for the invalid node yaml-cpp then returns (key_to_string
+// writes a key that can be streamed into a std::stringstream; this one cannot, and an
+// optional key is most often absent).
+struct KeyRef {
+    std::string_view text;
+    bool operator==(const KeyRef& other) const { return text == other.text; }
+};
+}  // namespace gearloss::io::detail
+
+template <>
+struct YAML::convert<gearloss::io::detail::KeyRef> {
+    static bool decode(const Node& node, gearloss::io::detail::KeyRef& key) {
+        if (!node.IsScalar()) return false;
+        key.text = node.Scalar();  // the document's own text, alive while the comparison runs
+        return true;
+    }
+};
+
 namespace gearloss::io {
+
+namespace {
+// The value of `key` in `map` (a mapping), invalid (IsDefined() false) when absent.
+YAML::Node value_of(const YAML::Node& map, const std::string& key) { return map[detail::KeyRef{key}]; }
+}  // namespace
 
 YamlNode::YamlNode(YAML::Node node, std::string file, std::string path)
     : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {}
@@ -259,11 +288,15 @@ std::string YamlNode::located(const std::string& message) const {
     return InputError::format(file_, known ? m.line + 1 : 0, known ? m.column + 1 : 0, path_, message);
 }
 
-bool YamlNode::has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
+bool YamlNode::has(const std::string& key) const {
+    if (!node_.IsMap()) return false;
+    const YAML::Node c = value_of(node_, key);
+    return c.IsDefined() && !c.IsNull();
+}
 
 YamlNode YamlNode::at(const std::string& key) const {
     if (!node_.IsMap()) fail("expected a mapping with key '" + key + "'");
-    const YAML::Node c = node_[key];
+    const YAML::Node c = value_of(node_, key);
     const std::string p = path_.empty() ? key : path_ + "." + key;
     if (!c.IsDefined() || c.IsNull()) {
         YamlNode(node_, file_, path_).fail("missing required key '" + key + "'");
@@ -273,7 +306,7 @@ YamlNode YamlNode::at(const std::string& key) const {
 
 std::optional<YamlNode> YamlNode::get(const std::string& key) const {
     if (!node_.IsMap()) return std::nullopt;
-    const YAML::Node c = node_[key];
+    const YAML::Node c = value_of(node_, key);
     if (!c.IsDefined() || c.IsNull()) return std::nullopt;
     return YamlNode(c, file_, path_.empty() ? key : path_ + "." + key);
 }

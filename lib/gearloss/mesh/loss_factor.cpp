@@ -1,7 +1,10 @@
 #include "gearloss/mesh/loss_factor.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -41,10 +44,18 @@ double abs_linear_integral(double c, double s, double y0, double y1) {
 }
 }  // namespace
 
-ContactSweep sweep_contact_lines(const geometry::PairGeometry& g, int phases) {
-    const double A = g.T1A, E = g.T1E, C = g.T1C, pbt = g.p_bt, b = g.b_eff;
-    const double t = std::tan(g.beta_b);
-    const double cb = std::cos(g.beta_b);
+namespace {
+// Everything the contact-line sweep reads: its result is a function of these alone.
+struct SweepInputs {
+    double A, E, C, pbt, b, beta_b, sign, u, db0;
+    int phases;
+};
+
+ContactSweep compute_sweep(const SweepInputs& in) {
+    const double A = in.A, E = in.E, C = in.C, pbt = in.pbt, b = in.b;
+    const int phases = in.phases;
+    const double t = std::tan(in.beta_b);
+    const double cb = std::cos(in.beta_b);
     const double span = b * t;  // xi travel of one contact line across the face
     double sum_ratio = 0.0, L_min = std::numeric_limits<double>::max(), L_sum = 0.0;
     for (int j = 0; j < phases; ++j) {
@@ -83,9 +94,36 @@ ContactSweep sweep_contact_lines(const geometry::PairGeometry& g, int phases) {
     ContactSweep r;
     // Friction power / (mu F_bt v_tb): F_bn = F_bt / cos(beta_b), v_g = (w1 + w2)|xi - C|.
     // Sliding speed (w1 -/+ w2)|xi - C|: w2/w1 = 1/u, same sense for an internal pair.
-    r.H_V = (1.0 + g.sign / g.u) * (sum_ratio / phases) / (cb * 0.5 * g.db[0]);
+    r.H_V = (1.0 + in.sign / in.u) * (sum_ratio / phases) / (cb * 0.5 * in.db0);
     r.L_min = L_min;
     r.L_mean = L_sum / phases;
+    return r;
+}
+
+bool same_inputs(const SweepInputs& a, const SweepInputs& b) {
+    // Bit for bit (not ==, which equates 0 and -0 and never a NaN): equal bits give equal results.
+    const double x[] = {a.A, a.E, a.C, a.pbt, a.b, a.beta_b, a.sign, a.u, a.db0};
+    const double y[] = {b.A, b.E, b.C, b.pbt, b.b, b.beta_b, b.sign, b.u, b.db0};
+    for (size_t i = 0; i < std::size(x); ++i)
+        if (std::bit_cast<std::uint64_t>(x[i]) != std::bit_cast<std::uint64_t>(y[i])) return false;
+    return a.phases == b.phases;
+}
+}  // namespace
+
+ContactSweep sweep_contact_lines(const geometry::PairGeometry& g, int phases) {
+    const SweepInputs in{g.T1A, g.T1E, g.T1C, g.p_bt, g.b_eff, g.beta_b, g.sign, g.u, g.db[0], phases};
+    // This loop over the phases was 60 % of the time of building a parsed case: every ratio
+    // of a case is analysed with the same meshes, and a design-space sweep builds the case once
+    // per variant, mostly with the same pairs. The last few results are kept per thread
+    // (thread_local: no lock, and right if models are ever analysed on several threads), and a
+    // repeat of the very same inputs returns the very same numbers.
+    constexpr size_t kKept = 8;
+    thread_local std::array<std::pair<SweepInputs, ContactSweep>, kKept> kept{};
+    thread_local size_t count = 0;  // results computed on this thread (the next is kept at count % kKept)
+    for (size_t i = 0; i < std::min(count, kKept); ++i)
+        if (same_inputs(kept[i].first, in)) return kept[i].second;
+    const ContactSweep r = compute_sweep(in);
+    kept[count++ % kKept] = {in, r};
     return r;
 }
 

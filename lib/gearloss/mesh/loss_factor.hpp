@@ -15,7 +15,8 @@ double loss_factor_buckingham(const geometry::PairGeometry& g, int z1);
 
 // Contact lines swept over one base pitch on the plane of action, with the
 // load shared in proportion to contact length (rigid teeth; Wimmer 2006 H_VL
-// with F'_N = F_bn / L_total). Also yields the minimum total contact length.
+// with F'_N = F_bn / L_total). Also yields the minimum total contact length. The last
+// few results of each thread are kept: the same inputs return the same numbers at once.
 struct ContactSweep {
     double H_V = 0;
     double L_min = 0;   // minimum total contact-line length [m]
