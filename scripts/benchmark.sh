@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Map throughput: a 100 x 100 grid of the transfer gearbox (300-3000 rpm x
 # 10-400 N m) with thermal coupling, on 1 and on 2 threads, REPS runs each
-# (default 25), alternating; the solve is timed inside gearloss (start-up and
-# CSV writing excluded). Reported: best and median points/s, and the speed-up. Then the whole
+# (default 25), alternating; timed inside gearloss (`--stats`: start-up excluded; the
+# rows are solved, formatted and written together, streamed block by block). Reported: best and median points/s, and the speed-up. Then the whole
 # process (CSV included) on a 300 x 300 map, the peak memory of 10^5-, 10^6- and 10^7-point
 # maps, a shard of a 10^9-point job and a streamed merge, the local thermal-EHL map, the time of `gearloss diagnose`
 # on 30-, 300- and 1000-point campaigns and a raw log (medians, wall clock including start-up),

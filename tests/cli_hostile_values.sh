@@ -119,5 +119,16 @@ expect "merge of a shard with an extra cell" 2 "s1-extra.csv:3: .*cells, the hea
     "$bin" merge "$tmp/s1-extra.csv" "$tmp/s2.csv" -o "$tmp/merged.csv"
 check "merge: nothing written" test ! -e "$tmp/merged.csv"
 
+# 7. A sweep variant with a bad value: the error points at the value's line in the user's file
+# (not at re-emitted text), names the variant, and comes before any point is solved (the
+# first variant is good; nothing is written).
+cp "$src/configs/transfer-box.yaml" "$tmp/sweep.yaml"
+printf '\nsweep:\n  - {parameter: housing.oil_level, values: [-30 mm, -10 mm]}\n  - parameter: [gears.w2.face_width, gears.w1.face_width]\n    values:\n      - 30 mm\n      - -3 mm\n' >> "$tmp/sweep.yaml"
+bad_line=$(grep -n -- "- -3 mm" "$tmp/sweep.yaml" | cut -d: -f1)
+expect "sweep variant with a negative face width" 2 \
+    "sweep.yaml:$bad_line:[0-9]+: .*face_width: must be positive.*\(sweep variant housing.oil_level=-30 mm, gears.w2.face_width=-3 mm\)" \
+    "$bin" map "$tmp/sweep.yaml" -o "$tmp/sweep.csv"
+check "sweep variant error: nothing written" test ! -e "$tmp/sweep.csv"
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0

@@ -128,40 +128,69 @@ private:
         return kOk;
     }
 
+    // The variants of the case's sweep, loaded one at a time with the command line's options
+    // (`k`: the case itself, loaded with them). Unless an axis sets the operating points and
+    // the command line does not fix them, every variant has k's grid: the job's rows are
+    // counted and keyed without loading a variant.
+    map::MapJob sweep_job(const io::Case& k) {
+        std::vector<std::string> labels;
+        bool grid_swept = false, thermal_swept = false;
+        for (const auto& a : k.sweep) {
+            labels.push_back(a.label);
+            for (const auto& p : a.paths) {
+                grid_swept = grid_swept || p.rfind("operating", 0) == 0;
+                thermal_swept = thermal_swept || p == "thermal.mode";
+            }
+        }
+        const auto ratio = common_.ratio.empty() ? std::nullopt : std::optional<std::string>(common_.ratio);
+        auto sweep = std::make_shared<io::Sweep>(common_.config, ratio);
+        map::MapJob::Source src;
+        src.count = sweep->size();
+        src.values = [sweep](size_t v) { return sweep->values(v); };
+        src.load = [sweep, this](size_t v) {
+            io::Case c = sweep->variant(v);  // its errors name the variant
+            try {
+                apply_case_options(c, common_);
+                grid_.apply_checked(c, kMapExamples, map::kMaxStreamedPoints);
+            } catch (const InputError& e) {
+                throw InputError(e.file, e.line, e.column, e.key, e.message + " (sweep variant " + sweep->tag(v) + ")");
+            }
+            return c;
+        };
+        if (!grid_swept || (grid_.speeds_given() && grid_.torques_given())) src.grid = k.grid;
+        const bool fixed = k.model.thermal.mode == solver::ThermalMode::fixed;
+        src.thermal = thermal_swept && common_.oil_temp.empty() ? "swept" : fixed ? "fixed" : "stabilised";
+        return map::MapJob(std::move(labels), std::move(src));
+    }
+
     // The map streamed to its file: the case's grid, every sweep variant, or one shard of
     // the job (gearloss merge joins the shards).
     int run_job(io::Case k, const map::MapOptions& opt, std::optional<double> oil_temp) {
-        std::vector<std::string> labels;
-        std::vector<map::MapJob::Variant> variants;
+        std::optional<map::MapJob> job;
         if (k.sweep.empty()) {
-            variants.push_back({{}, std::move(k)});
+            std::vector<map::MapJob::Variant> one;
+            one.push_back({{}, std::move(k)});
+            job.emplace(std::vector<std::string>{}, std::move(one));
         } else {
-            for (const auto& a : k.sweep) labels.push_back(a.label);
-            const auto ratio = common_.ratio.empty() ? std::nullopt : std::optional<std::string>(common_.ratio);
-            for (auto& v : io::expand_sweep(common_.config, ratio)) {
-                apply_case_options(v.c, common_);
-                grid_.apply_checked(v.c, kMapExamples, map::kMaxStreamedPoints);
-                variants.push_back({v.values, std::move(v.c)});
-            }
+            job.emplace(sweep_job(k));
         }
-        map::MapJob job(std::move(labels), std::move(variants));
         std::optional<map::Shard> sh;
         if (!shard_.empty()) {
             sh = map::parse_shard(shard_);
-            job.inputs = map::input_fingerprint({.config = common_.config, .oil_file = common_.oil, .oil_temperature = oil_temp,
+            job->inputs = map::input_fingerprint({.config = common_.config, .oil_file = common_.oil, .oil_temperature = oil_temp,
                                                  .ratio = common_.ratio, .format = "csv", .detail = detail_});
         }
         io::AtomicFile f(out_);
         map::MapSummary summary;
         const auto t0 = std::chrono::steady_clock::now();
-        map::run_job(job, opt, sh, [&f](std::string_view s) { f.write(s); }, &summary);
+        map::run_job(*job, opt, sh, [&f](std::string_view s) { f.write(s); }, &summary);
         io::throw_if_interrupted();
         const double seconds = seconds_since(t0);
         if (stats_) {
             const size_t n = summary.points();
             std::string of;
-            if (sh || job.variant_count() > 1)
-                of = fmt::format(" of {} ({} sweep variants)", job.total_points(), job.variant_count());
+            if (sh || job->variant_count() > 1)
+                of = fmt::format(" of {} ({} sweep variants)", job->total_points(), job->variant_count());
             std::fprintf(stderr, "points %zu%s, %.4f s (solved and written), %.0f points/s, %.2f loss evaluations/point, "
                          "%zu without equilibrium\n", n, of.c_str(), seconds, n / seconds,
                          n ? double(summary.evaluations()) / n : 0.0, summary.no_equilibrium());

@@ -192,10 +192,8 @@ YamlNode Sweep::oil_file(const std::string& path) {
 }
 
 Case Sweep::variant(size_t v) {
-    const auto vals = values(v);
     const auto idx = indices(v);
-    std::string tag;
-    for (size_t k = 0; k < axes_.size(); ++k) tag += (tag.empty() ? "" : ", ") + axes_[k].label + "=" + vals[k];
+    const std::string tag = this->tag(v);
     restore();
     try {
         for (size_t k = 0; k < axes_.size(); ++k)
@@ -214,6 +212,13 @@ Case Sweep::variant(size_t v) {
         if (tag.empty()) throw;
         throw InputError(e.file, e.line, e.column, e.key, e.message + " (sweep variant " + tag + ")");
     }
+}
+
+std::string Sweep::tag(size_t v) const {
+    const auto vals = values(v);
+    std::string t;
+    for (size_t k = 0; k < axes_.size(); ++k) t += (t.empty() ? "" : ", ") + axes_[k].label + "=" + vals[k];
+    return t;
 }
 
 std::vector<SweepVariant> expand_sweep(const std::string& file, const std::optional<std::string>& ratio) {

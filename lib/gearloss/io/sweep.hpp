@@ -37,6 +37,7 @@ public:
     size_t size() const { return size_; }                        // variants (1 when the case has no sweep)
     const std::vector<SweepAxis>& axes() const { return axes_; }  // empty without a sweep
     std::vector<std::string> values(size_t v) const;             // the value of each axis, first axis slowest
+    std::string tag(size_t v) const;  // "housing.oil_level=-5 mm, oil=oils/X.yaml" (empty without a sweep)
     // Variant v (< size()) loaded and checked exactly as load_case checks a case (every check
     // still applies). An InputError points at the file and line of the user's case (or its oil
     // file): at the value in the sweep's list when the error is about the swept value. Its
