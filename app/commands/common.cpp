@@ -42,7 +42,10 @@ void apply_case_options(io::Case& k, const CommonOptions& c) {
 io::Case load_with_options(const CommonOptions& c, bool warn_on_stderr) {
     std::optional<std::string> ratio;
     if (!c.ratio.empty()) ratio = c.ratio;
-    io::Case k = io::load_case(c.config, ratio);
+    return with_options(io::load_case(c.config, ratio), c, warn_on_stderr);
+}
+
+io::Case with_options(io::Case k, const CommonOptions& c, bool warn_on_stderr) {
     apply_case_options(k, c);
     io::check_oil_temperature(k, c.oil_temp.empty() ? "" : "--oil-temp");
     if (warn_on_stderr) io::print_warnings(k);

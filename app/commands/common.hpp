@@ -41,6 +41,8 @@ void apply_case_options(io::Case& k, const CommonOptions& c);
 // The case with --ratio, --oil and --oil-temp applied. `check` lists the plausibility warnings
 // in its report (warn_on_stderr = false); every other command prints them on stderr.
 io::Case load_with_options(const CommonOptions& c, bool warn_on_stderr = true);
+// The same for a case already loaded (a sweep's variant).
+io::Case with_options(io::Case k, const CommonOptions& c, bool warn_on_stderr = true);
 
 // "-10degC", "263.15 K": an absolute temperature [K]; InputError naming `what` otherwise.
 double absolute_temperature(const std::string& text, const char* what);

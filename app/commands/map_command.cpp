@@ -132,18 +132,16 @@ private:
     // (`k`: the case itself, loaded with them). Unless an axis sets the operating points and
     // the command line does not fix them, every variant has k's grid: the job's rows are
     // counted and keyed without loading a variant.
-    map::MapJob sweep_job(const io::Case& k) {
+    map::MapJob sweep_job(const io::Case& k, const std::shared_ptr<io::Sweep>& sweep) {
         std::vector<std::string> labels;
         bool grid_swept = false, thermal_swept = false;
-        for (const auto& a : k.sweep) {
+        for (const auto& a : sweep->axes()) {
             labels.push_back(a.label);
             for (const auto& p : a.paths) {
                 grid_swept = grid_swept || p.rfind("operating", 0) == 0;
                 thermal_swept = thermal_swept || p == "thermal.mode";
             }
         }
-        const auto ratio = common_.ratio.empty() ? std::nullopt : std::optional<std::string>(common_.ratio);
-        auto sweep = std::make_shared<io::Sweep>(common_.config, ratio);
         map::MapJob::Source src;
         src.count = sweep->size();
         src.values = [sweep](size_t v) { return sweep->values(v); };
@@ -165,20 +163,23 @@ private:
 
     // The map streamed to its file: the case's grid, every sweep variant, or one shard of
     // the job (gearloss merge joins the shards).
-    int run_job(io::Case k, const map::MapOptions& opt, std::optional<double> oil_temp) {
+    int run_job(io::Case k, const std::shared_ptr<io::Sweep>& sweep, const map::MapOptions& opt,
+                std::optional<double> oil_temp) {
         std::optional<map::MapJob> job;
-        if (k.sweep.empty()) {
+        if (sweep->axes().empty()) {
             std::vector<map::MapJob::Variant> one;
             one.push_back({{}, std::move(k)});
             job.emplace(std::vector<std::string>{}, std::move(one));
         } else {
-            job.emplace(sweep_job(k));
+            job.emplace(sweep_job(k, sweep));
         }
         std::optional<map::Shard> sh;
         if (!shard_.empty()) {
             sh = map::parse_shard(shard_);
+            auto [document, sweep_block] = sweep->as_written();  // walked, not parsed again
             job->inputs = map::input_fingerprint({.config = common_.config, .oil_file = common_.oil, .oil_temperature = oil_temp,
-                                                 .ratio = common_.ratio, .format = "csv", .detail = detail_});
+                                                 .ratio = common_.ratio, .format = "csv", .detail = detail_,
+                                                 .parsed = {{"", document}, {"sweep", sweep_block}}});
         }
         io::AtomicFile f(out_);
         map::MapSummary summary;
@@ -201,7 +202,11 @@ private:
     }
 
     int run_csv() {
-        io::Case k = load_with_options(common_);
+        // Parsed once: the case is the sweep's first variant (the case itself without a sweep),
+        // and a sweep's variants and the job's fingerprint are built from the same document.
+        const auto ratio = common_.ratio.empty() ? std::nullopt : std::optional<std::string>(common_.ratio);
+        const auto sweep = std::make_shared<io::Sweep>(common_.config, ratio);
+        io::Case k = with_options(sweep->variant(0), common_);
         grid_.apply_checked(k, kMapExamples, spread_ ? map::kMaxGridPoints : map::kMaxStreamedPoints);
         const auto oil_temp = common_.oil_temp.empty() ? std::nullopt : std::optional<double>(k.model.thermal.oil_temperature);
         map::MapOptions opt;
@@ -209,9 +214,9 @@ private:
         opt.detail = detail_;
         ProgressMeter meter;
         opt.progress = meter.callback();
-        if (spread_ && !k.sweep.empty())
+        if (spread_ && !sweep->axes().empty())
             throw InputError(k.file, 0, 0, "--spread", "a spread map of a sweep is not supported: spread one variant");
-        if (!spread_) return run_job(std::move(k), opt, oil_temp);
+        if (!spread_) return run_job(std::move(k), sweep, opt, oil_temp);
         return run_spread(k, opt);
     }
 

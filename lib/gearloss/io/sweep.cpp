@@ -150,7 +150,13 @@ Sweep::Sweep(const std::string& file, const std::optional<std::string>& ratio)
     // The variants are built without the sweep block, so that one costs the same whatever the
     // sweep's size; the values stay alive in pool_.
     YAML::Node root(root_.raw());
+    sweep_block_.reset(root["sweep"]);
     root.remove("sweep");
+}
+
+std::pair<YAML::Node, YAML::Node> Sweep::as_written() {
+    restore();
+    return {root_.raw(), sweep_block_};
 }
 
 YAML::Node Sweep::own_node() {

@@ -45,6 +45,9 @@ public:
     // Not thread-safe (it edits the parsed document). The Case has file = the case file and an
     // empty `sweep`. Callers looping over many variants check io::throw_if_interrupted.
     Case variant(size_t v);
+    // The case as written (no variant's values set), without its sweep block, and the sweep
+    // block: a job's fingerprint walks them instead of parsing the file again.
+    std::pair<YAML::Node, YAML::Node> as_written();
 
 private:
     std::vector<size_t> indices(size_t v) const;  // the value of each axis by its index
@@ -55,6 +58,7 @@ private:
     std::string file_, base_dir_;
     std::optional<std::string> ratio_;
     YamlNode root_;  // the case as parsed, without its sweep block: variants are built from it
+    YAML::Node sweep_block_;  // the sweep block taken out of it
     std::vector<SweepAxis> axes_;
     size_t size_ = 1;
     std::vector<YamlNode> parameters_;  // each axis's `parameter:` node (errors)

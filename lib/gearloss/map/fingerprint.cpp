@@ -149,7 +149,8 @@ Fingerprint input_fingerprint(const JobInputs& in) {
     const std::string text = io::read_input_file(in.config, io::kMaxYamlFileBytes);
     fp.add("case", Fnv1a().add(text).hex());
     try {
-        add_named_files(YAML::Load(text), "", fs::path(in.config).parent_path(), fp, 0);
+        if (in.parsed.empty()) add_named_files(YAML::Load(text), "", fs::path(in.config).parent_path(), fp, 0);
+        for (const auto& [path, node] : in.parsed) add_named_files(node, path, fs::path(in.config).parent_path(), fp, 0);
     } catch (const YAML::Exception& e) {
         throw InputError(in.config, 0, 0, "", "unexpected YAML structure: " + e.msg);
     }

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+#include <yaml-cpp/yaml.h>
 
 namespace gearloss::map {
 
@@ -31,6 +32,10 @@ struct JobInputs {
     std::string format = "csv";              // --format
     bool detail = false;                     // --detail
     std::string version = GEARLOSS_VERSION;  // another release may compute other rows
+    // The case already parsed, as (key path, node) pairs to walk for the files it names
+    // (io::Sweep::as_written: the case, then its sweep block under "sweep"); empty: the
+    // file is parsed here.
+    std::vector<std::pair<std::string, YAML::Node>> parsed;
 };
 
 class Fingerprint {
