@@ -165,6 +165,41 @@ rows = sum(1 for _ in open(f"{d}/shard.csv")) - 2
 print(f"shard 50000/100000 of a 1,000,014,129-point job ({rows:,} rows): median {statistics.median(wall):.2f} s "
       f"(of 5) from start to the written file")
 PY
+# Sweeps applied to the parsed case (issue 16: 10 000 one-point variants < 10 s), with the
+# peak memory; and a shard of a 10^9-point job made of the largest sweep, 100 000 variants x
+# a 100 x 100 grid (the case file is 1.4 MB of YAML).
+python3 - configs/transfer-box.yaml "$tmp" <<'PY'
+import re, sys
+src, d = sys.argv[1:3]
+s = open(src).read()
+def with_sweep(text, values):
+    rows = ",\n".join("      " + ", ".join(values[i:i + 100]) for i in range(0, len(values), 100))
+    return text + "\nsweep:\n  - parameter: thermal.ambient\n    values: [\n" + rows + "]\n"
+open(f"{d}/big/sweep10k.yaml", "w").write(with_sweep(s, [f"{20 + 0.01 * i:.2f} degC" for i in range(10000)]))
+sp = ", ".join(f"{300 + i * 27} rpm" for i in range(100))
+tq = ", ".join(f"{10 + i * 4} N*m" for i in range(100))
+g = re.sub(r"operating:.*?\n  speeds: \[.*?\]\n  torques: \[.*?\]\n", f"operating:\n  speeds: [{sp}]\n  torques: [{tq}]\n",
+           s, flags=re.S)
+open(f"{d}/big/sweep1e9.yaml", "w").write(with_sweep(g, [f"{15 + 0.0003 * i:.4f} degC" for i in range(100000)]))
+PY
+python3 - "$tmp" <<'PY'
+import statistics, subprocess, sys, time
+d = sys.argv[1]
+def median_wall(args, runs):
+    wall = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        subprocess.run(["build/app/gearloss", "map"] + args, check=True)
+        wall.append(time.perf_counter() - t0)
+    return statistics.median(wall)
+t = median_wall([f"{d}/big/sweep10k.yaml", "--speed", "600rpm", "--torque", "100Nm", "-o", f"{d}/sweep.csv"], 3)
+print(f"sweep of 10 000 one-point variants: median {t:.2f} s (of 3)")
+t = median_wall([f"{d}/big/sweep1e9.yaml", "--shard", "50000/100000", "-o", f"{d}/shard.csv"], 5)
+print(f"shard 50000/100000 of a 10^9-point job of 100 000 sweep variants x 10^4 points: median {t:.2f} s (of 5)")
+PY
+[ -x /usr/bin/time ] && peak_of "sweep of 10 000 one-point variants" 10000 \
+    build/app/gearloss map "$tmp/big/sweep10k.yaml" --speed 600rpm --torque 100Nm -o "$tmp/sweep.csv"
+rm -f "$tmp/sweep.csv"
 sp=$(python3 -c "print(','.join(f'{300+i*2700/999:.4f}' for i in range(1000)))")rpm
 tq=$(python3 -c "print(','.join(f'{10+i*390/999:.4f}' for i in range(1000)))")Nm
 for k in $(seq 16); do

@@ -52,9 +52,13 @@ void stream_rows(const solver::Model& m, const io::OperatingGrid& grid, size_t b
     std::atomic<bool> stop{false};
     std::exception_ptr write_failed;
     const Block* pending = nullptr;  // solved, not yet written
-    // Threads bound to cores (proc_bind, see run_map); the empty region places the team.
+    // Threads bound to cores (proc_bind, see run_map); the empty region places the team. A
+    // map of one chunk (a sweep's one-point variant) runs on this thread alone: waking the
+    // team per variant would leave it spinning on the other core for nothing.
+    if (total > kChunk) {
 #pragma omp parallel num_threads(threads) proc_bind(close)
-    { (void)omp_get_thread_num(); }
+        { (void)omp_get_thread_num(); }
+    }
     for (size_t b0 = begin, parity = 0; b0 < end; b0 += kBlock, parity ^= 1) {
         Block& cur = blocks[parity];
         cur.rows = std::min(end, b0 + kBlock) - b0;
