@@ -39,9 +39,9 @@ public:
         s->add_option("-o,--output", out_, "output CSV file ('-' = stdout)");
         s->add_option("--threads", threads_, "threads (default: all cores)")->check(CLI::Range(1, 1024));
         s->add_flag("--detail", detail_, "add a column per mesh, gear, bearing and seal");
-        s->add_flag("--stats", stats_, "print solve time, points per second and loss evaluations per point to stderr");
+        s->add_flag("--stats", stats_, "print the map's time (solved, formatted and written), points per second and loss evaluations per point to stderr");
         grid_.add_to(*s, "override the input speeds, e.g. 600,700,800rpm", "override the input torques, e.g. 150,200,250Nm");
-        s->add_option("--json", json_, "also write a JSON summary (counts, efficiency, loss and temperature ranges, time)");
+        s->add_option("--json", json_, "also write a JSON summary (counts, efficiency, loss and temperature ranges, the map's time)");
         s->add_option("--shard", shard_, "compute only shard K of N of the points (K/N, e.g. 3/16); join with `gearloss merge`");
         s->add_flag("--spread", spread_,
                     "also solve every combination of the mechanisms' alternative forms and add, per point, "
