@@ -130,5 +130,51 @@ expect "sweep variant with a negative face width" 2 \
     "$bin" map "$tmp/sweep.yaml" -o "$tmp/sweep.csv"
 check "sweep variant error: nothing written" test ! -e "$tmp/sweep.csv"
 
+# 8. A sweep and an option that set the same value: an error naming both, never a column that
+# labels values the option replaced (the sweep's oil column over rows of the --oil oil).
+cp "$src/configs/transfer-box.yaml" "$tmp/oil-sweep.yaml"
+printf '\nsweep:\n  - {parameter: oil, values: [oils/75W90-A.yaml, oils/75W140-A.yaml]}\n' >> "$tmp/oil-sweep.yaml"
+expect "sweep of the oil with --oil" 2 "--oil: the case's sweep sets 'oil'" \
+    "$bin" map "$tmp/oil-sweep.yaml" --oil "$tmp/oils/MINR.yaml" -o "$tmp/sweep.csv"
+cp "$src/configs/transfer-box.yaml" "$tmp/temp-sweep.yaml"
+printf '\nsweep:\n  - {parameter: thermal.mode, values: [stabilised, fixed]}\n' >> "$tmp/temp-sweep.yaml"
+expect "sweep of the thermal mode with --oil-temp" 2 "--oil-temp: the case's sweep sets 'thermal.mode'" \
+    "$bin" map "$tmp/temp-sweep.yaml" --oil-temp 70degC -o "$tmp/sweep.csv"
+cp "$src/configs/transfer-box.yaml" "$tmp/twice.yaml"
+printf '\nsweep:\n  - {parameter: gears.w1.face_width, values: [30 mm]}\n  - {parameter: [gears.w2.face_width, gears.w1.face_width], values: [35 mm]}\n' >> "$tmp/twice.yaml"
+expect "a path on two sweep axes" 2 "twice.yaml:[0-9]+:[0-9]+: .*'gears.w1.face_width' is already set by the sweep's axis" \
+    "$bin" map "$tmp/twice.yaml" -o "$tmp/sweep.csv"
+expect "VECTO tables of a sweep case" 2 "--format vecto: the case has a sweep" \
+    "$bin" map "$tmp/oil-sweep.yaml" --format vecto --oil-temp 70degC -o "$tmp/sweep.vtlm"
+expect "VECTO with --json" 2 "--json: --format vecto writes loss tables only" \
+    "$bin" map "$spur" --format vecto --oil-temp 70degC --json "$tmp/v.json" -o "$tmp/v.vtlm"
+check "sweep option conflicts: nothing written" test ! -e "$tmp/sweep.csv" -a ! -e "$tmp/v.vtlm"
+
+# 9. An output onto a file the case names (its oil file, an oil file among the sweep's values):
+# exit 2 and the oil file unchanged.
+cp "$tmp/oils/75W140-A.yaml" "$tmp/oil-before.yaml"
+expect "map -o onto an oil file of the sweep" 2 "--output .* is the input named by the case at 'sweep\[0\].values\[1\]'" \
+    "$bin" map "$tmp/oil-sweep.yaml" -o "$tmp/oils/75W140-A.yaml"
+expect "map --json onto the case's oil file" 2 "--json .* is the input named by the case at 'oil'" \
+    "$bin" map "$tmp/oil-sweep.yaml" --json "$tmp/oils/75W90-A.yaml" -o "$tmp/sweep.csv"
+check "oil files unchanged" cmp -s "$tmp/oils/75W140-A.yaml" "$tmp/oil-before.yaml"
+check "oil file unchanged (--json)" cmp -s "$tmp/oils/75W90-A.yaml" "$src/configs/oils/75W90-A.yaml"
+
+# 10. Every shard of a job with a bad variant fails, not only the shard holding it (a job of up
+# to 1 000 variants is checked whole by each shard); a sweep variant's plausibility warning
+# is printed as the case's would be.
+for k in 1 2 3; do
+    expect "shard $k/3 of a job with bad variants (shard 1 holds a good one)" 2 "face_width: must be positive.*sweep variant" \
+        "$bin" map "$tmp/sweep.yaml" --speed 600rpm --torque 100Nm --shard $k/3 -o "$tmp/shard$k.csv"
+done
+check "no shard written" test ! -e "$tmp/shard1.csv" -a ! -e "$tmp/shard2.csv" -a ! -e "$tmp/shard3.csv"
+cp "$src/configs/transfer-box.yaml" "$tmp/hot.yaml"
+sed -i 's/^  mode: stabilised/  mode: fixed\n  oil_temperature: 60 degC/' "$tmp/hot.yaml"
+printf '\nsweep:\n  - {parameter: thermal.oil_temperature, values: [60 degC, 190 degC]}\n' >> "$tmp/hot.yaml"
+"$bin" map "$tmp/hot.yaml" --speed 600rpm --torque 100Nm -o "$tmp/hot.csv" 2> "$tmp/hot.err"
+check "hot sweep variant: map exit 0" test $? -eq 0
+check "hot sweep variant: its warning at the value's line" \
+    grep -qE "hot.yaml:$(grep -n "190 degC" "$tmp/hot.yaml" | cut -d: -f1):[0-9]+: .*190.0 degC is above the permissible" "$tmp/hot.err"
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0

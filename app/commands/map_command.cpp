@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <fmt/format.h>
 
@@ -71,6 +72,8 @@ public:
             throw InputError("", 0, 0, "--spread", "--format vecto writes loss tables; the form spread is a csv column");
         if (spread_ && !shard_.empty())
             throw InputError("", 0, 0, "--spread", "a spread map cannot be sharded (every shard would solve every form)");
+        if (format_ == "vecto" && !json_.empty())
+            throw InputError("", 0, 0, "--json", "--format vecto writes loss tables only; the summary is a csv map's");
         if (format_ == "vecto" && !shard_.empty())
             throw InputError("", 0, 0, "--shard", "--format vecto writes whole tables per gear; it cannot be sharded");
         return format_ == "vecto" ? run_vecto() : run_csv();
@@ -85,6 +88,14 @@ private:
     std::string spread_axes_text_;
     CLI::Option* spread_axes_option_ = nullptr;
     std::vector<std::string> spread_axes_;
+    std::vector<std::pair<std::string, std::string>> named_;  // files the case names (key path, file)
+
+    // No output onto a file the case names (its oil file, a sweep's oil files).
+    void require_outputs_not_named(const std::vector<std::pair<std::string, std::string>>& named) const {
+        std::vector<std::pair<std::string, std::string>> inputs;
+        for (const auto& [key, file] : named) inputs.emplace_back("named by the case at '" + key + "'", file);
+        io::require_outputs_not_inputs({{"--output", out_}, {"--json", json_}}, inputs);
+    }
 
     // "mesh.friction,windage.form" -> its axes; an empty name is an error naming the option.
     static std::vector<std::string> split_axes(const std::string& text) {
@@ -104,6 +115,10 @@ private:
     // One torque-loss table per gear (the selected ratio, or every ratio), from one loaded case.
     int run_vecto() {
         io::Case k = load_with_options(common_);
+        if (!k.sweep.empty())
+            throw InputError(k.file, 0, 0, "--format vecto", "the case has a sweep: a table per variant is not written "
+                                                           "(set the variant's values in the case)");
+        require_outputs_not_named(map::named_files({.config = common_.config}));
         grid_.apply(k, kVectoExamples);  // a point list with --speed/--torque becomes a grid, as for csv
         if (!k.grid.is_grid) throw InputError(k.file, 0, 0, "operating", "--format vecto needs a speeds x torques grid");
         std::vector<std::string> ratios;
@@ -135,11 +150,26 @@ private:
     map::MapJob sweep_job(const io::Case& k, const std::shared_ptr<io::Sweep>& sweep) {
         std::vector<std::string> labels;
         bool grid_swept = false, thermal_swept = false;
+        const auto starts = [](const std::string& p, const char* prefix) {
+            const size_t n = std::strlen(prefix);
+            return p.compare(0, n, prefix) == 0 && (p.size() == n || p[n] == '.');
+        };
         for (const auto& a : sweep->axes()) {
             labels.push_back(a.label);
             for (const auto& p : a.paths) {
-                grid_swept = grid_swept || p.rfind("operating", 0) == 0;
+                grid_swept = grid_swept || starts(p, "operating");
                 thermal_swept = thermal_swept || p == "thermal.mode";
+                // An option that sets what an axis sets would make the axis's column a label of
+                // values never used: an error, not a silent winner.
+                const char* option = !common_.oil.empty() && starts(p, "oil")                                 ? "--oil"
+                                     : !common_.oil_temp.empty() && (p == "thermal.mode" || starts(p, "thermal.oil_temperature")) ? "--oil-temp"
+                                     : !common_.ratio.empty() && p == "gearbox.ratio"                         ? "--ratio"
+                                     : grid_.speeds_given() && (starts(p, "operating.speeds") || starts(p, "operating.points")) ? "--speed"
+                                     : grid_.torques_given() && (starts(p, "operating.torques") || starts(p, "operating.points")) ? "--torque"
+                                                                                                               : nullptr;
+                if (option)
+                    throw InputError("", 0, 0, option, fmt::format("the case's sweep sets '{}': {} would replace the value of "
+                                                                   "every variant; give one or the other", p, option));
             }
         }
         map::MapJob::Source src;
@@ -148,7 +178,8 @@ private:
         src.load = [sweep, this](size_t v) {
             io::Case c = sweep->variant(v);  // its errors name the variant
             try {
-                apply_case_options(c, common_);
+                // Each variant's plausibility warnings too (io::print_warnings prints a text once).
+                c = with_options(std::move(c), common_);
                 grid_.apply_checked(c, kMapExamples, map::kMaxStreamedPoints);
             } catch (const InputError& e) {
                 throw InputError(e.file, e.line, e.column, e.key, e.message + " (sweep variant " + sweep->tag(v) + ")");
@@ -179,7 +210,7 @@ private:
             auto [document, sweep_block] = sweep->as_written();  // walked, not parsed again
             job->inputs = map::input_fingerprint({.config = common_.config, .oil_file = common_.oil, .oil_temperature = oil_temp,
                                                  .ratio = common_.ratio, .format = "csv", .detail = detail_,
-                                                 .parsed = {{"", document}, {"sweep", sweep_block}}});
+                                                 .parsed = {{"", document}, {"sweep", sweep_block}}, .files = named_});
         }
         io::AtomicFile f(out_);
         map::MapSummary summary;
@@ -206,6 +237,9 @@ private:
         // and a sweep's variants and the job's fingerprint are built from the same document.
         const auto ratio = common_.ratio.empty() ? std::nullopt : std::optional<std::string>(common_.ratio);
         const auto sweep = std::make_shared<io::Sweep>(common_.config, ratio);
+        auto [document, sweep_block] = sweep->as_written();
+        named_ = map::named_files({.config = common_.config, .parsed = {{"", document}, {"sweep", sweep_block}}});
+        require_outputs_not_named(named_);
         io::Case k = with_options(sweep->variant(0), common_);
         grid_.apply_checked(k, kMapExamples, spread_ ? map::kMaxGridPoints : map::kMaxStreamedPoints);
         const auto oil_temp = common_.oil_temp.empty() ? std::nullopt : std::optional<double>(k.model.thermal.oil_temperature);

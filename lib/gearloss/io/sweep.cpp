@@ -25,6 +25,8 @@
 // earlier axes of the same variant only).
 #include "gearloss/io/sweep.hpp"
 
+#include <algorithm>
+
 #include "gearloss/io/interrupt.hpp"
 
 #include <filesystem>
@@ -112,6 +114,11 @@ std::vector<SweepAxis> read_sweep(const YamlNode& root) {
             if (path.rfind("sweep", 0) == 0) p.fail("a sweep cannot vary itself");
             if (!find_node(root.raw(), path))
                 p.fail("'" + excerpt(path) + "' names no value of this case (use keys separated by '.', list items by name)");
+            // Set twice, one column would label values the other replaced.
+            for (const auto& other : axes)
+                if (std::find(other.paths.begin(), other.paths.end(), path) != other.paths.end())
+                    p.fail("'" + excerpt(path) + "' is already set by the sweep's axis '" + excerpt(other.label) + "'");
+            if (std::count(a.paths.begin(), a.paths.end(), path) > 1) p.fail("'" + excerpt(path) + "' is listed twice");
         }
         a.label = a.paths.front();
         for (const auto& v : item.at("values").items()) {

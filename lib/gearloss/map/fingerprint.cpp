@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <yaml-cpp/yaml.h>
 
@@ -36,9 +37,9 @@ std::string token(std::string s) {
 }
 
 // Every scalar of the case that names a regular file next to the case (as the loader
-// resolves it) is an input: its content is hashed under the key path that names it, so
-// neither the working directory nor the path used for the case enters the fingerprint.
-void add_named_files(const YAML::Node& n, const std::string& path, const fs::path& base, Fingerprint& fp, int depth) {
+// resolves it) is an input, `found` with its key path and file path.
+void walk_named_files(const YAML::Node& n, const std::string& path, const fs::path& base,
+                      const std::function<void(const std::string&, const fs::path&)>& found, int depth) {
     // The operating grid holds speeds and torques, never files: a grid of 10^4 values would
     // cost a file lookup each when a shard starts.
     if (depth > 64 || path == "operating") return;
@@ -46,15 +47,14 @@ void add_named_files(const YAML::Node& n, const std::string& path, const fs::pat
         const std::string& v = n.Scalar();
         std::error_code ec;
         const fs::path p = base / v;
-        if (!v.empty() && v.size() < 4096 && fs::is_regular_file(p, ec))
-            fp.add("file:" + token(path), Fnv1a().add(io::read_regular_file(p.string(), io::kMaxCsvFileBytes)).hex());
+        if (!v.empty() && v.size() < 4096 && fs::is_regular_file(p, ec)) found(path, p);
     } else if (n.IsMap()) {
         for (const auto& kv : n) {
             const std::string k = kv.first.IsScalar() ? kv.first.Scalar() : "?";
-            add_named_files(kv.second, path.empty() ? k : path + "." + k, base, fp, depth + 1);
+            walk_named_files(kv.second, path.empty() ? k : path + "." + k, base, found, depth + 1);
         }
     } else if (n.IsSequence()) {
-        for (size_t i = 0; i < n.size(); ++i) add_named_files(n[i], path + "[" + std::to_string(i) + "]", base, fp, depth + 1);
+        for (size_t i = 0; i < n.size(); ++i) walk_named_files(n[i], path + "[" + std::to_string(i) + "]", base, found, depth + 1);
     }
 }
 
@@ -138,6 +138,19 @@ std::vector<std::string> Fingerprint::differences(const Fingerprint& other, cons
     return out;
 }
 
+std::vector<std::pair<std::string, std::string>> named_files(const JobInputs& in) {
+    std::vector<std::pair<std::string, std::string>> out;
+    const auto found = [&out](const std::string& path, const fs::path& p) { out.emplace_back(path, p.string()); };
+    const fs::path base = fs::path(in.config).parent_path();
+    try {
+        if (in.parsed.empty()) walk_named_files(YAML::Load(io::read_input_file(in.config, io::kMaxYamlFileBytes)), "", base, found, 0);
+        for (const auto& [path, node] : in.parsed) walk_named_files(node, path, base, found, 0);
+    } catch (const YAML::Exception& e) {
+        throw InputError(in.config, 0, 0, "", "unexpected YAML structure: " + e.msg);
+    }
+    return out;
+}
+
 Fingerprint input_fingerprint(const JobInputs& in) {
     Fingerprint fp;
     fp.add("version", in.version);
@@ -148,12 +161,10 @@ Fingerprint input_fingerprint(const JobInputs& in) {
     fp.add("ratio", in.ratio.empty() ? "-" : Fnv1a().add(in.ratio).hex());
     const std::string text = io::read_input_file(in.config, io::kMaxYamlFileBytes);
     fp.add("case", Fnv1a().add(text).hex());
-    try {
-        if (in.parsed.empty()) add_named_files(YAML::Load(text), "", fs::path(in.config).parent_path(), fp, 0);
-        for (const auto& [path, node] : in.parsed) add_named_files(node, path, fs::path(in.config).parent_path(), fp, 0);
-    } catch (const YAML::Exception& e) {
-        throw InputError(in.config, 0, 0, "", "unexpected YAML structure: " + e.msg);
-    }
+    // Files are hashed by content under the key path that names them, so neither the working
+    // directory nor the path used for the case enters the fingerprint.
+    for (const auto& [path, file] : in.files ? *in.files : named_files(in))
+        fp.add("file:" + token(path), Fnv1a().add(io::read_regular_file(file, io::kMaxCsvFileBytes)).hex());
     return fp;
 }
 

@@ -36,6 +36,8 @@ struct JobInputs {
     // (io::Sweep::as_written: the case, then its sweep block under "sweep"); empty: the
     // file is parsed here.
     std::vector<std::pair<std::string, YAML::Node>> parsed;
+    // named_files(...) when the caller has it already (it costs a file lookup per value).
+    std::optional<std::vector<std::pair<std::string, std::string>>> files;
 };
 
 class Fingerprint {
@@ -55,6 +57,10 @@ public:
 private:
     std::vector<std::pair<std::string, std::string>> parts_;
 };
+
+// The files the case names (its oil file, files given as sweep values...), as the loader
+// resolves them: (key path, file path) pairs. From `in.parsed` when given, else the file.
+std::vector<std::pair<std::string, std::string>> named_files(const JobInputs& in);
 
 // Reads the case file, every file it names (relative to its directory, as the loader
 // resolves them: its oil file, files given as sweep values, ...) and the --oil file.

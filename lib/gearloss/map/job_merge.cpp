@@ -94,8 +94,11 @@ void copy_rows(const Part& p, const TextSink& write) {
             out.clear();
         }
     }
-    if (rows != promised || !ended)
-        throw InputError(p.file, 0, 0, "", fmt::format("has {} rows, the shard line promises {} (incomplete run?)", rows, promised));
+    if (!ended)
+        throw InputError(p.file, in.line_number(), 0, "", "the last row has no line end: the shard was cut (incomplete run?)");
+    if (rows != promised)
+        throw InputError(p.file, in.line_number(), 0, "",
+                         fmt::format("has {} rows, the shard line promises {} (incomplete run?)", rows, promised));
     write(out);
 }
 }  // namespace
