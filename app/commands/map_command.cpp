@@ -143,6 +143,23 @@ private:
         return kOk;
     }
 
+    // `path` is `prefix` or a key below it ("oil", "oil.name"; not "oil_level").
+    static bool under(const std::string& path, const char* prefix) {
+        const size_t n = std::strlen(prefix);
+        return path.compare(0, n, prefix) == 0 && (path.size() == n || path[n] == '.');
+    }
+
+    // The option given on the command line that sets the case's value at `path`, if any.
+    const char* option_setting(const std::string& path) const {
+        if (!common_.oil.empty() && under(path, "oil")) return "--oil";
+        if (!common_.oil_temp.empty() && (path == "thermal.mode" || under(path, "thermal.oil_temperature"))) return "--oil-temp";
+        if (!common_.ratio.empty() && path == "gearbox.ratio") return "--ratio";
+        const bool points = under(path, "operating.points");
+        if (grid_.speeds_given() && (points || under(path, "operating.speeds"))) return "--speed";
+        if (grid_.torques_given() && (points || under(path, "operating.torques"))) return "--torque";
+        return nullptr;
+    }
+
     // The variants of the case's sweep, loaded one at a time with the command line's options
     // (`k`: the case itself, loaded with them). Unless an axis sets the operating points and
     // the command line does not fix them, every variant has k's grid: the job's rows are
@@ -150,24 +167,14 @@ private:
     map::MapJob sweep_job(const io::Case& k, const std::shared_ptr<io::Sweep>& sweep) {
         std::vector<std::string> labels;
         bool grid_swept = false, thermal_swept = false;
-        const auto starts = [](const std::string& p, const char* prefix) {
-            const size_t n = std::strlen(prefix);
-            return p.compare(0, n, prefix) == 0 && (p.size() == n || p[n] == '.');
-        };
         for (const auto& a : sweep->axes()) {
             labels.push_back(a.label);
             for (const auto& p : a.paths) {
-                grid_swept = grid_swept || starts(p, "operating");
+                grid_swept = grid_swept || under(p, "operating");
                 thermal_swept = thermal_swept || p == "thermal.mode";
                 // An option that sets what an axis sets would make the axis's column a label of
                 // values never used: an error, not a silent winner.
-                const char* option = !common_.oil.empty() && starts(p, "oil")                                 ? "--oil"
-                                     : !common_.oil_temp.empty() && (p == "thermal.mode" || starts(p, "thermal.oil_temperature")) ? "--oil-temp"
-                                     : !common_.ratio.empty() && p == "gearbox.ratio"                         ? "--ratio"
-                                     : grid_.speeds_given() && (starts(p, "operating.speeds") || starts(p, "operating.points")) ? "--speed"
-                                     : grid_.torques_given() && (starts(p, "operating.torques") || starts(p, "operating.points")) ? "--torque"
-                                                                                                               : nullptr;
-                if (option)
+                if (const char* option = option_setting(p))
                     throw InputError("", 0, 0, option, fmt::format("the case's sweep sets '{}': {} would replace the value of "
                                                                    "every variant; give one or the other", p, option));
             }
