@@ -20,16 +20,19 @@ void stream_rows(const solver::Model& m, const io::OperatingGrid& grid, size_t b
     if (end - begin > kMaxStreamedPoints)
         throw InputError("", 0, 0, "operating",
                          fmt::format("{} operating points; a map holds at most {}", end - begin, kMaxStreamedPoints));
-    // A block is ~1 MB of text (up to ~16 MB with --detail on a large gearbox) and its
-    // summary facts: small against the 64 MiB a 10^7-point map may take. Chunks of rows
-    // are the unit of work (dynamic: points near the oil limit cost ten times the others).
-    // Two blocks alternate: one thread writes the block solved last while the team solves
-    // the next, so the writing (a fifth of a core's time with a fast disk) is not serial.
-    constexpr size_t kBlock = 8192, kChunk = 64;
+    // A block's text is aimed at 4 MiB (the rows of the first block tell their size: ~140 bytes
+    // plain, ~400 with --detail on the shipped cases), with its summary facts: small against the
+    // 64 MiB a 10^7-point map may take, and few blocks, since each ends in a barrier where a
+    // thread waits for the slowest chunk. Chunks of 16 rows are the unit of work (dynamic:
+    // points near the oil limit cost ten times the others). Two blocks alternate: one thread
+    // writes the block solved last while the team solves the next, so the writing is not serial.
+    constexpr size_t kFirstBlock = 4096, kMinBlock = 1024, kMaxBlock = 32768, kChunk = 16;
+    constexpr size_t kBlockBytes = size_t{4} << 20;
     const int threads = opt.threads > 0 ? opt.threads : omp_get_max_threads();
     const size_t total = end - begin;
     // Sized for this map: a sweep of one-point variants calls this once a point.
-    const size_t rows_max = std::min(kBlock, total), slots = (rows_max + kChunk - 1) / kChunk;
+    const size_t rows_max = std::min(kMaxBlock, total), slots = (rows_max + kChunk - 1) / kChunk;
+    size_t block_rows = kFirstBlock;
     struct Block {
         size_t rows = 0, chunks = 0;
         std::vector<std::string> text;
@@ -59,9 +62,11 @@ void stream_rows(const solver::Model& m, const io::OperatingGrid& grid, size_t b
 #pragma omp parallel num_threads(threads) proc_bind(close)
         { (void)omp_get_thread_num(); }
     }
-    for (size_t b0 = begin, parity = 0; b0 < end; b0 += kBlock, parity ^= 1) {
+    size_t parity = 0;
+    for (size_t b0 = begin; b0 < end; b0 += blocks[parity].rows) {
+        parity ^= 1;
         Block& cur = blocks[parity];
-        cur.rows = std::min(end, b0 + kBlock) - b0;
+        cur.rows = std::min(end - b0, block_rows);
         cur.chunks = (cur.rows + kChunk - 1) / kChunk;
         const Block* prev = pending;
         const long chunks = static_cast<long>(cur.chunks);
@@ -102,8 +107,13 @@ void stream_rows(const solver::Model& m, const io::OperatingGrid& grid, size_t b
         }
         if (write_failed) std::rethrow_exception(write_failed);
         io::throw_if_interrupted();  // an incomplete block is not written
-        for (size_t c = 0; c < cur.chunks; ++c)
+        size_t bytes = 0;
+        for (size_t c = 0; c < cur.chunks; ++c) {
             if (cur.failed[c]) std::rethrow_exception(cur.failed[c]);
+            bytes += cur.text[c].size();
+        }
+        if (bytes > 0)
+            block_rows = std::clamp(kBlockBytes * cur.rows / bytes / kChunk * kChunk, kMinBlock, kMaxBlock);
         pending = &cur;
     }
     if (pending) emit(*pending);
