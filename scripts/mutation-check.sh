@@ -82,7 +82,7 @@ mut M5 mesh lib/gearloss/mesh/friction.cpp "Gupta thermal reduction 0.213 -> 0.2
 mut M6 mesh lib/gearloss/mesh/loss_factor.cpp "Ohlendorf bracket eps2^2 -> eps2 eps1" \
     '1.0 - g.eps_alpha + g.eps1 * g.eps1 + g.eps2 * g.eps2' '1.0 - g.eps_alpha + g.eps1 * g.eps1 + g.eps2 * g.eps1'
 mut M7 mesh lib/gearloss/mesh/loss_factor.cpp "Wimmer sweep normalised by the working instead of the base radius" \
-    '/ (cb * 0.5 * g.db[0])' '/ (cb * 0.5 * g.dw[0])'
+    'g.sign, g.u, g.db[0], phases}' 'g.sign, g.u, g.dw[0], phases}'
 mut M8 mesh lib/gearloss/mesh/ehl_contact.cpp "Jaeger mean flash constant 1.064 -> 1.11 (Blok's maximum constant)" \
     'if (std::abs(in.u1) > 0) dT1 = 1.064 * q1' 'if (std::abs(in.u1) > 0) dT1 = 1.11 * q1'
 mut M9 mesh lib/gearloss/mesh/ehl_contact.cpp "3-pressure Hertz shortcut: outer Gauss weight not doubled" \
