@@ -17,7 +17,7 @@ namespace gearloss::io {
 namespace {
 
 std::atomic<bool> g_stdout_closed{false};
-std::string g_incomplete_stream;  // the main thread's: outputs are written by one thread
+std::string g_incomplete_stream;  // set by ~AtomicFile, on the thread that owns the file (the main one)
 
 // A completed temporary file waiting for its rename.
 struct Pending {
