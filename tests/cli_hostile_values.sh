@@ -118,6 +118,18 @@ awk 'NR == 3 { $0 = $0 ",extra" } { print }' "$tmp/s1.csv" > "$tmp/s1-extra.csv"
 expect "merge of a shard with an extra cell" 2 "s1-extra.csv:3: .*cells, the header has" \
     "$bin" merge "$tmp/s1-extra.csv" "$tmp/s2.csv" -o "$tmp/merged.csv"
 check "merge: nothing written" test ! -e "$tmp/merged.csv"
+# Cells edited to what gearloss never writes: text or hexadecimal in a number column, a blank
+# before a number, a status that is none, a carriage return at the end of the line.
+edit() {  # edit NAME AWK-PROGRAM PATTERN
+    awk -F, "$2" OFS=, "$tmp/s1.csv" > "$tmp/s1-$1.csv"
+    expect "merge of a shard with $1" 2 "s1-$1.csv:3:[0-9]+: .*$3" "$bin" merge "$tmp/s1-$1.csv" "$tmp/s2.csv" -o "$tmp/merged.csv"
+}
+edit "text in a number cell" 'NR == 3 { $7 = "abc" } { print }' "'abc' is not a number as gearloss writes one"
+edit "a hexadecimal number" 'NR == 3 { $7 = "0x10" } { print }' "'0x10' is not a number as gearloss writes one"
+edit "a blank before a number" 'NR == 3 { $4 = " 25.00" } { print }' "is not a number as gearloss writes one"
+edit "an edited status" 'NR == 3 { $NF = "ko" } { print }' "'ko' is not a status of a map point"
+edit "a carriage return" 'NR == 3 { $0 = $0 "\r" } { print }' "is not a status of a map point"
+check "merge of edited shards: nothing written" test ! -e "$tmp/merged.csv"
 
 # 7. A sweep variant with a bad value: the error points at the value's line in the user's file
 # (not at re-emitted text), names the variant, and comes before any point is solved (the
@@ -149,6 +161,16 @@ expect "VECTO tables of a sweep case" 2 "--format vecto: the case has a sweep" \
 expect "VECTO with --json" 2 "--json: --format vecto writes loss tables only" \
     "$bin" map "$spur" --format vecto --oil-temp 70degC --json "$tmp/v.json" -o "$tmp/v.vtlm"
 check "sweep option conflicts: nothing written" test ! -e "$tmp/sweep.csv" -a ! -e "$tmp/v.vtlm"
+
+# A sweep value with a comma and a quote is one quoted cell: its shards merge into the single run
+# (a merge that split every comma refused them).
+cp "$src/configs/transfer-box.yaml" "$tmp/quoted.yaml"
+printf '\nsweep:\n  - {parameter: name, values: ["box, A", "box \\"B\\""]}\n' >> "$tmp/quoted.yaml"
+"$bin" map "$tmp/quoted.yaml" -o "$tmp/quoted.csv"
+for k in 1 2 3; do "$bin" map "$tmp/quoted.yaml" --shard $k/3 -o "$tmp/quoted-$k.csv"; done
+"$bin" merge "$tmp/quoted-3.csv" "$tmp/quoted-1.csv" "$tmp/quoted-2.csv" -o "$tmp/quoted-merged.csv"
+check "sweep values with a comma and a quote: merged shards = single run" cmp -s "$tmp/quoted.csv" "$tmp/quoted-merged.csv"
+check "sweep values with a comma and a quote: quoted cells" grep -q '^"box ""B""",600,' "$tmp/quoted.csv"
 
 # 9. An output onto a file the case names (its oil file, an oil file among the sweep's values):
 # exit 2 and the oil file unchanged.

@@ -5,6 +5,7 @@
 #include "gearloss/map/job.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -49,25 +50,65 @@ Part read_head(const std::string& file) {
     return p;
 }
 
-// A row has the header's number of cells, and no cell is a value that is not finite ("nan",
-// "inf", "1e999"): an edited or damaged shard is not merged into a map.
-void check_row(const std::string& file, int line, std::string_view row, size_t cells) {
-    size_t n = 0;
-    for (size_t c0 = 0;; ++n) {
-        const size_t c1 = std::min(row.find(',', c0), row.size());
-        const std::string_view cell = row.substr(c0, c1 - c0);
-        if (!cell.empty()) {
-            const std::string s(cell);  // short: the small-string buffer, no allocation
-            char* end = nullptr;
-            const double v = std::strtod(s.c_str(), &end);
-            if (end && *end == '\0' && !std::isfinite(v))
-                throw InputError(file, line, static_cast<int>(n + 1), "",
-                                 "'" + io::excerpt(s) + "' is not a finite number (an edited or damaged shard)");
+// The cells of a CSV line: split at commas outside double quotes (a sweep value with a comma
+// is written quoted, "" for a quote), each cell as written.
+std::vector<std::string_view> split_cells(std::string_view row) {
+    std::vector<std::string_view> cells;
+    size_t c0 = 0;
+    bool quoted = false;
+    for (size_t i = 0; i <= row.size(); ++i) {
+        if (i < row.size() && row[i] == '"') quoted = !quoted;
+        if (i == row.size() || (row[i] == ',' && !quoted)) {
+            cells.push_back(row.substr(c0, i - c0));
+            c0 = i + 1;
         }
-        if (c1 == row.size()) break;
-        c0 = c1 + 1;
     }
-    if (n + 1 != cells) throw InputError(file, line, 0, "", fmt::format("{} cells, the header has {}", n + 1, cells));
+    return cells;
+}
+
+// What each column of a map may hold: the sweep's values (any text) before `speed_in_rpm`,
+// the status in `status`, and numbers (or nothing) everywhere else.
+struct Columns {
+    size_t count = 0, labels = 0, status = size_t(-1);
+    explicit Columns(const std::string& header) {
+        const auto cells = split_cells(std::string_view(header).substr(0, header.size() - 1));  // without the '\n'
+        count = cells.size();
+        for (size_t i = 0; i < cells.size(); ++i) {
+            if (cells[i] == "speed_in_rpm" && labels == 0) labels = i;
+            if (cells[i] == "status") status = i;
+        }
+    }
+};
+
+bool is_status(std::string_view s) {
+    return s == "ok" || s == "above_oil_limit" || s == "no_equilibrium" || s.rfind("out_of_range: ", 0) == 0;
+}
+
+// A row has the header's cells, each what its column holds as gearloss writes it: a number in
+// plain decimal or exponent form (no sign '+', blank, hexadecimal, "nan" or "inf"), or nothing;
+// a status the solver gives. An edited or damaged shard is not merged into a map.
+void check_row(const std::string& file, int line, std::string_view row, const Columns& columns) {
+    const auto cells = split_cells(row);
+    if (cells.size() != columns.count)
+        throw InputError(file, line, 0, "", fmt::format("{} cells, the header has {}", cells.size(), columns.count));
+    for (size_t i = columns.labels; i < cells.size(); ++i) {
+        const std::string_view cell = cells[i];
+        const auto fail = [&](const std::string& why) {
+            throw InputError(file, line, static_cast<int>(i + 1), "", "'" + io::excerpt(cell) + "' " + why);
+        };
+        if (i == columns.status) {
+            if (!is_status(cell)) fail("is not a status of a map point (an edited or damaged shard)");
+            continue;
+        }
+        if (cell.empty()) continue;
+        double v = 0;
+        const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+        if (r.ec == std::errc() && r.ptr == cell.data() + cell.size() && !std::isfinite(v))
+            fail("is not a finite number (an edited or damaged shard)");
+        if (r.ec == std::errc::result_out_of_range) fail("is not a finite number (an edited or damaged shard)");
+        if (r.ec != std::errc() || r.ptr != cell.data() + cell.size())
+            fail("is not a number as gearloss writes one (an edited or damaged shard)");
+    }
 }
 
 // The rows of one shard to `write`, checked.
@@ -76,7 +117,7 @@ void copy_rows(const Part& p, const TextSink& write) {
     std::string_view line;
     in.next(line);  // shard line and header, read and checked before
     in.next(line);
-    const size_t cells = static_cast<size_t>(std::count(p.header.begin(), p.header.end(), ',')) + 1;
+    const Columns columns(p.header);
     const size_t promised = p.end - p.begin;
     size_t rows = 0;
     bool ended = true;
@@ -86,7 +127,7 @@ void copy_rows(const Part& p, const TextSink& write) {
         ++rows;
         ended = in.last_line_ended();
         if (rows > promised) continue;  // counted for the message below
-        check_row(p.file, in.line_number(), line, cells);
+        check_row(p.file, in.line_number(), line, columns);
         out.append(line);
         out += '\n';
         if (out.size() >= (size_t{1} << 20)) {
