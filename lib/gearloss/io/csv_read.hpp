@@ -54,23 +54,43 @@ std::string name_problem(std::string_view s, std::size_t max_bytes);
 // A hint when a CSV line is separated by semicolons or tabs instead of commas ("" otherwise).
 std::string separator_hint(const std::string& line);
 
+// The cells of a CSV line as written: split at commas outside double quotes, nothing removed
+// (a merge checks cells byte for byte).
+inline std::vector<std::string_view> split_csv_cells(std::string_view line) {
+    std::vector<std::string_view> cells;
+    size_t c0 = 0;
+    bool quoted = false;
+    for (size_t i = 0; i <= line.size(); ++i) {
+        if (i < line.size() && line[i] == '"') quoted = !quoted;
+        if (i == line.size() || (line[i] == ',' && !quoted)) {
+            cells.push_back(line.substr(c0, i - c0));
+            c0 = i + 1;
+        }
+    }
+    return cells;
+}
+
+// The cells read as values: quotes and carriage returns dropped, blanks at either end trimmed.
 inline std::vector<std::string> split_csv_line(const std::string& line) {
     std::vector<std::string> out;
-    std::string cur;
-    bool quoted = false;
-    for (char c : line) {
-        if (c == '"') quoted = !quoted;
-        else if (c == ',' && !quoted) {
-            out.push_back(cur);
-            cur.clear();
-        } else if (c != '\r') cur += c;
-    }
-    out.push_back(cur);
-    for (auto& s : out) {
+    for (const std::string_view raw : split_csv_cells(line)) {
+        std::string s;
+        for (char c : raw)
+            if (c != '"' && c != '\r') s += c;
         s.erase(0, s.find_first_not_of(" \t"));
         s.erase(s.find_last_not_of(" \t") + 1);
+        out.push_back(std::move(s));
     }
     return out;
+}
+
+// A cell read as a whole number (std::from_chars: no blank, '+' or hexadecimal): what it is.
+enum class CellNumber { number, not_finite, not_number };
+inline CellNumber read_cell_number(std::string_view s, double& v) {
+    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == s.data() + s.size() && !std::isfinite(v)))
+        return CellNumber::not_finite;
+    return ec == std::errc() && p == s.data() + s.size() ? CellNumber::number : CellNumber::not_number;
 }
 
 // The cell as a finite number; InputError at file:line:column, key `column`, otherwise.
@@ -78,10 +98,10 @@ inline double csv_cell_number(const std::string& s, const std::string& file, int
                               const std::string& column_name) {
     if (s.empty()) throw InputError(file, line, column, column_name, "empty cell; a number is expected");
     double v = 0;
-    const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == s.data() + s.size() && !std::isfinite(v)))
+    const CellNumber kind = read_cell_number(s, v);
+    if (kind == CellNumber::not_finite)
         throw InputError(file, line, column, column_name, "'" + excerpt(s) + "' is out of range (not a finite number)");
-    if (ec != std::errc() || p != s.data() + s.size())
+    if (kind == CellNumber::not_number)
         throw InputError(file, line, column, column_name, "'" + excerpt(s) + "' is not a number");
     return v;
 }

@@ -83,10 +83,16 @@ MapJob::MapJob(std::vector<std::string> sweep_labels, std::vector<Variant> varia
 
 io::Case MapJob::load(size_t v) const { return source_.load(v); }
 
+const std::string& MapJob::columns(bool detail) const {
+    auto& c = columns_[detail ? 1 : 0];
+    if (!c) c = csv_header(load(0).model, detail);
+    return *c;
+}
+
 std::string MapJob::header(bool detail) const {
     std::string h;
     for (const auto& l : labels_) h += io::csv_cell(l) + ",";
-    return h + csv_header(load(0).model, detail);
+    return h + columns(detail);
 }
 
 Fingerprint MapJob::fingerprint() const {
@@ -114,7 +120,7 @@ void require_columns(const io::Case& c, const std::string& columns, bool detail)
 }  // namespace
 
 void MapJob::check(size_t begin, size_t end, bool detail) const {
-    const std::string columns = csv_header(load(0).model, detail);
+    const std::string& columns = this->columns(detail);
     const auto [v0, v1] = variants_of(offsets_, begin, end);
     for (size_t v = v0; v < v1; ++v) {
         io::throw_if_interrupted();
@@ -125,7 +131,7 @@ void MapJob::check(size_t begin, size_t end, bool detail) const {
 size_t MapJob::run(const MapOptions& opt, size_t begin, size_t end, const TextSink& write, MapSummary* summary) const {
     end = std::min(end, total_points());
     if (begin >= end) return 0;
-    const std::string columns = csv_header(load(0).model, opt.detail);
+    const std::string& columns = this->columns(opt.detail);
     const auto [v0, v1] = variants_of(offsets_, begin, end);
     MapOptions part = opt;
     for (size_t v = v0; v < v1; ++v) {

@@ -67,6 +67,9 @@ private:
     Source source_;
     std::vector<size_t> offsets_ = {0};  // first row of each variant, and the total
     uint64_t rows_key_ = 0;
+    // The first variant's CSV columns, without and with --detail: loaded once, not per use.
+    const std::string& columns(bool detail) const;
+    mutable std::optional<std::string> columns_[2];
 };
 
 struct Shard {

@@ -5,7 +5,6 @@
 #include "gearloss/map/job.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -50,28 +49,12 @@ Part read_head(const std::string& file) {
     return p;
 }
 
-// The cells of a CSV line: split at commas outside double quotes (a sweep value with a comma
-// is written quoted, "" for a quote), each cell as written.
-std::vector<std::string_view> split_cells(std::string_view row) {
-    std::vector<std::string_view> cells;
-    size_t c0 = 0;
-    bool quoted = false;
-    for (size_t i = 0; i <= row.size(); ++i) {
-        if (i < row.size() && row[i] == '"') quoted = !quoted;
-        if (i == row.size() || (row[i] == ',' && !quoted)) {
-            cells.push_back(row.substr(c0, i - c0));
-            c0 = i + 1;
-        }
-    }
-    return cells;
-}
-
 // What each column of a map may hold: the sweep's values (any text) before `speed_in_rpm`,
 // the status in `status`, and numbers (or nothing) everywhere else.
 struct Columns {
     size_t count = 0, labels = 0, status = size_t(-1);
     explicit Columns(const std::string& header) {
-        const auto cells = split_cells(std::string_view(header).substr(0, header.size() - 1));  // without the '\n'
+        const auto cells = io::split_csv_cells(std::string_view(header).substr(0, header.size() - 1));  // without the '\n'
         count = cells.size();
         for (size_t i = 0; i < cells.size(); ++i) {
             if (cells[i] == "speed_in_rpm" && labels == 0) labels = i;
@@ -88,7 +71,7 @@ bool is_status(std::string_view s) {
 // plain decimal or exponent form (no sign '+', blank, hexadecimal, "nan" or "inf"), or nothing;
 // a status the solver gives. An edited or damaged shard is not merged into a map.
 void check_row(const std::string& file, int line, std::string_view row, const Columns& columns) {
-    const auto cells = split_cells(row);
+    const auto cells = io::split_csv_cells(row);
     if (cells.size() != columns.count)
         throw InputError(file, line, 0, "", fmt::format("{} cells, the header has {}", cells.size(), columns.count));
     for (size_t i = columns.labels; i < cells.size(); ++i) {
@@ -102,12 +85,9 @@ void check_row(const std::string& file, int line, std::string_view row, const Co
         }
         if (cell.empty()) continue;
         double v = 0;
-        const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), v);
-        if (r.ec == std::errc() && r.ptr == cell.data() + cell.size() && !std::isfinite(v))
-            fail("is not a finite number (an edited or damaged shard)");
-        if (r.ec == std::errc::result_out_of_range) fail("is not a finite number (an edited or damaged shard)");
-        if (r.ec != std::errc() || r.ptr != cell.data() + cell.size())
-            fail("is not a number as gearloss writes one (an edited or damaged shard)");
+        const io::CellNumber kind = io::read_cell_number(cell, v);
+        if (kind == io::CellNumber::not_finite) fail("is not a finite number (an edited or damaged shard)");
+        if (kind == io::CellNumber::not_number) fail("is not a number as gearloss writes one (an edited or damaged shard)");
     }
 }
 
