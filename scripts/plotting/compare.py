@@ -51,7 +51,7 @@ def plot_compare(fig, table, meta, opts):
     ax = fig.subplots(nrows, ncols, squeeze=False, sharex=True, sharey=True)
     grid = surface.Grid(table.number("speed_in_rpm"), table.number("torque_in_Nm"))
     status_ref = table.text(f"status_{ref}").to_numpy() if table.has(f"status_{ref}") else None
-    info = {"panels": [], "levels": {}}
+    info = {"panels": [], "levels": {}, "mappables": {}}
     temps = table.number(f"oil_temp_{ref}_C") if table.has(f"oil_temp_{ref}_C") else None
     title = labels.figure_title(
         opts.title, f"{labels.case_text(meta, table.path)}: oils compared with {ref}",
@@ -81,6 +81,7 @@ def plot_compare(fig, table, meta, opts):
             head = f"{k} - {ref}: {name}"
             ax[r][c].set_title(head, fontsize=9)
             info["panels"].append(head)
+            info["mappables"][head] = m
             if c == 0:
                 row_handles.append(handles)
             if r != nrows - 1:

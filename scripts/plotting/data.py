@@ -1,7 +1,9 @@
 """Reading gearloss CSV files and their metadata sidecars; every problem a PlotError with a
 message naming the file (and line and column for a bad cell)."""
+import csv
 import json
 import os
+import warnings
 
 import numpy as np
 import pandas as pd
@@ -97,19 +99,26 @@ def read_table(path, kind):
                 if not line.startswith("#"):
                     break
                 skip += 1
-        frame = pd.read_csv(path, skiprows=skip, dtype=str, keep_default_na=False, encoding="utf-8",
-                            skipinitialspace=False)
+        with warnings.catch_warnings():
+            # a row longer than the header: pandas would drop its cells (or take the first as an index)
+            warnings.simplefilter("error", pd.errors.ParserWarning)
+            frame = pd.read_csv(path, skiprows=skip, dtype=str, keep_default_na=False, encoding="utf-8",
+                                index_col=False)
     except PermissionError:
         raise PlotError(f"{path}: not readable (permission denied)")
     except UnicodeDecodeError:
         raise PlotError(f"{path}: not a text CSV file (not UTF-8)")
     except pd.errors.EmptyDataError:
         raise PlotError(f"{path}: empty file (no header, no rows)")
-    except pd.errors.ParserError as e:
+    except (pd.errors.ParserError, pd.errors.ParserWarning) as e:
         raise PlotError(f"{path}: not a well-formed CSV file ({str(e).strip()})")
     except OSError as e:
         raise PlotError(f"{path}: not readable ({e.strerror or e})")
     frame.columns = [str(c).strip() for c in frame.columns]
+    with open(path, encoding="utf-8", newline="") as f:  # pandas pads a short row with empty cells
+        for i, row in enumerate(csv.reader(f)):
+            if i > skip and len(row) != len(frame.columns) and row:
+                raise PlotError(f"{path}:{i + 1}: {len(row)} cells, the header has {len(frame.columns)}")
     table = Table(path, frame.reset_index(drop=True), skip + 1)
     if len(frame) == 0:
         raise PlotError(f"{path}: header only, no rows")

@@ -75,10 +75,29 @@ class Levels:
         return ",".join(f"{x:.{self.decimals}f}" for x in self.levels) + f" ({self.how}; extend {self.extend})"
 
 
+def quantile_levels(v, n):
+    """Levels at equally spaced quantiles of the solved points from the 10 % quantile to the best
+    point, rounded to the fewest decimals that keep them apart: each band holds about as many
+    points, so the levels crowd where the points do (on an efficiency map, the upper percent)
+    and the low-load tail below the first level takes the end colour."""
+    q = np.quantile(v, np.linspace(0.10, 1.0, n))
+    for d in range(7):
+        levels = np.unique(np.round(q, d))
+        if len(levels) >= max(2, int(0.8 * len(np.unique(q)))):
+            break
+    top = np.ceil(v.max() * 10 ** d) / 10 ** d  # the best point inside the last band
+    levels = np.unique(np.append(levels[levels < top], top))
+    if len(levels) < 2:
+        levels = np.array([levels[0] - 10.0 ** -d, levels[0]])
+    below = v.min() < levels[0]
+    return Levels(levels, "min" if below else "neither", decimals_for(levels), None,
+                  f"quantiles 10 %..100 % of the solved points, {n} asked")
+
+
 def make_levels(values, spec=None, focus="spread"):
     """Levels for the finite `values` (already in the unit drawn). spec: None (automatic), a
-    count or an explicit list (--levels). focus: 'high' (efficiency: from the 10 % quantile up to
-    the best point), 'spread' (2 % .. 98 % quantiles) or 'diverging' (symmetric about 0 up to
+    count or an explicit list (--levels). focus: 'high' (efficiency: levels at the quantiles of the
+    points from the 10 % quantile to the best point), 'spread' (2 % .. 98 % quantiles) or 'diverging' (symmetric about 0 up to
     the 98 % quantile of |value|)."""
     v = np.asarray(values, dtype=float)
     v = v[np.isfinite(v)]
@@ -95,7 +114,7 @@ def make_levels(values, spec=None, focus="spread"):
             half = 0.5 * 10.0 ** -d
             return Levels(np.array([hi_v - half, hi_v + half]), "neither", d, hi_v, "constant field")
         if focus == "high":
-            lo, hi, how = float(np.quantile(v, 0.10)), hi_v, "10 % quantile .. best point"
+            return quantile_levels(v, n)
         elif focus == "diverging":
             m = float(np.quantile(np.abs(v), 0.98)) or float(np.abs(v).max())
             lo, hi, how = -m, m, "symmetric about 0, 98 % quantile of |value|"

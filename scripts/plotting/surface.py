@@ -8,6 +8,8 @@ triangle (matplotlib's UniformTriRefiner), clipped to the computed range, so con
 longer polygons with corners at the grid lines; each computed point is marked by a small dot.
 Points without a result (no equilibrium, out of the model's range) are drawn as hatched cells
 with a legend entry, points above the oil's permissible temperature with an open triangle."""
+import warnings
+
 import matplotlib
 import numpy as np
 from matplotlib import colors as mcolors
@@ -127,8 +129,10 @@ def draw_field(ax, grid, z, status, levels, cmap, refine=3, lines=True):
         mappable = ax.tricontourf(tr, zt, levels=levels.levels, cmap=cmap, extend=levels.extend)
         if lines and levels.constant is None and len(levels.levels) > 2:
             step = max(1, len(levels.levels) // 6)
-            cl = ax.tricontour(tr, zt, levels=levels.levels[::step], colors="k", linewidths=0.45)
-            ax.clabel(cl, fmt=levels.formatter(), fontsize=7)
+            with warnings.catch_warnings():  # a panel whose values miss every labelled level
+                warnings.simplefilter("ignore", UserWarning)
+                cl = ax.tricontour(tr, zt, levels=levels.levels[::step], colors="k", linewidths=0.45)
+                ax.clabel(cl, fmt=levels.formatter(), fontsize=7)
     pts = ax.scatter(grid.x[ok], grid.y[ok], s=6 if t is not None else 40, c=z[ok] if t is None else "k",
                      cmap=cmap if t is None else None, norm=norm if t is None else None,
                      edgecolors="none" if t is not None else "k", linewidths=0.4, zorder=3)
