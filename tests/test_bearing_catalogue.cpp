@@ -103,7 +103,8 @@ TEST_CASE("catalogue: every example designation resolves", "[bearing_catalogue]"
     // SKF 6000 prints e = 0.31, Y = 1.9 for 30306 and 32306 (the tapered calculation factors).
     CHECK(t.Y.value() == Approx(1.9));
     CHECK(t.e.value() == Approx(0.31));
-    // 6307: C 35.1 kN, C0 19 kN in SKF 6000 (and the SKF 2008 English edition, table 1 of 6307).
+    // 6307: C 35.1 kN, C0 19 kN as printed in SKF (2008) 6000 RU (the row the file was read from: a
+    // transcription check only; FBJ prints 33.2 / 19 kN for its own 6307).
     CHECK(a.C.value() == Approx(35100));
     CHECK(a.C0.value() == Approx(19000));
 }
