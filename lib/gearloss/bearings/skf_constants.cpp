@@ -2,6 +2,8 @@
 
 #include <map>
 
+#include "gearloss/bearings/designation.hpp"
+
 namespace gearloss::bearings {
 
 namespace {
@@ -208,6 +210,9 @@ std::optional<SkfConstants> skf_constants(BearingType t, const std::string& seri
         if (it != tab.end()) return it->second;
         if (tab.size() == 1) return tab.begin()->second;
     }
+    // A full designation ("NJ 406", "6307-2RS1", "32306 J2/Q") names its series.
+    if (const auto from_designation = skf_series_of_designation(series); from_designation && *from_designation != series)
+        return skf_constants(t, *from_designation);
     return std::nullopt;
 }
 

@@ -34,7 +34,8 @@ struct SkfConstants {
     int rows = 1;  // i_rw, rows of balls
 };
 
-// Constants for a type and series ("62", "NU 22", "322", "other"...). Returns
+// Constants for a type and series ("62", "NU 22", "322", "other"...) or a full designation
+// ("NJ 406", "6307-2RS1": its series, gearloss/bearings/designation.hpp). Returns
 // nullopt when the series is not in the table; `series_names` lists the known ones.
 std::optional<SkfConstants> skf_constants(BearingType t, const std::string& series);
 std::vector<std::string> series_names(BearingType t);

@@ -150,7 +150,7 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
     index_sources(root, "", *source);
     root.allow_keys({"name", "description", "oil", "materials", "shafts", "gears", "meshes", "bearings", "seals",
                      "clutches", "housing", "thermal", "gearbox", "operating", "options", "mechanisms", "calibration", "vehicle",
-                     "sweep"});
+                     "sweep", "bearing_catalogue"});
     c.sweep = read_sweep(root);
     auto& m = c.model;
     m.name = root.has("name") ? root.at("name").as_title() : fs::path(file).stem().string();
@@ -168,7 +168,7 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
         m.oil = load_oil(oil);
     }
 
-    detail::Loader L{root, m, {}, {}, {}};
+    detail::Loader L{root, m, {}, {}, {}, base_dir, &c.bearings_resolved};
     L.load_materials();
     L.load_shafts();
     L.load_gears();

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "gearloss/io/bearing_catalogue.hpp"
 #include "gearloss/io/yaml_reader.hpp"
 #include "gearloss/model/model.hpp"
 #include "gearloss/torque_converter/torque_converter.hpp"
@@ -42,7 +43,9 @@ struct Case {
     // Plausibility findings ("file:line:col: key: warning: ..."), printed by every
     // command on stderr and listed by `check`.
     std::vector<std::string> warnings;
-    std::string oil_temperature_key;  // "file:line:col: thermal.oil_temperature" when the case fixes it
+    std::string oil_temperature_key;
+    // Per bearing block: its designation, the catalogue row and the source of each value (`check`).
+    std::vector<BearingResolution> bearings_resolved;  // "file:line:col: thermal.oil_temperature" when the case fixes it
 };
 
 // The `vehicle` block (docs/config.md) into c.vehicle (and c.torque_converter).

@@ -1,8 +1,12 @@
 // Case loader: bearings (SKF constants, seals, oil bath), shaft seals and wet clutch packs (docs/config.md).
 #include <fmt/format.h>
+#include <filesystem>
+#include <numbers>
+#include <optional>
 #include <set>
 #include <string>
 
+#include "gearloss/bearings/designation.hpp"
 #include "gearloss/bearings/skf_constants.hpp"
 #include "gearloss/io/config_internal.hpp"
 #include "gearloss/io/csv_read.hpp"
@@ -21,9 +25,37 @@ void set_bearing_friction(bearings::BearingSpec& s, const lubricant::Oil& oil) {
                            : bearings::default_mu_ehl(s.type, synthetic, oil.base == BaseOil::transmission_fluid);
 }
 
+namespace {
+std::string located_at(const YamlNode& n) {
+    const auto l = n.location();
+    return l.known() ? fmt::format("{}:{}:{}", l.file.empty() ? n.file() : l.file, l.line, l.column) : n.file();
+}
+
+// The catalogue a case reads: the shipped one, then its `bearing_catalogue` files (a name or a
+// list, relative to the case's folder) overriding rows of the same designation.
+const BearingCatalogue& case_catalogue(const YamlNode& root, const std::string& base_dir, const YamlNode& asking,
+                                       std::optional<BearingCatalogue>& own) {
+    const BearingCatalogue& shipped = shipped_bearing_catalogue(asking.path());
+    const auto files = root.get("bearing_catalogue");
+    if (!files) return shipped;
+    if (own) return *own;
+    own = shipped;
+    std::vector<YamlNode> names = files->is_sequence() ? files->items() : std::vector<YamlNode>{*files};
+    for (const auto& f : names) {
+        const std::filesystem::path p = std::filesystem::path(base_dir) / f.as_string();
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(p, ec))
+            f.fail("bearing catalogue '" + excerpt(p.string(), 200) + "' does not exist or is not a file");
+        own->load_file(p.string());
+    }
+    return *own;
+}
+}  // namespace
+
 void Loader::load_bearings() {
     if (!root.has("bearings")) return;
     std::set<std::string> names;
+    std::optional<BearingCatalogue> own_catalogue;
     for (const auto& n : root.at("bearings").items()) {
         n.allow_keys({"name", "type", "series", "designation", "d", "D", "B", "C0", "Y", "shaft", "position",
                       "under_gear", "locating", "lubrication", "seals", "seal_counterface", "constants", "oil_bath",
@@ -32,27 +64,103 @@ void Loader::load_bearings() {
         b.name = n.at("name").as_name();
         if (!names.insert(b.name).second) n.at("name").fail("duplicate bearing name '" + b.name + "'");
         auto& s = b.spec;
-        const YamlNode tn = n.at("type");
-        const auto t = bearings::bearing_type_from_string(tn.as_string());
-        if (!t) {
-            std::string all;
-            for (const auto& x : bearings::bearing_type_names()) all += (all.empty() ? "" : ", ") + x;
-            tn.fail("unknown bearing type '" + excerpt(tn.as_string()) + "'; known: " + all);
+        BearingResolution res;
+        res.bearing = b.name;
+        // designation: the catalogue row gives type, sizes, ratings and the SKF series; explicit keys override.
+        const CatalogueEntry* cat = nullptr;
+        if (auto dn = n.get("designation")) {
+            res.designation = dn->as_string();
+            const auto key = bearings::designation_key(res.designation);
+            if (!key) dn->fail("'" + excerpt(res.designation) + "' is not a bearing designation (e.g. 6307, NJ 309 E, 32306, 7308 BE, QJ 308, K 38x43x27)");
+            const BearingCatalogue& catalogue = case_catalogue(root, base_dir, *dn, own_catalogue);
+            cat = catalogue.find(key->key);
+            if (!cat) {
+                std::string near;
+                for (const auto& c : catalogue.closest(key->key, 5)) near += (near.empty() ? "" : ", ") + c;
+                dn->fail(fmt::format("no bearing '{}' in the catalogue (key {}; {} rows from {}); closest: {}. Give type, d, D, B "
+                                     "(and C0, series) explicitly, or add a catalogue file with 'bearing_catalogue'",
+                                     excerpt(res.designation), key->key, catalogue.size(),
+                                     catalogue.files().empty() ? "?" : catalogue.files().back(), near));
+            }
+            res.entry = cat->designation;
+            res.entry_location = cat->location;
+            res.verified = cat->verified;
+            res.ratings = cat->ratings;
         }
-        s.type = *t;
-        s.d = n.positive_quantity("d", dim::length, "35 mm");
-        s.D = n.positive_quantity("D", dim::length, "80 mm");
+        const std::string from_cat = cat ? "catalogue " + cat->location : "";
+        if (cat && !n.has("type")) {
+            s.type = cat->type;
+            res.type_source = from_cat;
+        } else {
+            const YamlNode tn = n.at("type");
+            const auto t = bearings::bearing_type_from_string(tn.as_string());
+            if (!t) {
+                std::string all;
+                for (const auto& x : bearings::bearing_type_names()) all += (all.empty() ? "" : ", ") + x;
+                tn.fail("unknown bearing type '" + excerpt(tn.as_string()) + "'; known: " + all);
+            }
+            if (cat && *t != cat->type)
+                tn.fail(fmt::format("type {} contradicts the catalogue's {} for '{}' ({})", bearings::to_string(*t),
+                                    bearings::to_string(cat->type), cat->designation, cat->location));
+            s.type = *t;
+            res.type_source = "explicit " + located_at(tn);
+        }
+        res.type = bearings::to_string(s.type);
+        // A length or load: explicit key, else the catalogue's value; records where it came from.
+        auto pick = [&](const char* key, const units::Dimension& dim, const char* example, std::optional<double> catalogue,
+                        double unit, const char* unit_name) -> std::optional<double> {
+            std::optional<double> v;
+            std::string src;
+            if (n.has(key)) {
+                v = n.positive_quantity(key, dim, example);
+                src = "explicit " + located_at(n.at(key));
+            } else if (catalogue) {
+                v = catalogue;
+                src = from_cat;
+            }
+            if (v) res.values.push_back({key, fmt::format("{:g} {}", *v / unit, unit_name), *v, src});
+            return v;
+        };
+        const bool tapered_row = cat && cat->T;
+        if (auto v = pick("d", dim::length, "35 mm", cat ? std::optional<double>(cat->d) : std::nullopt, 1e-3, "mm")) s.d = *v;
+        else s.d = n.positive_quantity("d", dim::length, "35 mm");
+        if (auto v = pick("D", dim::length, "80 mm", cat ? std::optional<double>(cat->D) : std::nullopt, 1e-3, "mm")) s.D = *v;
+        else s.D = n.positive_quantity("D", dim::length, "80 mm");
         if (s.d >= s.D)
-            n.at("D").fail(fmt::format("outer diameter D = {} mm must exceed bore d = {} mm", s.D * 1e3, s.d * 1e3));
-        s.B = n.has("B") ? n.positive_quantity("B", dim::length, "21 mm") : 0.25 * (s.D - s.d);
-        if (!n.has("B") && bearings::is_roller(s.type) && n.has("oil_bath"))
+            (n.has("D") ? n.at("D") : n).fail(fmt::format("outer diameter D = {} mm must exceed bore d = {} mm", s.D * 1e3, s.d * 1e3));
+        if (auto v = pick("B", dim::length, "21 mm", cat ? std::optional<double>(cat->B) : std::nullopt, 1e-3, "mm")) {
+            s.B = *v;
+            if (tapered_row && !n.has("B")) res.values.back().name = "B (= T, total width)";
+        } else {
+            s.B = 0.25 * (s.D - s.d);
+            res.values.push_back({"B", fmt::format("{:g} mm", s.B * 1e3), s.B, "estimate 0.25 (D - d) (no B given)"});
+        }
+        if (tapered_row && cat->cone_width)
+            res.values.push_back({"cone width", fmt::format("{:g} mm", *cat->cone_width * 1e3), *cat->cone_width, from_cat});
+        if (!n.has("B") && !cat && bearings::is_roller(s.type) && n.has("oil_bath"))
             n.fail("give the width 'B' for roller bearings in an oil bath (drag depends on it)");
-        if (n.has("C0")) s.C0 = n.positive_quantity("C0", dim::force, "18.3 kN");
+        if (cat && cat->C) res.values.push_back({"C", fmt::format("{:g} kN", *cat->C / 1e3), *cat->C, from_cat});
+        if (auto v = pick("C0", dim::force, "18.3 kN", cat ? cat->C0 : std::nullopt, 1e3, "kN")) s.C0 = *v;
         if (n.has("Y")) {
             s.Y = n.at("Y").as_number();
             if (!(s.Y > 0 && s.Y < 5)) n.at("Y").fail("axial load factor Y outside (0, 5)");
+            res.values.push_back({"Y", fmt::format("{:g}", s.Y), s.Y, "explicit " + located_at(n.at("Y"))});
+        } else if (cat && cat->Y) {
+            s.Y = *cat->Y;
+            res.values.push_back({"Y", fmt::format("{:g}", s.Y), s.Y, from_cat});
+        } else if (s.type == bearings::BearingType::tapered_roller) {
+            res.values.push_back({"Y", fmt::format("{:g}", s.Y), s.Y, "default (no Y given)"});
         }
-        const std::string series = n.has("series") ? n.at("series").as_string() : "";
+        if (cat && cat->e) res.values.push_back({"e", fmt::format("{:g}", *cat->e), *cat->e, from_cat});
+        if (cat && cat->contact_angle)
+            res.values.push_back({"contact angle", fmt::format("{:g} deg", *cat->contact_angle * 180 / std::numbers::pi),
+                                  *cat->contact_angle, from_cat});
+        std::string series = n.has("series") ? n.at("series").as_string() : "";
+        std::string series_source = n.has("series") ? "explicit " + located_at(n.at("series")) : "default ('other' row)";
+        if (!n.has("series") && cat) {
+            series = cat->skf_series;
+            series_source = from_cat;
+        }
         auto k = bearings::skf_constants(s.type, series);
         if (!k && !n.has("constants")) {
             std::string all;
@@ -63,6 +171,8 @@ void Loader::load_bearings() {
                                   bearings::to_string(s.type), excerpt(series), all));
         }
         if (k) s.k = *k;
+        res.values.push_back({"series", series.empty() ? "other" : series, 0.0,
+                              n.has("constants") ? series_source + "; constants from 'constants'" : series_source});
         if (auto c = n.get("constants")) {
             c->allow_keys({"R1", "R2", "R3", "R4", "S1", "S2", "S3", "S4", "K_Z", "K_L", "rows"});
             auto set = [&](const char* key, double& v) {
@@ -138,6 +248,7 @@ void Loader::load_bearings() {
             count = c->as_int();
             if (count < 1 || count > 8) c->fail("count must be 1..8 (identical bearings side by side)");
         }
+        if (resolved) resolved->push_back(res);
         for (int i = 0; i < count; ++i) {
             gearbox::Bearing bi = b;
             if (count > 1) {

@@ -6,6 +6,7 @@
 
 #include "gearloss/bearings/skf_model.hpp"
 #include "gearloss/io/config.hpp"
+#include <vector>
 
 namespace gearloss::io::detail {
 
@@ -20,6 +21,8 @@ struct Loader {
     solver::Model& model;
     std::map<std::string, int> shaft_index, gear_index;
     std::map<std::string, geometry::Material> materials;
+    std::string base_dir;                              // the case file's folder (bearing_catalogue)
+    std::vector<BearingResolution>* resolved = nullptr;  // what `check` prints per bearing
 
     // config_gears.cpp
     int shaft_ref(const YamlNode& n);

@@ -122,6 +122,16 @@ std::string check_report(const Case& c) {
                          100 * L.bearing_Fr_neg[i], 100 * L.bearing_Fa_pos[i], 100 * L.bearing_Fa_neg[i],
                          b.spec.type == bearings::BearingType::needle_roller ? "  (SKF constants: caged CRB proxy)" : "");
     }
+    if (!c.bearings_resolved.empty()) {
+        s += "\nbearing data as resolved (value [source]):\n";
+        for (const auto& r : c.bearings_resolved) {
+            s += fmt::format("  {}: {} [{}]\n", r.bearing, r.type, r.type_source);
+            if (!r.designation.empty())
+                s += fmt::format("    designation '{}' = catalogue row '{}' ({}); ratings: {}; verified: {}\n", r.designation,
+                                 r.entry, r.entry_location, r.ratings, r.verified);
+            for (const auto& v : r.values) s += fmt::format("    {} = {} [{}]\n", v.name, v.text, v.source);
+        }
+    }
     s += "\nloss mechanisms: alternative forms (selected in [ ]; the axes of map --spread) and parameters (SI)\n";
     for (size_t i = 0; i < m.mechanisms.size(); ++i) {
         const auto& mech = m.mechanisms[i];
@@ -223,6 +233,28 @@ std::string check_json(const Case& c) {
         j.key("speed_ratio").value(L.bearing_speed_ratio[i]);
         j.key("Fr_per_Nm").value(L.bearing_Fr_pos[i]);
         j.key("Fa_per_Nm").value(L.bearing_Fa_pos[i]);
+        // The bearing block this bearing came from (one block may give `count` bearings).
+        for (const auto& r : c.bearings_resolved) {
+            if (gb.bearings[i].name != r.bearing && gb.bearings[i].name.rfind(r.bearing + ".", 0) != 0) continue;
+            // Only blocks with a designation: the check JSON of cases without one stays as it was.
+            if (r.designation.empty()) break;
+            j.key("designation").value(r.designation);
+            j.key("catalogue_entry").value(r.entry);
+            j.key("catalogue_location").value(r.entry_location);
+            j.key("type_source").value(r.type_source);
+            j.key("resolved").begin_array();
+            for (const auto& v : r.values) {
+                j.begin_object();
+                j.key("name").value(v.name);
+                j.key("text").value(v.text);
+                if (v.name == "series") j.key("value").value(v.text);
+                else j.key("value_si").value(v.si);
+                j.key("source").value(v.source);
+                j.end_object();
+            }
+            j.end_array();
+            break;
+        }
         j.end_object();
     }
     j.end_array();

@@ -1,0 +1,30 @@
+#pragma once
+// Rolling-bearing designations as catalogues print them (ISO 15 / ISO 355 basic designations
+// with maker's suffixes): "6307-2RS1", "NJ 309 ECP", "32306 J2/Q", "7308 BECBP", "QJ 308 N2MA",
+// "K 38x43x27", "NK 25/20". The key drops spaces, case and the suffixes that do not change the
+// boundary dimensions (seals, cage, clearance, E design), and keeps those that do: the contact
+// angle letters of an angular contact ball bearing (B = 40 deg, AC = 25 deg, A = 30 deg) and
+// B (steep angle) of a 322/323 tapered roller bearing. "NJ 309 E" and "NJ 309 ECP" share a key.
+#include <optional>
+#include <string>
+
+namespace gearloss::bearings {
+
+struct DesignationKey {
+    std::string key;      // "NJ309", "6307", "7308B", "32306", "K38X43X27", "NK25/20"
+    std::string prefix;   // letters before the number: "NJ", "QJ", "K", "" ...
+    std::string number;   // the series and bore digits: "309", "6307"
+};
+
+// nullopt when the text does not look like a designation (no digits after the letters).
+std::optional<DesignationKey> designation_key(const std::string& text);
+
+// The SKF (2004) series code of a designation for the constants table (skf_constants.hpp):
+// "NJ 406" -> "4", "NU 2210 E" -> "22", "6307" -> "63", "32306" -> "323", "7308 BE" -> "73B",
+// "QJ 308" -> "QJ"; nullopt when unknown.
+std::optional<std::string> skf_series_of_designation(const std::string& text);
+
+// Edit distance of two keys (for "did you mean" suggestions).
+int key_distance(const std::string& a, const std::string& b);
+
+}  // namespace gearloss::bearings
