@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
                "writable, 4 internal error, 130/143 interrupted (no output file written; a pipe stops part-way).\nEvery command: gearloss COMMAND --help");
     cli.set_version_flag("--version", std::string("gearloss ") + GEARLOSS_VERSION);
     cli.require_subcommand(1);
+    app::set_command_line(argc, argv);  // the report's footer
 
     // The subcommands, in the order of `gearloss --help`.
     struct Entry {
@@ -42,7 +43,7 @@ int main(int argc, char** argv) {
     std::vector<Entry> table;
     for (auto make : {app::make_map_command, app::make_point_command, app::make_diagnose_command, app::make_synth_command,
                       app::make_compare_command, app::make_mesh_profile_command, app::make_cycle_command,
-                      app::make_merge_command, app::make_check_command})
+                      app::make_merge_command, app::make_check_command, app::make_report_command})
         table.push_back({make(), nullptr});
     for (auto& e : table) e.sub = e.command->add_to(cli);
 
