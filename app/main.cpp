@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     // temporary file is removed, rather than kill the process mid-write.
     std::signal(SIGXFSZ, SIG_IGN);
     std::signal(SIGPIPE, SIG_IGN);  // a closed pipe is EPIPE: stdout ends quietly, files are still written
+    app::set_command_line(argc, argv);  // for the sidecar metadata of outputs
 
     CLI::App cli{"gearloss — where the power goes in a gearbox: mesh, churning, bearing and seal losses with the\n"
                  "thermally stabilised oil temperature, from a YAML description.\n\n"

@@ -45,6 +45,9 @@ void Loader::load_bearings() {
         if (s.d >= s.D)
             n.at("D").fail(fmt::format("outer diameter D = {} mm must exceed bore d = {} mm", s.D * 1e3, s.d * 1e3));
         s.B = n.has("B") ? n.positive_quantity("B", dim::length, "21 mm") : 0.25 * (s.D - s.d);
+        const std::string key = "bearings." + b.name + ".";
+        if (!n.has("B"))
+            assume(assumed, n, key + "B", number_text(s.B * 1e3) + " mm", "width estimated as (D - d) / 4");
         if (!n.has("B") && bearings::is_roller(s.type) && n.has("oil_bath"))
             n.fail("give the width 'B' for roller bearings in an oil bath (drag depends on it)");
         if (n.has("C0")) s.C0 = n.positive_quantity("C0", dim::force, "18.3 kN");
@@ -63,6 +66,9 @@ void Loader::load_bearings() {
                                   bearings::to_string(s.type), excerpt(series), all));
         }
         if (k) s.k = *k;
+        if (k && !n.has("series") && !n.has("constants"))
+            assume(assumed, n, key + "series", "(none)",
+                   fmt::format("SKF (2004) constants of the type's default series for a {} bearing", bearings::to_string(s.type)));
         if (auto c = n.get("constants")) {
             c->allow_keys({"R1", "R2", "R3", "R4", "S1", "S2", "S3", "S4", "K_Z", "K_L", "rows"});
             auto set = [&](const char* key, double& v) {
@@ -76,6 +82,9 @@ void Loader::load_bearings() {
         }
         if (s.type == bearings::BearingType::deep_groove_ball && s.C0 <= 0)
             n.fail("deep groove ball bearings need the static load rating 'C0' (for the axial-load terms)");
+        if (!n.has("lubrication"))
+            assume(assumed, n, key + "lubrication", "splash",
+                   "SKF (2004) replenishment/starvation constant K_rs = 3e-8 (oil bath at low level, splash)");
         if (auto l = n.get("lubrication"))
             s.K_rs = l->as_enum<double>({{"splash", 3e-8}, {"oil_bath_low", 3e-8}, {"oil_jet", 3e-8},
                                         {"oil_bath", 0.0}, {"grease", 6e-8}, {"oil_air", 6e-8}});
