@@ -34,7 +34,6 @@ int main(int argc, char** argv) {
                "writable, 4 internal error, 130/143 interrupted (no output file written; a pipe stops part-way).\nEvery command: gearloss COMMAND --help");
     cli.set_version_flag("--version", std::string("gearloss ") + GEARLOSS_VERSION);
     cli.require_subcommand(1);
-    app::set_command_line(argc, argv);  // the report's footer
 
     // The subcommands, in the order of `gearloss --help`.
     struct Entry {

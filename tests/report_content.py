@@ -153,7 +153,24 @@ check("the file name is shown escaped", "hostile&lt;b&gt;.yaml" in h and "hostil
 check("the embedded data keep the name", page_data(h)["case"]["name"] == '<script>alert("x")</script> & co')
 check("only the page's own three scripts", h.count("<script") == 3)
 
-# 5. Bad input: file:line:col error, exit 2, no output file (and an existing one untouched).
+# 5. Assumed values: what the case leaves out is listed and flagged; giving it removes the flag.
+assumed = {a["key"]: a for a in data["assumed"]}
+check("the case's assumed values are listed", "gears.w1.pressure_angle" in assumed and "oil.X_L" in assumed, str(list(assumed)[:5]))
+row = re.search(r'<tr class="gl-assumed"><td><span class="gl-flag">ASSUMED</span></td><td><code>gears\.w1\.pressure_angle</code></td><td>20 deg</td>', page)
+check("an assumed value is flagged with its value", row is not None)
+check("every assumed value has a flagged row", page.count('<tr class="gl-assumed"><td><span class="gl-flag">ASSUMED</span>') == len(data["assumed"]))
+given = open(case, encoding="utf-8").read().replace("{name: w1, ", "{name: w1, pressure_angle: 20 deg, ", 1)
+given = given.replace("oil: oils/75W90-A.yaml", "oil: " + os.path.join(src, "configs/oils/75W90-A.yaml"), 1)
+gcase = os.path.join(tmp, "given.yaml")
+open(gcase, "w", encoding="utf-8").write(given)
+r = run("report", gcase, *grid, "--no-spread", "-o", os.path.join(tmp, "g.html"))
+g = open(os.path.join(tmp, "g.html"), encoding="utf-8").read() if r.returncode == 0 else ""
+gd = page_data(g) if g else {"assumed": []}
+check("a value given is not assumed", g != "" and "gears.w1.pressure_angle" not in {a["key"] for a in gd["assumed"]}, r.stderr)
+check("... and is shown as given, unflagged", "<tr><td><code>gears.w1.pressure_angle</code></td><td>20 deg</td>" in g)
+check("the other gears' pressure angles stay assumed", "gears.w2.pressure_angle" in {a["key"] for a in gd["assumed"]})
+
+# 6. Bad input: file:line:col error, exit 2, no output file (and an existing one untouched).
 bad = os.path.join(tmp, "bad.yaml")
 open(bad, "w", encoding="utf-8").write(text.replace("speeds: [600 rpm, 700 rpm, 800 rpm]", "speeds: [600 rpm, 7x0 rpm]", 1))
 target = os.path.join(tmp, "bad.html")

@@ -136,13 +136,6 @@ void ProgressMeter::update(size_t done, size_t total) {
 }
 
 namespace {
-std::vector<std::string> g_command_line;
-}  // namespace
-
-void set_command_line(int argc, char** argv) { g_command_line.assign(argv, argv + argc); }
-const std::vector<std::string>& command_line() { return g_command_line; }
-
-namespace {
 // An error after part of a direct output was written (a pipe cannot be taken back).
 void note_incomplete_stream() {
     if (const std::string s = io::incomplete_stream(); !s.empty())

@@ -77,10 +77,6 @@ private:
     double after_ = 1.0, last_ = -1.0;
 };
 
-// The program's arguments as given (main sets them; the report's footer shows them).
-void set_command_line(int argc, char** argv);
-const std::vector<std::string>& command_line();
-
 // Runs a parsed command inside an output transaction (its files appear together, or none)
 // and translates what it throws into the exit code and the message on stderr:
 // InputError -> 2, io::IoError -> 3, any other exception -> 4, an interrupt -> 130 / 143.

@@ -99,15 +99,12 @@ std::string case_section(const ReportData& d) {
     std::string s = "<section id=\"case\"><h2>The case</h2>\n";
     for (const auto& n : d.sweep_notes) s += "<p class=\"gl-note\">" + escape_html(n) + "</p>\n";
     s += "<h3>Assumed values</h3>\n";
-    if (!d.assumed) {
-        s += "<p class=\"gl-note\">This build's case loader does not record assumed values (io::Case::assumed); "
-             "values the case does not give take the defaults of docs/config.md.</p>\n";
-    } else if (d.assumed->empty()) {
+    if (d.assumed.empty()) {
         s += "<p>None: every value the model needs is given by the case or its oil file.</p>\n";
     } else {
         s += "<p>Values the case does not give, filled in by the loader (<span class=\"gl-flag\">ASSUMED</span>):</p>"
              "<table class=\"gl-table\"><thead><tr><th></th><th>key</th><th>value</th><th>reason</th><th>where</th></tr></thead><tbody>";
-        for (const auto& a : *d.assumed)
+        for (const auto& a : d.assumed)
             s += fmt::format("<tr class=\"gl-assumed\"><td><span class=\"gl-flag\">ASSUMED</span></td><td><code>{}</code></td>"
                              "<td>{}</td><td>{}</td><td>{}</td></tr>",
                              escape_html(a.key), escape_html(a.value), escape_html(a.reason), escape_html(a.location));
@@ -117,7 +114,7 @@ std::string case_section(const ReportData& d) {
                      d.given.size());
     s += "<table class=\"gl-table\"><thead><tr><th>key</th><th>value</th><th>line</th></tr></thead><tbody>";
     for (const auto& g : d.given) {
-        const bool assumed = d.assumed && std::any_of(d.assumed->begin(), d.assumed->end(), [&](const AssumedValue& a) { return a.key == g.key; });
+        const bool assumed = std::any_of(d.assumed.begin(), d.assumed.end(), [&](const AssumedValue& a) { return a.key == g.key; });
         s += fmt::format("<tr{}><td><code>{}</code></td><td>{}{}</td><td>{}</td></tr>", assumed ? " class=\"gl-assumed\"" : "",
                          escape_html(g.key), escape_html(g.value), assumed ? " <span class=\"gl-flag\">ASSUMED</span>" : "",
                          g.line > 0 ? std::to_string(g.line) : "");
@@ -197,12 +194,10 @@ ordered_json page_data(const ReportData& d, size_t map_count) {
     add(d.reference_map, "reference");
     for (const auto& k : d.comparisons) add(k, "comparison");
     j["oils"] = std::move(oils);
-    ordered_json assumed = nullptr;
-    if (d.assumed) {
-        assumed = ordered_json::array();
-        for (const auto& a : *d.assumed)
-            assumed.push_back({{"key", a.key}, {"value", a.value}, {"reason", a.reason}, {"location", a.location}});
-    }
+    ordered_json assumed = ordered_json::array();
+    for (const auto& a : d.assumed)
+        assumed.push_back({{"key", a.key}, {"value", a.value}, {"reason", a.reason},
+                           {"location", a.location.empty() ? ordered_json(nullptr) : ordered_json(a.location)}});
     j["assumed"] = std::move(assumed);
     j["check"] = ordered_json::parse(io::check_json(d.reference));
     return j;

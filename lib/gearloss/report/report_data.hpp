@@ -20,10 +20,8 @@ struct GivenValue {
     int line = 0;
 };
 
-// A value the loader filled in because the case did not give it (io::Case::assumed).
-struct AssumedValue {
-    std::string key, value, reason, location;
-};
+// A value the loader filled in because the case did not give it (key, value, reason, location).
+using AssumedValue = io::AssumedValue;
 
 // The map of one oil over the case's operating points (grid order).
 struct OilMap {
@@ -45,9 +43,8 @@ struct ReportData {
     io::Case reference;  // the case with the command line's options applied (the reference oil's)
     std::string title;   // the case's `title:` when it has one, else empty
     std::vector<GivenValue> given;
-    // io::Case::assumed, flagged on the page. std::nullopt: this build's loader does not
-    // record assumed values (the page says so instead of claiming there are none).
-    std::optional<std::vector<AssumedValue>> assumed;
+    // io::Case::assumed of the case as reported, flagged on the page.
+    std::vector<AssumedValue> assumed;
     std::vector<std::string> sweep_notes;  // what of a case's sweep the report shows
     std::string thermal;                   // "stabilised" or "fixed at 80.0 degC (--oil-temp)"
     bool fixed_oil_temperature = false;
@@ -58,7 +55,7 @@ struct ReportData {
     // Footer.
     std::string version;
     std::vector<std::string> command_line;
-    std::string case_hash;
+    std::string case_hash;  // map::case_hash, as in the outputs' FILE.meta.json
     double seconds = 0;  // the maps' time (solve), for the page's summary
 };
 

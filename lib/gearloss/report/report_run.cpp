@@ -6,8 +6,8 @@
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/io/sweep.hpp"
-#include "gearloss/map/fingerprint.hpp"
 #include "gearloss/map/form_spread.hpp"
+#include "gearloss/map/output_metadata.hpp"
 
 namespace gearloss::report {
 namespace {
@@ -77,17 +77,15 @@ ReportData collect_report(const ReportRequest& q) {
         d.given.insert(d.given.end(), swept.begin(), swept.end());
     }
     if (root.has("description") && root.at("description").is_scalar()) d.title = root.at("description").raw().Scalar();
-    const auto fp = map::input_fingerprint({.config = q.config, .ratio = q.ratio.value_or(""),
-                                            .parsed = {{"", document}, {"sweep", sweep_block}}});
-    d.case_hash = fmt::format("{:016x}", fp.total());
 
     const bool oil_sweep = is_oil_sweep(sweep.axes());
     if (!sweep.axes().empty() && !oil_sweep)
         d.sweep_notes.push_back("The case sweeps " + oil_sweep_note(sweep.axes()) + ": this report shows its first variant (" +
                                 sweep.tag(0) + "); `gearloss map` computes every variant.");
     d.reference = q.prepare(sweep.variant(0), oil_sweep ? "sweep variant " + sweep.tag(0) : "");
-    // HOOK(t17-meta): d.assumed is filled from io::Case::assumed once the loader records it.
     const auto& k = d.reference;
+    d.assumed = k.assumed;
+    d.case_hash = map::case_hash(k);
     d.fixed_oil_temperature = k.model.thermal.mode == solver::ThermalMode::fixed;
     d.thermal = d.fixed_oil_temperature ? fmt::format("fixed at {:.1f} degC", k.model.thermal.oil_temperature - 273.15) +
                                               (q.overrides.oil_temp.empty() ? " (the case's thermal.mode)" : " (--oil-temp)")
@@ -111,7 +109,7 @@ ReportData collect_report(const ReportRequest& q) {
     std::vector<std::pair<io::Case, std::string>> others;
     for (const auto& file : q.oils) {
         io::Case c = k;
-        io::replace_oil(c, io::load_oil_file(file));
+        io::replace_oil_file(c, file);
         map::CaseOverrides o = q.overrides;
         o.oil = file;
         map::validate_case(c, o);
