@@ -47,7 +47,7 @@ TEST_CASE("report: user text is escaped for HTML and for embedded JSON", "[repor
 }
 
 TEST_CASE("report: differences use one colour sense, red worse and blue better", "[report]") {
-    // ColorBrewer RdBu's ends (Harrower & Brewer 2003): red #b2182b, blue #2166ac; zero difference is white-ish.
+    // The RdBu scheme's ends (Harrower & Brewer 2003): red #b2182b, blue #2166ac; zero difference is white-ish.
     CHECK(report::scale_colour(report::ColourSense::higher_is_worse, 1.0) == "#b2182b");   // more loss
     CHECK(report::scale_colour(report::ColourSense::higher_is_worse, 0.0) == "#2166ac");   // less loss
     CHECK(report::scale_colour(report::ColourSense::higher_is_better, 1.0) == "#2166ac");  // more efficiency

@@ -34,10 +34,10 @@ std::string interpolate(const std::array<unsigned, N>& stops, double t) {
     return fmt::format("#{:02x}{:02x}{:02x}", mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b));
 }
 
-// Viridis (perceptually uniform, readable in grey; Smith & van der Walt 2015), ten stops.
+// Viridis, perceptually uniform and readable in grey (Smith et al. 2015), ten stops.
 constexpr std::array<unsigned, 10> kViridis = {0x440154, 0x482878, 0x3e4989, 0x31688e, 0x26828e,
                                                0x1f9e89, 0x35b779, 0x6ece58, 0xb5de2b, 0xfde725};
-// Blue - white - red (ColorBrewer RdBu, Harrower & Brewer 2003), from blue (t = 0) to red (t = 1).
+// Blue - white - red, the RdBu scheme of Harrower & Brewer (2003), from blue (t = 0) to red (t = 1).
 constexpr std::array<unsigned, 9> kBlueRed = {0x2166ac, 0x4393c3, 0x92c5de, 0xd1e5f0, 0xf7f7f7,
                                               0xfddbc7, 0xf4a582, 0xd6604d, 0xb2182b};
 
