@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     // temporary file is removed, rather than kill the process mid-write.
     std::signal(SIGXFSZ, SIG_IGN);
     std::signal(SIGPIPE, SIG_IGN);  // a closed pipe is EPIPE: stdout ends quietly, files are still written
+    app::set_command_line(argc, argv);  // for the sidecar metadata of outputs
 
     CLI::App cli{"gearloss — where the power goes in a gearbox: mesh, churning, bearing and seal losses with the\n"
                  "thermally stabilised oil temperature, from a YAML description.\n\n"
@@ -42,7 +43,7 @@ int main(int argc, char** argv) {
     std::vector<Entry> table;
     for (auto make : {app::make_map_command, app::make_point_command, app::make_diagnose_command, app::make_synth_command,
                       app::make_compare_command, app::make_mesh_profile_command, app::make_cycle_command,
-                      app::make_merge_command, app::make_check_command})
+                      app::make_merge_command, app::make_check_command, app::make_report_command})
         table.push_back({make(), nullptr});
     for (auto& e : table) e.sub = e.command->add_to(cli);
 

@@ -27,5 +27,6 @@ std::unique_ptr<Command> make_mesh_profile_command();
 std::unique_ptr<Command> make_cycle_command();
 std::unique_ptr<Command> make_merge_command();
 std::unique_ptr<Command> make_check_command();
+std::unique_ptr<Command> make_report_command();
 
 }  // namespace gearloss::app

@@ -23,7 +23,7 @@ void add_common_options(CLI::App& sub, CommonOptions& c) {
 }
 
 void apply_case_options(io::Case& k, const CommonOptions& c) {
-    if (!c.oil.empty()) io::replace_oil(k, io::load_oil_file(c.oil));
+    if (!c.oil.empty()) io::replace_oil_file(k, c.oil);
     if (!c.oil_temp.empty()) {
         units::Quantity q;
         try {
@@ -89,6 +89,17 @@ double temperature_difference(const std::string& text, const char* what) {
         throw InputError("", 0, 0, what, "'" + io::excerpt(text) + "': " + e.message + " (expected e.g. '0.4K')");
     }
 }
+
+namespace {
+std::vector<std::string>& command_line_storage() {
+    static std::vector<std::string> args;
+    return args;
+}
+}  // namespace
+
+void set_command_line(int argc, char** argv) { command_line_storage().assign(argv, argv + argc); }
+
+const std::vector<std::string>& command_line() { return command_line_storage(); }
 
 void write_file(const std::string& file, const std::string& text) {
     io::AtomicFile f(file);

@@ -51,6 +51,10 @@ double single_value(const std::string& text, const units::Dimension& d, const ch
 // "0.4K", "0.4 degC": a temperature difference (the unit's offset removed).
 double temperature_difference(const std::string& text, const char* what);
 
+// The command line as given (main sets it), for the sidecar metadata of outputs.
+void set_command_line(int argc, char** argv);
+const std::vector<std::string>& command_line();
+
 // `text` into `file` (atomically; "-" = stdout).
 void write_file(const std::string& file, const std::string& text);
 // The same when a file was named (an optional --json FILE).

@@ -97,7 +97,52 @@ std::vector<double> load_axis(const YamlNode& n, const units::Dimension& d, cons
 
 }  // namespace
 
-void replace_oil(Case& c, const lubricant::Oil& oil) { replace_oil(c.model, oil); }
+namespace detail {
+
+std::string located_at(const SourceLocation& at) {
+    return at.known() ? fmt::format("{}:{}:{}", at.file, at.line, at.column) : std::string();
+}
+
+void assume(std::vector<AssumedValue>* out, const YamlNode& parent, std::string key, std::string value,
+            std::string reason) {
+    if (out) out->push_back({std::move(key), std::move(value), std::move(reason), located_at(parent.location())});
+}
+
+std::string number_text(double v) { return fmt::format("{:g}", v); }
+
+void note_bearing_friction(Case& c) {
+    std::erase_if(c.assumed, [](const AssumedValue& a) {
+        return a.key.starts_with("bearings.") && a.key.ends_with(".mu_ehl");
+    });
+    const auto& oil = c.model.oil;
+    for (const auto& b : c.model.gearbox.bearings) {
+        const bool roller = bearings::is_roller(b.spec.type);
+        if ((roller ? oil.bearing_roller : oil.bearing_ball).mu_ehl) continue;
+        const SourceLocation at = c.model.source ? c.model.source->find("bearings", b.name, "") : SourceLocation{};
+        c.assumed.push_back({"bearings." + b.name + ".mu_ehl", number_text(b.spec.mu_ehl),
+                             fmt::format("SKF (2004) full-film default for a {} bearing with {} oil (the oil gives no "
+                                         "bearing_friction.{}.mu_ehl)",
+                                         bearings::to_string(b.spec.type), lubricant::to_string(oil.base),
+                                         roller ? "roller" : "ball"),
+                             located_at(at)});
+    }
+}
+
+}  // namespace detail
+
+void replace_oil(Case& c, const lubricant::Oil& oil, const std::vector<AssumedValue>& assumed_by_oil) {
+    replace_oil(c.model, oil);
+    std::erase_if(c.assumed, [](const AssumedValue& a) { return a.key.starts_with("oil."); });
+    c.assumed.insert(c.assumed.end(), assumed_by_oil.begin(), assumed_by_oil.end());
+    detail::note_bearing_friction(c);
+}
+
+void replace_oil_file(Case& c, const std::string& file) {
+    std::vector<AssumedValue> assumed;
+    const lubricant::Oil oil = load_oil_file(file, &assumed);
+    replace_oil(c, oil, assumed);
+    c.oil_file = file;
+}
 
 void replace_oil(solver::Model& m, const lubricant::Oil& oil) {
     m.oil = oil;
@@ -154,6 +199,7 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
     c.sweep = read_sweep(root);
     auto& m = c.model;
     m.name = root.has("name") ? root.at("name").as_title() : fs::path(file).stem().string();
+    if (!root.has("name")) detail::assume(&c.assumed, root, "name", m.name, "the case file's name");
 
     const YamlNode oil = root.at("oil");
     if (oil.is_scalar()) {
@@ -162,13 +208,14 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
         if (!fs::is_regular_file(p, ec)) oil.fail("oil file '" + excerpt(p.string(), 200) + "' does not exist or is not a file");
         const YamlNode oil_root = read_oil ? read_oil(p.string()) : YamlNode::load_file(p.string());
         const YamlNode oil_node = oil_root.has("oil") ? oil_root.at("oil") : oil_root;
-        m.oil = load_oil(oil_node);
+        m.oil = load_oil(oil_node, &c.assumed);
+        c.oil_file = p.lexically_normal().string();
         index_sources(oil_node, "oil", *source);  // the oil's keys in their own file
     } else {
-        m.oil = load_oil(oil);
+        m.oil = load_oil(oil, &c.assumed);
     }
 
-    detail::Loader L{root, m, {}, {}, {}, base_dir, &c.bearings_resolved};
+    detail::Loader L{root, m, {}, {}, {}, base_dir, &c.bearings_resolved, &c.assumed};
     L.load_materials();
     L.load_shafts();
     L.load_gears();
@@ -214,10 +261,11 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
     const auto lubrication = h.has("lubrication") ? h.at("lubrication").as_enum<solver::Lubrication>(
                                                         {{"dip", solver::Lubrication::dip}, {"injection", solver::Lubrication::injection}})
                                                   : solver::Lubrication::dip;
+    if (!h.has("lubrication")) detail::assume(&c.assumed, h, "housing.lubrication", "dip", "splash lubrication from the sump");
     m.gearbox.oil_volume = h.positive_quantity("oil_volume", units::dim::volume, "2 L");
     if (auto lv = h.get("oil_level")) m.gearbox.oil_level = lv->as_quantity(units::dim::length, "-60 mm");
 
-    detail::load_thermal(root.at("thermal"), m.thermal);
+    detail::load_thermal(root.at("thermal"), m.thermal, &c.assumed);
     if (auto o = root.get("options")) detail::load_options(*o, m);
     if (auto mech = root.get("mechanisms")) load_mechanism_settings(*mech, m);
     if (auto cal = root.get("calibration")) load_calibration(*cal, m);
@@ -247,6 +295,7 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
     }
 
     m.source = std::move(source);
+    detail::note_bearing_friction(c);
     // Errors found once the model is assembled point at the item they come from. Every
     // ratio is checked here, so a ratio selected at run time (Model::select_ratio, for a
     // drive cycle or a loss table per gear) needs no check that could fail without a line.

@@ -33,6 +33,15 @@ struct SweepAxis {
     std::vector<std::string> values; // YAML scalars as written ("3.75 mm", "oils/75W140-A.yaml")
 };
 
+// A physical value (or a choice) the loader assumed because the case did not give it, so
+// that outputs can say what they rest on (the `assumed` list of FILE.meta.json, docs/outputs.md).
+struct AssumedValue {
+    std::string key;       // key path as a case would write it: "oil.X_L", "bearings.B1.mu_ehl"
+    std::string value;     // as a case would write it, with its unit: "0.8", "95 degC", "20 deg"
+    std::string reason;    // where the value comes from (the default's source)
+    std::string location;  // "file:line:col" of the block that omits the key, or empty
+};
+
 struct Case {
     std::string file;
     solver::Model model;
@@ -43,9 +52,12 @@ struct Case {
     // Plausibility findings ("file:line:col: key: warning: ..."), printed by every
     // command on stderr and listed by `check`.
     std::vector<std::string> warnings;
-    std::string oil_temperature_key;
+    std::string oil_temperature_key;  // "file:line:col: thermal.oil_temperature" when the case fixes it
+    std::string oil_file;  // the oil file the case names (as resolved), empty when the oil is inline
+    // Every value assumed because the case (or its oil file) did not give it, in reading order.
+    std::vector<AssumedValue> assumed;
     // Per bearing block: its designation, the catalogue row and the source of each value (`check`).
-    std::vector<BearingResolution> bearings_resolved;  // "file:line:col: thermal.oil_temperature" when the case fixes it
+    std::vector<BearingResolution> bearings_resolved;
 };
 
 // The `vehicle` block (docs/config.md) into c.vehicle (and c.torque_converter).
@@ -64,11 +76,15 @@ using OilFileReader = std::function<YamlNode(const std::string& path)>;
 // appears in messages; oil files are read by `read_oil` (YamlNode::load_file when empty).
 Case load_case_node(const YamlNode& root, const std::string& name, const std::string& base_dir,
                     const std::optional<std::string>& ratio = std::nullopt, const OilFileReader& read_oil = {});
-// Loads an oil from a YAML mapping (inline or a separate file).
-lubricant::Oil load_oil(const YamlNode& node);
-lubricant::Oil load_oil_file(const std::string& file);
-// Replaces the oil of a loaded case (bearing friction pairs follow the new oil).
-void replace_oil(Case& c, const lubricant::Oil& oil);
+// Loads an oil from a YAML mapping (inline or a separate file); the values it assumes are
+// appended to `assumed` (keys "oil.X_L", ...) when given.
+lubricant::Oil load_oil(const YamlNode& node, std::vector<AssumedValue>* assumed = nullptr);
+lubricant::Oil load_oil_file(const std::string& file, std::vector<AssumedValue>* assumed = nullptr);
+// Replaces the oil of a loaded case (bearing friction pairs follow the new oil); the
+// assumed values of the old oil ("oil.*", bearings' mu_ehl) give way to `assumed_by_oil`.
+void replace_oil(Case& c, const lubricant::Oil& oil, const std::vector<AssumedValue>& assumed_by_oil = {});
+// --oil FILE: the oil file replaces the case's oil (Case::oil_file names it) with its assumed values.
+void replace_oil_file(Case& c, const std::string& file);
 // The same on a model: the oil and what derives from it (the bearings' friction pair).
 void replace_oil(solver::Model& m, const lubricant::Oil& oil);
 

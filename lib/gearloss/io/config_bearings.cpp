@@ -128,12 +128,14 @@ void Loader::load_bearings() {
         else s.D = n.positive_quantity("D", dim::length, "80 mm");
         if (s.d >= s.D)
             (n.has("D") ? n.at("D") : n).fail(fmt::format("outer diameter D = {} mm must exceed bore d = {} mm", s.D * 1e3, s.d * 1e3));
+        const std::string key = "bearings." + b.name + ".";
         if (auto v = pick("B", dim::length, "21 mm", cat ? std::optional<double>(cat->B) : std::nullopt, 1e-3, "mm")) {
             s.B = *v;
             if (tapered_row && !n.has("B")) res.values.back().name = "B (= T, total width)";
         } else {
             s.B = 0.25 * (s.D - s.d);
             res.values.push_back({"B", fmt::format("{:g} mm", s.B * 1e3), s.B, "estimate 0.25 (D - d) (no B given)"});
+            assume(assumed, n, key + "B", number_text(s.B * 1e3) + " mm", "width estimated as (D - d) / 4");
         }
         if (tapered_row && cat->cone_width)
             res.values.push_back({"cone width", fmt::format("{:g} mm", *cat->cone_width * 1e3), *cat->cone_width, from_cat});
@@ -173,6 +175,9 @@ void Loader::load_bearings() {
         if (k) s.k = *k;
         res.values.push_back({"series", series.empty() ? "other" : series, 0.0,
                               n.has("constants") ? series_source + "; constants from 'constants'" : series_source});
+        if (k && !cat && !n.has("series") && !n.has("constants"))
+            assume(assumed, n, key + "series", "(none)",
+                   fmt::format("SKF (2004) constants of the type's default series for a {} bearing", bearings::to_string(s.type)));
         if (auto c = n.get("constants")) {
             c->allow_keys({"R1", "R2", "R3", "R4", "S1", "S2", "S3", "S4", "K_Z", "K_L", "rows"});
             auto set = [&](const char* key, double& v) {
@@ -186,6 +191,9 @@ void Loader::load_bearings() {
         }
         if (s.type == bearings::BearingType::deep_groove_ball && s.C0 <= 0)
             n.fail("deep groove ball bearings need the static load rating 'C0' (for the axial-load terms)");
+        if (!n.has("lubrication"))
+            assume(assumed, n, key + "lubrication", "splash",
+                   "SKF (2004) replenishment/starvation constant K_rs = 3e-8 (oil bath at low level, splash)");
         if (auto l = n.get("lubrication"))
             s.K_rs = l->as_enum<double>({{"splash", 3e-8}, {"oil_bath_low", 3e-8}, {"oil_jet", 3e-8},
                                         {"oil_bath", 0.0}, {"grease", 6e-8}, {"oil_air", 6e-8}});

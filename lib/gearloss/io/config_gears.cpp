@@ -92,6 +92,10 @@ void Loader::load_gears() {
         s.z = zt.as_int();
         if (s.z < 5) zt.fail(fmt::format("number of teeth must be at least 5, got {}", s.z));
         s.mn = n.positive_quantity("module", dim::length, "3.5 mm");
+        const std::string key = "gears." + s.name + ".";
+        const auto unless_given = [&](const char* k, const std::string& value, const char* why) {
+            if (!n.has(k)) assume(assumed, n, key + k, value, why);
+        };
         s.x = n.has("profile_shift") ? n.at("profile_shift").as_number() : 0.0;
         if (!(s.x > -1.5 && s.x < 2.5)) n.at("profile_shift").fail("profile shift coefficient outside -1.5..2.5");
         s.b = n.positive_quantity("face_width", dim::length, "35 mm");
@@ -117,6 +121,15 @@ void Loader::load_gears() {
         }
         s.material = n.has("material") ? material(n.at("material")) : materials["steel"];
         if (n.has("Ra")) s.Ra = n.positive_quantity("Ra", dim::length, "0.5 um");
+        unless_given("profile_shift", "0", "no profile shift");
+        unless_given("pressure_angle", "20 deg", "ISO 53 basic rack");
+        unless_given("helix_angle", "0 deg", "spur gear");
+        unless_given("addendum_coefficient", number_text(s.ha_star), "ISO 53 basic rack");
+        unless_given("dedendum_coefficient", number_text(s.hf_star), "ISO 53 basic rack");
+        unless_given("material", "steel", "E = 210 GPa, Poisson 0.3, 7850 kg/m^3");
+        unless_given("Ra", number_text(s.Ra * 1e6) + " um", "ground flanks (geometry::GearSpec default)");
+        if (!n.has("Rq"))
+            assume(assumed, n, key + "Rq", "1.25 Ra", "Gaussian surface: Rq = 1.25 Ra");
         if (n.has("Rq")) s.Rq = n.positive_quantity("Rq", dim::length, "0.6 um");
         if (s.Ra > 50e-6) n.at("Ra").fail("roughness above 50 um; check the unit");
         if (auto m = n.get("mount"))

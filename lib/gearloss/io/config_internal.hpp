@@ -3,6 +3,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "gearloss/bearings/skf_model.hpp"
 #include "gearloss/io/config.hpp"
@@ -11,6 +12,18 @@
 namespace gearloss::io::detail {
 
 constexpr double deg = std::numbers::pi / 180.0;
+
+// "file:line:col" of a place in a case, empty when unknown.
+std::string located_at(const SourceLocation& at);
+// Notes in `out` (when given) that `key` was assumed: `value` (with its unit) because `parent`
+// does not give it; `reason` says where the value comes from.
+void assume(std::vector<AssumedValue>* out, const YamlNode& parent, std::string key, std::string value,
+            std::string reason);
+// A number as a case would write it ("0.65", "6.5e-04"): %g.
+std::string number_text(double v);
+// The bearings' full-film friction mu_ehl the oil does not give (SKF defaults by type and
+// base oil): one assumed value per bearing, replacing earlier ones ("bearings.B1.mu_ehl").
+void note_bearing_friction(Case& c);
 
 // SKF sliding friction pair of a bearing from the oil (or the SKF defaults by type and base oil).
 void set_bearing_friction(bearings::BearingSpec& s, const lubricant::Oil& oil);
@@ -23,6 +36,7 @@ struct Loader {
     std::map<std::string, geometry::Material> materials;
     std::string base_dir;                              // the case file's folder (bearing_catalogue)
     std::vector<BearingResolution>* resolved = nullptr;  // what `check` prints per bearing
+    std::vector<AssumedValue>* assumed = nullptr;  // the values the sections assume (Case::assumed)
 
     // config_gears.cpp
     int shaft_ref(const YamlNode& n);
@@ -40,6 +54,6 @@ struct Loader {
 
 // config_options.cpp
 void load_options(const YamlNode& n, solver::Model& m);
-void load_thermal(const YamlNode& n, solver::ThermalSettings& t);
+void load_thermal(const YamlNode& n, solver::ThermalSettings& t, std::vector<AssumedValue>* assumed = nullptr);
 
 }  // namespace gearloss::io::detail

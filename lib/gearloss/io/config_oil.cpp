@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gearloss/io/config.hpp"
+#include "gearloss/io/config_internal.hpp"
 
 namespace gearloss::io {
 
@@ -43,7 +44,9 @@ lubricant::BearingFrictionPair parse_pair(const YamlNode& n) {
 
 }  // namespace
 
-lubricant::Oil load_oil(const YamlNode& n) {
+lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
+    using detail::assume;
+    using detail::number_text;
     n.allow_keys({"name", "base", "viscosity", "density", "thermal_expansion", "piezoviscosity", "X_L",
                   "thermal_conductivity", "specific_heat", "bearing_friction", "gear_friction", "traction",
                   "max_temperature", "note"});
@@ -51,6 +54,11 @@ lubricant::Oil load_oil(const YamlNode& n) {
     oil.name = n.at("name").as_title();
     oil.base = parse_base(n.at("base"));
     oil.max_temperature = lubricant::default_max_temperature(oil.base);
+    if (!n.has("max_temperature"))
+        assume(assumed, n, "oil.max_temperature", number_text(oil.max_temperature - 273.15) + " degC",
+               fmt::format("permissible sump temperature by base oil ({}): mineral 95 degC as rated in ISO/TR 14179-1, "
+                           "synthetic and ATF typical datasheet limits (docs/config.md)",
+                           lubricant::to_string(oil.base)));
     if (auto t = n.get("max_temperature")) {
         oil.max_temperature = t->as_temperature();
         if (!(oil.max_temperature > 273.15 && oil.max_temperature < 273.15 + 400))
@@ -86,6 +94,9 @@ lubricant::Oil load_oil(const YamlNode& n) {
         }
         std::string law = tv.size() == 3 ? "vogel" : "astm_d341";
         if (auto l = v.get("law")) law = l->as_enum<std::string>({{"vogel", "vogel"}, {"astm_d341", "astm_d341"}});
+        else
+            assume(assumed, v, "oil.viscosity.law", law,
+                   fmt::format("chosen by the number of points ({}): 3 points select Vogel, else ASTM D341", tv.size()));
         try {
             if (law == "vogel") {
                 if (tv.size() != 3) v.at("points").fail("the Vogel law needs exactly 3 points");
@@ -108,21 +119,30 @@ lubricant::Oil load_oil(const YamlNode& n) {
         d.allow_keys({"value", "at"});
         const double rho = d.positive_quantity("value", dim::density, "885 kg/m^3");
         const double T = d.has("at") ? d.at("at").as_temperature() : 288.15;
+        if (!d.has("at")) assume(assumed, d, "oil.density.at", "15 degC", "densities are quoted at 15 degC (ISO 12185)");
         oil.rho15 = rho;  // corrected below once the expansion is known
         oil.expansion = 0;
         const double beta = n.has("thermal_expansion")
                                 ? n.at("thermal_expansion").as_quantity(dim::per_kelvin, "6.8e-4 1/K")
                                 : 6.5e-4;
+        if (!n.has("thermal_expansion"))
+            assume(assumed, n, "oil.thermal_expansion", "6.5e-4 1/K", "typical of gear oils (lubricant::Oil default)");
         oil.rho15 = rho / (1.0 - beta * (T - 288.15));
         oil.expansion = beta;
     } else {
         oil.rho15 = d.as_quantity(dim::density, "885 kg/m^3");
         if (!(oil.rho15 > 300 && oil.rho15 < 2500)) d.fail("density outside 300..2500 kg/m^3; check the unit");
         if (auto e = n.get("thermal_expansion")) oil.expansion = e->as_quantity(dim::per_kelvin, "6.8e-4 1/K");
+        else assume(assumed, n, "oil.thermal_expansion", number_text(oil.expansion) + " 1/K",
+                    "typical of gear oils (lubricant::Oil default)");
     }
     if (!(oil.expansion >= 0 && oil.expansion < 5e-3))
         n.at("thermal_expansion").fail("expansion coefficient must be in [0, 5e-3] 1/K (positive: density falls with T)");
 
+    if (!n.has("piezoviscosity"))
+        assume(assumed, n, "oil.piezoviscosity", "gold",
+               fmt::format("Gold et al. (2001) alpha = s nu^t for base oil {} (Fernandes 2015, Table 2.7)",
+                           lubricant::to_string(oil.base)));
     if (auto pz = n.get("piezoviscosity")) {
         if (pz->is_scalar()) {
             if (pz->as_string() != "gold") pz->fail("use 'gold' or a list of [temperature, coefficient] pairs");
@@ -144,13 +164,41 @@ lubricant::Oil load_oil(const YamlNode& n) {
         if (!(oil.X_L > 0 && oil.X_L < 3)) x->fail("X_L must be in (0, 3)");
     } else if (auto def = lubricant::default_XL(oil.base)) {
         oil.X_L = *def;
+        assume(assumed, n, "oil.X_L", number_text(*def),
+               fmt::format("ISO/TS 6336-20 lubricant factor for base oil {}", lubricant::to_string(oil.base)));
     } else {
         n.fail(fmt::format("base oil '{}' has no standard X_L (ISO/TS 6336-20); give 'X_L' (e.g. 0.65, Fernandes 2015)",
                            lubricant::to_string(oil.base)));
     }
     if (auto k = n.get("thermal_conductivity")) oil.k_fixed = k->as_quantity(dim::thermal_conductivity, "0.15 W/(m*K)");
+    else
+        assume(assumed, n, "oil.thermal_conductivity",
+               oil.base == BaseOil::mineral || oil.base == BaseOil::transmission_fluid ? "Cragoe"
+                                                                                       : "0.158 (1 - 0.00054 T[degC]) W/(m*K)",
+               "function of temperature: Cragoe for petroleum oils, typical datasheet values for synthetic base stocks");
     if (auto c = n.get("specific_heat")) oil.cp_fixed = c->as_quantity(dim::specific_heat, "2000 J/(kg*K)");
+    else assume(assumed, n, "oil.specific_heat", "Cragoe", "function of temperature and density (Cragoe)");
     oil.traction = lubricant::default_traction(oil.base);
+    {
+        // Traction properties the case does not give: the defaults by base oil (docs/config.md table).
+        const auto tr = n.get("traction");
+        const YamlNode& at = tr ? *tr : n;
+        const auto& t = oil.traction;
+        const std::string why = fmt::format("assumed order-of-magnitude default for base oil {} (docs/config.md)",
+                                            lubricant::to_string(oil.base));
+        const auto unless_given = [&](const char* key, const std::string& value) {
+            if (!tr || !tr->has(key)) assume(assumed, at, std::string("oil.traction.") + key, value, why);
+        };
+        unless_given("eyring_stress", number_text(t.eyring_stress * 1e-6) + " MPa");
+        unless_given("limiting_shear_stress", number_text(t.limiting_shear_0 * 1e-6) + " MPa");
+        unless_given("limiting_shear_slope", number_text(t.limiting_shear_slope));
+        unless_given("boundary_friction", number_text(t.mu_boundary));
+        unless_given("mixed_B", number_text(t.mixed_B));
+        unless_given("mixed_m", number_text(t.mixed_m));
+        if (!tr || !tr->has("roelands_index"))
+            assume(assumed, at, "oil.traction.roelands_index", "from alpha",
+                   "Roelands Z = alpha p_r / (ln eta0 + 9.67) from the pressure-viscosity coefficient");
+    }
     if (auto tr = n.get("traction")) {
         tr->allow_keys({"eyring_stress", "limiting_shear_stress", "limiting_shear_slope", "boundary_friction", "mixed_B",
                         "mixed_m", "roelands_index"});
@@ -169,17 +217,25 @@ lubricant::Oil load_oil(const YamlNode& n) {
               t.mu_boundary > 0 && t.mu_boundary < 1 && t.mixed_B > 0 && t.mixed_m > 0))
             tr->fail("traction properties out of range (Eyring stress > 0, 0 <= slope < 1, 0 < boundary friction < 1)");
     }
-    if (auto bf = n.get("bearing_friction")) {
+    const auto bf = n.get("bearing_friction");
+    if (bf) {
         bf->allow_keys({"ball", "roller"});
         if (auto b = bf->get("ball")) oil.bearing_ball = parse_pair(*b);
         if (auto r = bf->get("roller")) oil.bearing_roller = parse_pair(*r);
     }
+    // mu_ehl left out is assumed per bearing (type and base oil), where the bearings are read.
+    for (const char* family : {"ball", "roller"}) {
+        const auto f = bf ? bf->get(family) : std::nullopt;
+        if (!f || !f->has("mu_bl"))
+            assume(assumed, f ? *f : bf ? *bf : n, fmt::format("oil.bearing_friction.{}.mu_bl", family),
+                   number_text(lubricant::BearingFrictionPair{}.mu_bl), "SKF (2004) boundary friction coefficient");
+    }
     return oil;
 }
 
-lubricant::Oil load_oil_file(const std::string& file) {
+lubricant::Oil load_oil_file(const std::string& file, std::vector<AssumedValue>* assumed) {
     const YamlNode root = YamlNode::load_file(file);
-    return load_oil(root.has("oil") ? root.at("oil") : root);
+    return load_oil(root.has("oil") ? root.at("oil") : root, assumed);
 }
 
 }  // namespace gearloss::io

@@ -43,7 +43,7 @@ void load_options(const YamlNode& n, solver::Model& m) {
     }
 }
 
-void load_thermal(const YamlNode& n, solver::ThermalSettings& t) {
+void load_thermal(const YamlNode& n, solver::ThermalSettings& t, std::vector<AssumedValue>* assumed) {
     n.allow_keys({"mode", "oil_temperature", "ambient", "heat_rejection", "max_oil_temperature", "heat_capacity",
                   "network"});
     if (auto net = n.get("network")) {
@@ -77,8 +77,12 @@ void load_thermal(const YamlNode& n, solver::ThermalSettings& t) {
                                                                         {"stabilized", solver::ThermalMode::stabilised},
                                                                         {"fixed", solver::ThermalMode::fixed}})
                            : solver::ThermalMode::stabilised;
+    if (!n.has("mode")) assume(assumed, n, "thermal.mode", "stabilised", "the oil temperature is solved from the heat balance");
     if (t.mode == solver::ThermalMode::fixed) t.oil_temperature = n.at("oil_temperature").as_temperature();
     else if (n.has("oil_temperature")) t.oil_temperature = n.at("oil_temperature").as_temperature();
+    if (!n.has("max_oil_temperature") && t.mode == solver::ThermalMode::stabilised)
+        assume(assumed, n, "thermal.max_oil_temperature", number_text(t.equilibrium.T_max - 273.15) + " degC",
+               "search limit of the heat balance: no equilibrium is reported above it");
     if (auto m = n.get("max_oil_temperature")) {
         t.equilibrium.T_max = m->as_temperature();
         if (t.equilibrium.T_max <= t.ambient + 1) m->fail("must be above the ambient temperature");
@@ -102,6 +106,15 @@ void load_thermal(const YamlNode& n, solver::ThermalSettings& t) {
             s.allow_keys({"area", "emissivity", "height", "length", "air_speed"});
             thermal::HousingSurface hs;
             hs.area = s.positive_quantity("area", units::dim::area, "0.5 m^2");
+            const auto unless_given = [&](const char* k, const std::string& value, const char* why) {
+                if (!s.has(k)) assume(assumed, s, std::string("thermal.heat_rejection.housing.") + k, value, why);
+            };
+            unless_given("emissivity", number_text(hs.emissivity), "painted housing");
+            unless_given("height", number_text(hs.height) + " m", "characteristic length of free convection");
+            if (!s.has("length"))
+                assume(assumed, s, "thermal.heat_rejection.housing.length",
+                       s.has("height") ? "the height" : number_text(hs.height) + " m", "taken equal to the height");
+            unless_given("air_speed", "0 m/s", "still air (free convection only)");
             if (s.has("emissivity")) {
                 hs.emissivity = s.at("emissivity").as_number();
                 if (!(hs.emissivity >= 0 && hs.emissivity <= 1)) s.at("emissivity").fail("emissivity must be in [0, 1]");

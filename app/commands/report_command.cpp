@@ -1,0 +1,95 @@
+// gearloss report: one self-contained HTML page about a case (lib/gearloss/report/): the case
+// as given, derived geometry and checks, model forms, maps of efficiency, oil temperature and
+// the loss breakdown, the model-form spread and the comparison with other oils.
+#include "commands/command.hpp"
+#include "commands/common.hpp"
+#include "commands/grid_overrides.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/interrupt.hpp"
+#include "gearloss/io/output_paths.hpp"
+#include "gearloss/map/map_runner.hpp"
+#include "gearloss/report/html_report.hpp"
+#include "gearloss/report/report_run.hpp"
+
+namespace gearloss::app {
+namespace {
+
+constexpr GridOverrides::Examples kReportExamples{"600,700,800rpm", "150,200,250Nm"};
+
+class ReportCommand final : public Command {
+public:
+    CLI::App* add_to(CLI::App& app) override {
+        auto* s = app.add_subcommand("report", "one self-contained HTML page: the case, derived geometry and checks, model "
+                                               "forms, efficiency / oil-temperature / loss maps, form spread, oil comparison");
+        s->add_option("config", common_.config, "gearbox case (YAML)")->required();
+        s->add_option("--ratio", common_.ratio, "select a ratio defined under gearbox.ratios");
+        s->add_option("--oil-temp", common_.oil_temp, "fixed oil temperature (e.g. 70degC): no thermal solve");
+        s->add_option("--oil", oils_, "compare the case's oil with this oil file (YAML); give once per oil");
+        grid_.add_to(*s, "override the input speeds, e.g. 600,700,800rpm", "override the input torques, e.g. 150,200,250Nm");
+        s->add_option("-o,--output", out_, "output HTML file ('-' = stdout)")->required();
+        s->add_option("--threads", threads_, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+        s->add_flag("--no-spread", no_spread_, "skip the model-form spread (it solves the map once per form combination)");
+        spread_axes_option_ = s->add_option("--spread-axes", spread_axes_text_,
+                                            "restrict the spread to these form axes, e.g. mesh.friction,windage.form");
+        s->footer("Example: gearloss report configs/transfer-box.yaml --oil configs/oils/75W140-A.yaml -o report.html");
+        return s;
+    }
+
+    int run() override {
+        std::vector<std::pair<std::string, std::string>> inputs = {{"config", common_.config}};
+        for (const auto& f : oils_) inputs.emplace_back("--oil", f);
+        io::require_outputs_not_inputs({{"--output", out_}}, inputs);
+        const bool axes_given = spread_axes_option_ && spread_axes_option_->count() > 0;
+        if (axes_given && spread_axes_text_.empty())
+            throw InputError("", 0, 0, "--spread-axes", "empty: name the axes, e.g. mesh.friction,windage.form");
+        if (axes_given && no_spread_) throw InputError("", 0, 0, "--spread-axes", "--no-spread skips the spread");
+
+        report::ReportRequest q;
+        q.config = common_.config;
+        if (!common_.ratio.empty()) q.ratio = common_.ratio;
+        q.oils = oils_;
+        q.overrides = grid_.case_overrides();
+        q.overrides.oil_temp = common_.oil_temp;
+        q.prepare = [this](io::Case c, const std::string& note) {
+            try {
+                c = with_options(std::move(c), common_);
+                grid_.apply_checked(c, kReportExamples);
+            } catch (const InputError& e) {
+                if (note.empty()) throw;
+                throw InputError(e.file, e.line, e.column, e.key, e.message + " (" + note + ")");
+            }
+            return c;
+        };
+        q.spread = !no_spread_;
+        for (size_t a = 0; a < spread_axes_text_.size();) {
+            const size_t e = std::min(spread_axes_text_.find(',', a), spread_axes_text_.size());
+            if (e == a) throw InputError("", 0, 0, "--spread-axes", "an empty axis name (e.g. mesh.friction,windage.form)");
+            q.spread_axes.push_back(spread_axes_text_.substr(a, e - a));
+            a = e + 1;
+        }
+        q.map_options.threads = threads_;
+        ProgressMeter meter;
+        q.map_options.progress = meter.callback();
+        q.command_line = command_line();
+        const report::ReportData data = report::collect_report(q);
+        io::throw_if_interrupted();
+        write_file(out_, report::html_report(data));
+        return kOk;
+    }
+
+private:
+    CommonOptions common_;  // config, --ratio, --oil-temp (its `oil` stays empty: --oil names oils to compare)
+    GridOverrides grid_;
+    std::vector<std::string> oils_;
+    std::string out_;
+    int threads_ = 0;
+    bool no_spread_ = false;
+    std::string spread_axes_text_;
+    CLI::Option* spread_axes_option_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_report_command() { return std::make_unique<ReportCommand>(); }
+
+}  // namespace gearloss::app

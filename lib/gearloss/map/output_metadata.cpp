@@ -1,0 +1,173 @@
+// The sidecar FILE.meta.json of a CSV output (docs/outputs.md).
+#include "gearloss/map/output_metadata.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "gearloss/io/atomic_file.hpp"
+#include "gearloss/io/csv_read.hpp"
+#include "gearloss/io/output_paths.hpp"
+#include "gearloss/losses/loss_mechanism.hpp"
+#include "gearloss/map/fingerprint.hpp"
+
+namespace gearloss::map {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+namespace {
+
+// A number, or null when it is not finite (JSON has no NaN or infinity).
+ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
+
+ordered_json text_or_null(const std::string& s) { return s.empty() ? ordered_json(nullptr) : ordered_json(s); }
+
+ordered_json oil_entry(const lubricant::Oil& oil, const std::string& file) {
+    ordered_json o;
+    o["name"] = oil.name;
+    o["base"] = lubricant::to_string(oil.base);
+    o["file"] = text_or_null(file);
+    o["max_temperature_C"] = number(oil.max_temperature - 273.15);
+    return o;
+}
+
+// "transfer-box, oil 75W90-A, ratio 3rd, oil temperature 80 degC (fixed)": for plot titles.
+std::string title(const io::Case& c, const MetadataRequest& r) {
+    const auto& m = c.model;
+    std::string oil = m.oil.name;
+    if (!r.oils.empty()) {
+        oil.clear();
+        for (const auto& o : r.oils) oil += (oil.empty() ? "" : " vs ") + o.oil.name;
+    }
+    std::string s = fmt::format("{}, oil {}", m.name, oil);
+    if (!m.ratio.empty()) s += ", ratio " + m.ratio;
+    if (m.thermal.mode == solver::ThermalMode::fixed)
+        s += fmt::format(", oil temperature {:g} degC (fixed)", m.thermal.oil_temperature - 273.15);
+    else
+        s += ", stabilised oil temperature";
+    return s;
+}
+
+const char* unit_of_suffix(const std::string& s) {
+    static const std::pair<const char*, const char*> table[] = {
+        {"W", "W"},     {"kW", "kW"}, {"C", "degC"}, {"K", "K"},   {"Nm", "N*m"}, {"rpm", "rpm"},
+        {"um", "um"},   {"mm", "mm"}, {"m", "m"},    {"s", "s"},   {"Pa", "Pa"},  {"MPa", "MPa"},
+        {"GPa", "GPa"}, {"N", "N"},   {"J", "J"},    {"kJ", "kJ"}, {"kg", "kg"},  {"percent", "%"},
+        {"mps", "m/s"}, {"kmh", "km/h"}};
+    for (const auto& [suffix, unit] : table)
+        if (s == suffix) return unit;
+    return nullptr;
+}
+
+}  // namespace
+
+std::optional<std::string> column_unit(const std::string& name) {
+    // "Torque Loss [Nm]" (VECTO): the unit in brackets.
+    if (const size_t a = name.rfind('['); a != std::string::npos && name.back() == ']') {
+        const std::string u = name.substr(a + 1, name.size() - a - 2);
+        const char* known = unit_of_suffix(u);
+        return known ? std::string(known) : u;
+    }
+    if (name == "status" || name.starts_with("status_") || name.ends_with("_status") || name.ends_with("_form") ||
+        name.ends_with("_forms") || name == "ratio" || name == "gear" || name == "oil" || name == "cycle")
+        return std::nullopt;
+    const size_t u = name.rfind('_');
+    if (u != std::string::npos)
+        if (const char* known = unit_of_suffix(name.substr(u + 1))) return std::string(known);
+    return std::string("1");  // mu, lambda, efficiency, ratios: dimensionless
+}
+
+std::string case_hash(const io::Case& c) {
+    std::string text;
+    try {
+        text = io::read_input_file(c.file, io::kMaxYamlFileBytes);
+    } catch (const std::exception&) {
+        return "";  // a case given as text: no file to hash
+    }
+    Fnv1a h;
+    h.add(text);
+    std::vector<std::string> files;
+    JobInputs in;
+    in.config = c.file;
+    for (const auto& [path, file] : named_files(in)) {
+        h.add(path).add(io::read_regular_file(file, io::kMaxCsvFileBytes));
+        files.push_back(fs::weakly_canonical(file).string());
+    }
+    // An oil file that replaced the case's own (--oil) is part of what was computed.
+    if (!c.oil_file.empty() &&
+        std::find(files.begin(), files.end(), fs::weakly_canonical(c.oil_file).string()) == files.end())
+        h.add("--oil").add(io::read_input_file(c.oil_file, io::kMaxYamlFileBytes));
+    return h.hex();
+}
+
+ordered_json output_metadata(const io::Case& c, const MetadataRequest& r) {
+    const auto& m = c.model;
+    ordered_json j;
+    j["format"] = kMetadataFormat;
+    j["gearloss_version"] = GEARLOSS_VERSION;
+    j["command"] = r.command;
+    j["command_line"] = r.command_line;
+    j["case"] = {{"file", c.file}, {"name", m.name}, {"title", title(c, r)}, {"hash", case_hash(c)}};
+    if (r.oils.empty()) {
+        j["oil"] = oil_entry(m.oil, c.oil_file);
+    } else {
+        j["oils"] = ordered_json::array();
+        for (const auto& o : r.oils) j["oils"].push_back(oil_entry(o.oil, o.file));
+    }
+    const bool fixed = m.thermal.mode == solver::ThermalMode::fixed;
+    j["thermal"] = {{"mode", fixed ? "fixed" : "stabilised"},
+                    {"oil_temperature_C", fixed ? number(m.thermal.oil_temperature - 273.15) : ordered_json(nullptr)},
+                    {"ambient_C", number(m.thermal.ambient - 273.15)}};
+    // i = n_in / n_out, signed (negative: the output turns the other way).
+    const double speed_ratio = m.layout.ratio;
+    j["ratio"] = {{"name", text_or_null(m.ratio)},
+                  {"value", speed_ratio != 0 ? number(1.0 / speed_ratio) : ordered_json(nullptr)}};
+    ordered_json forms = ordered_json::object();
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+        const auto& mech = m.mechanisms[i];
+        for (const auto& a : mech.forms(m)) forms[fmt::format("{}.{}", mech.name(), a.axis)] = mech.form(m, a.axis);
+    }
+    j["model_forms"] = forms;
+    ordered_json mechanisms = ordered_json::object();
+    for (size_t i = 0; i < m.mechanisms.size(); ++i)
+        mechanisms[std::string(m.mechanisms[i].name())] = m.mechanisms[i].enabled();
+    j["mechanisms_enabled"] = mechanisms;
+    j["assumed"] = ordered_json::array();
+    for (const auto& a : c.assumed)
+        j["assumed"].push_back(
+            {{"key", a.key}, {"value", a.value}, {"reason", a.reason}, {"location", text_or_null(a.location)}});
+    j["sweep"] = ordered_json::array();
+    for (const auto& s : c.sweep) j["sweep"].push_back({{"label", s.label}, {"values", s.values}});
+    j["columns"] = ordered_json::array();
+    for (const auto& name : r.columns) {
+        std::optional<std::string> unit = column_unit(name);
+        const bool text = std::ranges::find(r.text_columns, name) != r.text_columns.end() ||
+                          std::ranges::any_of(c.sweep, [&](const io::SweepAxis& s) { return s.label == name; });
+        if (text) unit.reset();
+        for (const auto& [col, u] : r.units)
+            if (col == name) unit = u;
+        j["columns"].push_back({{"name", name}, {"unit", unit ? ordered_json(*unit) : ordered_json(nullptr)}});
+    }
+    return j;
+}
+
+std::string sidecar_path(const std::string& csv_path) { return csv_path + ".meta.json"; }
+
+bool wants_sidecar(const std::string& csv_path) {
+    if (csv_path.empty() || csv_path == "-") return false;
+    const auto kind = io::resolve_output(csv_path).kind;
+    return kind == io::OutputTarget::Kind::regular || kind == io::OutputTarget::Kind::absent;
+}
+
+void write_sidecar(const std::string& csv_path, const ordered_json& meta) {
+    if (!wants_sidecar(csv_path)) return;
+    io::AtomicFile f(sidecar_path(csv_path));
+    // dump() would throw on invalid UTF-8; names and titles are checked UTF-8 when read, and
+    // anything else (a path from the command line) is replaced rather than refused.
+    f.write(meta.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
+    f.commit();
+}
+
+}  // namespace gearloss::map

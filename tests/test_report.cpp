@@ -1,0 +1,108 @@
+// The HTML report's renderer (lib/gearloss/report/): escaping, colour sense, the flags of
+// assumed values, the embedded data against the map machinery, self-containment. The CLI
+// and the rendering in a browser are tested by tests/report_content.py and report_render.sh.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <regex>
+
+#include "gearloss/map/map_runner.hpp"
+#include "gearloss/report/html.hpp"
+#include "gearloss/report/html_report.hpp"
+#include "gearloss/report/report_run.hpp"
+#include "gearloss/report/svg_map.hpp"
+#include "test_support.hpp"
+
+using namespace gearloss;
+
+namespace {
+
+// The report data of the transfer box on a 3 x 3 grid at a fixed 80 degC (fast), without spread.
+report::ReportData small_report(std::vector<std::string> oils = {}) {
+    report::ReportRequest q;
+    q.config = test_support::source_path("configs/transfer-box.yaml");
+    q.oils = std::move(oils);
+    q.spread = false;
+    q.prepare = [](io::Case c, const std::string&) {
+        c.grid = test_support::rpm_grid({500, 1500, 3000}, {50, 150, 300});
+        c.model.thermal.mode = solver::ThermalMode::fixed;
+        c.model.thermal.oil_temperature = 353.15;
+        return c;
+    };
+    q.command_line = {"gearloss", "report", "x.yaml", "-o", "r.html"};
+    return report::collect_report(q);
+}
+
+}  // namespace
+
+TEST_CASE("report: user text is escaped for HTML and for embedded JSON", "[report]") {
+    CHECK(report::escape_html("<script>alert('x')</script> & \"q\"") ==
+          "&lt;script&gt;alert(&#39;x&#39;)&lt;/script&gt; &amp; &quot;q&quot;");
+    const std::string j = report::json_for_script(nlohmann::ordered_json{{"name", "</script><b>&"}});
+    CHECK(j.find('<') == std::string::npos);
+    CHECK(j.find('>') == std::string::npos);
+    CHECK(j.find('&') == std::string::npos);
+    // The escapes decode to the same text (a JSON reader sees the user's string unchanged).
+    CHECK(nlohmann::json::parse(j)["name"] == "</script><b>&");
+    CHECK(nlohmann::json::parse(report::json_for_script(nlohmann::ordered_json{{"x", NAN}}))["x"].is_null());
+}
+
+TEST_CASE("report: differences use one colour sense, red worse and blue better", "[report]") {
+    // The RdBu scheme's ends (Harrower & Brewer 2003): red #b2182b, blue #2166ac; zero difference is white-ish.
+    CHECK(report::scale_colour(report::ColourSense::higher_is_worse, 1.0) == "#b2182b");   // more loss
+    CHECK(report::scale_colour(report::ColourSense::higher_is_worse, 0.0) == "#2166ac");   // less loss
+    CHECK(report::scale_colour(report::ColourSense::higher_is_better, 1.0) == "#2166ac");  // more efficiency
+    CHECK(report::scale_colour(report::ColourSense::higher_is_better, 0.0) == "#b2182b");
+    CHECK(report::scale_colour(report::ColourSense::higher_is_worse, 0.5) == "#f7f7f7");
+}
+
+TEST_CASE("report: nice ticks are 1, 2, 2.5 or 5 times a power of ten inside the range", "[report]") {
+    const auto t = report::nice_ticks(0.13, 0.97, 6);  // step 0.2 by hand: 0.2 .. 0.8
+    REQUIRE(t.size() == 4);
+    CHECK(t.front() == Approx(0.2));
+    CHECK(t.back() == Approx(0.8));
+    CHECK(report::nice_ticks(80, 80, 6).size() == 1);
+}
+
+TEST_CASE("report: the page's data are the map machinery's numbers", "[report]") {
+    const auto d = small_report();
+    const std::string page = report::html_report(d);
+    // Another route to the same points: run_map on the case loaded by load_case.
+    io::Case k = test_support::load_shipped("configs/transfer-box.yaml");
+    k.grid = test_support::rpm_grid({500, 1500, 3000}, {50, 150, 300});
+    k.model.thermal.mode = solver::ThermalMode::fixed;
+    k.model.thermal.oil_temperature = 353.15;
+    const auto rs = map::run_map(k.model, k.grid, {});
+    const auto at = page.find("id=\"gl-data\">");
+    REQUIRE(at != std::string::npos);
+    const auto end = page.find("</script>", at);
+    const auto data = nlohmann::json::parse(page.substr(at + 13, end - at - 13));
+    const auto& cols = data["oils"][0]["map"];
+    REQUIRE(cols["P_total_W"].size() == rs.size());
+    for (size_t i = 0; i < rs.size(); ++i) {
+        CHECK(cols["P_total_W"][i].get<double>() == Approx(rs[i].losses.total()).epsilon(1e-12));
+        CHECK(cols["efficiency"][i].get<double>() == Approx(rs[i].efficiency).epsilon(1e-12));
+        CHECK(cols["status"][i] == solver::status_text(rs[i]));
+    }
+    // One map per mechanism besides efficiency, temperature and total loss; no spread, no oil.
+    CHECK(data["map_count"] == 3 + k.model.mechanisms.size());
+    CHECK(page.find("fixed at 80.0 degC") != std::string::npos);
+}
+
+TEST_CASE("report: assumed values are flagged where they are listed and where the case gives the key", "[report]") {
+    auto d = small_report();
+    d.assumed = {{"name", "Transfer gearbox", "a test <reason>", "case.yaml:5:1"}};
+    const std::string page = report::html_report(d);
+    CHECK(page.find("a test &lt;reason&gt;") != std::string::npos);
+    // The table row of the listed value and the row of the given key `name` both carry the flag.
+    const std::regex flagged_row("<tr class=\"gl-assumed\"><td><code>name</code></td><td>[^<]*<span class=\"gl-flag\">ASSUMED</span>");
+    CHECK(std::regex_search(page, flagged_row));
+}
+
+TEST_CASE("report: the page names no external resource", "[report]") {
+    const std::string page = report::html_report(small_report({test_support::source_path("configs/oils/75W140-A.yaml")}));
+    CHECK(page.find("http://") == std::string::npos);
+    CHECK(page.find("https://") == std::string::npos);
+    CHECK(!std::regex_search(page, std::regex(R"((src|href)\s*=\s*["']?\s*[a-zA-Z]*:?//)")));
+    CHECK(page.find("<link") == std::string::npos);
+    CHECK(page.find("oil k &#8722; reference") != std::string::npos);
+}
