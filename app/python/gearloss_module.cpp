@@ -125,7 +125,7 @@ void check_loaded(io::Case& k, const std::string& oil_file, const std::string& o
 }
 
 PyCase load(const std::string& path, const std::optional<std::string>& ratio) {
-    PyCase c{io::load_case(path, ratio), {}};
+    PyCase c{renaming_keys({{"--ratio", "ratio"}}, [&] { return io::load_case(path, ratio); }), {}};
     check_loaded(c.k, "", "");
     return c;
 }
