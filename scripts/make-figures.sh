@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the README pictures in docs/img from the shipped configs.
-# Usage: scripts/make-figures.sh   (builds gearloss if needed, installs python3-matplotlib if missing)
+# Usage: scripts/make-figures.sh   (builds gearloss if needed, installs python3-matplotlib, -numpy, -pandas if missing)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -24,9 +24,10 @@ scripts/plot.sh map "$tmp/seed.csv" "$out/map-breakdown.png" --kind breakdown \
     --speed 400,600,800,1000,1200,1400,1600rpm --torque 100,150,200,250,300,350Nm -o "$tmp/diff.csv"
 scripts/plot.sh compare "$tmp/diff.csv" "$out/compare-75W140-75W90.png" \
     --title "75W140-A minus 75W90-A on the transfer gearbox (stabilised)"
-"$bin" cycle configs/automatic-6speed.yaml --cycle nedc --start-temp -10degC -o "$tmp/trace.csv" > /dev/null
+"$bin" cycle configs/automatic-6speed.yaml --cycle nedc --start-temp -10degC --prewarm 90degC --heater 2kW \
+    -o "$tmp/trace.csv" > /dev/null
 scripts/plot.sh cycle "$tmp/trace.csv" "$out/cycle-nedc-automatic.png" \
-    --title "Six-speed automatic over the NEDC from a -10 degC cold soak"
+    --title "Six-speed automatic over the NEDC: from a -10 degC cold soak, warm at 90 degC, pre-warmed (2 kW)"
 "$bin" synth configs/transfer-box.yaml --speed 400,550,700,850,1000,1150rpm --torque 100,160,220,280,340Nm \
     --effect windage=25W --seed 7 -o "$tmp/rec.csv"
 "$bin" diagnose configs/transfer-box.yaml "$tmp/rec.csv" --residuals "$tmp/res.csv" > /dev/null

@@ -31,8 +31,8 @@ public:
         s->add_option("--prewarm", prewarm_, "pre-warm the oil to this temperature before the cycle (e.g. 90degC)");
         s->add_option("--heater", heater_, "pre-warming heater power (default 100W)");
         s->add_option("--warm-temp", warm_temp_, "temperature of the warm-start reference run (default 90degC)");
-        s->add_option("-o,--output", out_, "time series CSV of the run from the start temperature ('-' = stdout, "
-                                           "after the summary)");
+        s->add_option("-o,--output", out_, "time series CSV of the run from the start temperature, then the warm-start and "
+                                           "pre-warmed runs' oil temperature and losses ('-' = stdout, after the summary)");
         s->add_option("--json", json_, "write the summary as JSON to this file");
         s->add_flag("--stats", stats_, "print the simulation time of one cycle run to stderr");
         s->footer("Example: gearloss cycle configs/automatic-6speed.yaml --cycle nedc --start-temp -10degC --prewarm 90degC "
@@ -67,7 +67,7 @@ public:
             std::fprintf(stderr, "cycle %s: %zu steps simulated in %.2f ms\n", dc.name.c_str(), dc.time.size() - 1,
                          1e3 * study.seconds_per_run);
         write_optional_file(json_, io::cycle_summary_json(pt, study, so));
-        write_optional_file(out_, io::cycle_trace_csv(pt, study.cold));
+        write_optional_file(out_, io::cycle_trace_csv(pt, study));
         return kOk;
     }
 

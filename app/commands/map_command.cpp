@@ -10,6 +10,7 @@
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "commands/grid_overrides.hpp"
+#include "commands/map_table.hpp"
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/interrupt.hpp"
@@ -50,8 +51,14 @@ public:
         // One argument split here: CLI11's delimiter takes the next argument when the list is empty.
         spread_axes_option_ = s->add_option("--spread-axes", spread_axes_text_, "restrict --spread to these form axes, e.g. "
                                                           "mesh.friction,windage.form (see `gearloss check`)");
-        s->add_option("--format", format_, "csv (loss breakdown) or vecto (torque-loss table per gear, negative "
-                                           "torques included)")->check(CLI::IsMember({"csv", "vecto"}));
+        s->add_option("--format", format_, "csv (loss breakdown), vecto (torque-loss table per gear, negative "
+                                           "torques included), table (every ratio x speed x torque x oil temperature, "
+                                           "CSV, and its lookup arrays with --json FILE) or co2mpas (the CO2MPAS "
+                                           "gearbox-loss coefficients fitted to the map, JSON); docs/tables.md")
+            ->check(CLI::IsMember({"csv", "vecto", "table", "co2mpas"}));
+        oil_temps_option_ = s->add_option("--oil-temps", oil_temps_, "oil temperatures of --format table (default: 20 degC "
+                                                                     "to the oil's limit in 20 K steps) or the cold and hot "
+                                                                     "references of --format co2mpas (default 40,80degC)");
         s->footer("Examples:\n  gearloss map configs/transfer-box.yaml --speed 600,700,800rpm --torque 150,200,250Nm -o out.csv\n"
                   "  gearloss map configs/manual-6speed.yaml --format vecto --oil-temp 70degC -o manual.vtlm   "
                   "(manual_g1.vtlm ... manual_g6.vtlm)");
@@ -76,6 +83,9 @@ public:
             throw InputError("", 0, 0, "--json", "--format vecto writes loss tables only; the summary is a csv map's");
         if (format_ == "vecto" && !shard_.empty())
             throw InputError("", 0, 0, "--shard", "--format vecto writes whole tables per gear; it cannot be sharded");
+        if (format_ == "table" || format_ == "co2mpas") return run_table();
+        if (oil_temps_option_->count() > 0)
+            throw InputError("", 0, 0, "--oil-temps", "an axis of --format table or co2mpas; give --oil-temp for one temperature");
         return format_ == "vecto" ? run_vecto() : run_csv();
     }
 
@@ -89,6 +99,19 @@ private:
     CLI::Option* spread_axes_option_ = nullptr;
     std::vector<std::string> spread_axes_;
     std::vector<std::pair<std::string, std::string>> named_;  // files the case names (key path, file)
+    std::string oil_temps_;
+    CLI::Option* oil_temps_option_ = nullptr;
+
+    // --format table / co2mpas (commands/map_table.cpp): whole tables at fixed oil temperatures.
+    int run_table() {
+        for (const auto& [given, option] : {std::pair{spread_, "--spread"}, {!shard_.empty(), "--shard"}, {detail_, "--detail"}})
+            if (given)
+                throw InputError("", 0, 0, option, "--format " + format_ + " writes whole tables of totals and mechanisms; " +
+                                                       option + " is a csv map's");
+        return run_table_format({.common = common_, .grid = grid_, .format = format_, .out = out_, .json = json_,
+                                 .oil_temps = oil_temps_, .oil_temps_given = oil_temps_option_->count() > 0,
+                                 .threads = threads_, .stats = stats_});
+    }
 
     // No output onto a file the case names (its oil file, a sweep's oil files).
     void require_outputs_not_named(const std::vector<std::pair<std::string, std::string>>& named) const {

@@ -54,20 +54,44 @@ CycleStudy run_cycle_study(const cycle::Powertrain& pt, const cycle::DriveCycle&
     const auto t0 = std::chrono::steady_clock::now();
     s.cold = cycle::simulate_cycle(pt, dc, cycle::uniform(o.start_temperature), o.ambient, true);
     s.seconds_per_run = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    s.warm = cycle::simulate_cycle(pt, dc, cycle::uniform(o.warm_temperature), o.ambient, false).totals;
+    // The traces of the reference runs cost the loss rates at each step (not the integration):
+    // the totals are those of a run without trace.
+    auto warm = cycle::simulate_cycle(pt, dc, cycle::uniform(o.warm_temperature), o.ambient, true);
+    s.warm = warm.totals;
+    s.warm_trace = std::move(warm.trace);
     if (o.prewarm_target) {
         const auto& net = pt.thermal_model().thermal.network;
         s.ideal_prewarm_time = net.C_oil * (*o.prewarm_target - o.start_temperature) / o.heater_power;
         s.prewarm = cycle::prewarm(pt, cycle::uniform(o.start_temperature), *o.prewarm_target, o.heater_power, o.ambient);
-        s.prewarmed = cycle::simulate_cycle(pt, dc, s.prewarm->state, o.ambient, false).totals;
+        auto run = cycle::simulate_cycle(pt, dc, s.prewarm->state, o.ambient, true);
+        s.prewarmed = run.totals;
+        s.prewarmed_trace = std::move(run.trace);
     }
     return s;
 }
 
-std::string cycle_trace_csv(const cycle::Powertrain& pt, const cycle::CycleResult& r) {
+namespace {
+// The columns of a reference run (`prefix`_oil_temp_C, ...) and its cells at step i.
+std::string run_columns(const char* prefix, bool tc) {
+    std::string s = fmt::format(",{0}_oil_temp_C,{0}_P_gearbox_W", prefix);
+    if (tc) s += fmt::format(",{}_P_converter_W", prefix);
+    return s;
+}
+std::string run_cells(const cycle::TraceRow& t, bool tc) {
+    std::string s = "," + csv_fixed(celsius(t.T_oil), 3) + "," + csv_number(t.P_gearbox);
+    if (tc) s += "," + csv_number(t.P_tc);
+    return s;
+}
+}  // namespace
+
+std::string cycle_trace_csv(const cycle::Powertrain& pt, const CycleStudy& study) {
+    const auto& r = study.cold;
     const bool fuel = pt.vehicle.engine.fuel_map.has_value();
     const bool tc = pt.torque_converter.has_value();
     const auto& net = pt.thermal_model().thermal.network;
+    // The reference runs step through the same cycle: one row each per row of the start run.
+    const bool warm = study.warm_trace.size() == r.trace.size();
+    const bool prewarmed = study.prewarmed && study.prewarmed_trace.size() == r.trace.size();
     std::string s =
         "time_s,speed_kmh,accel_m_s2,gear,input_speed_rpm,input_torque_Nm,engine_speed_rpm,engine_torque_Nm,oil_temp_C";
     if (net.has_housing()) s += ",housing_temp_C";
@@ -77,8 +101,11 @@ std::string cycle_trace_csv(const cycle::Powertrain& pt, const cycle::CycleResul
     s += ",P_gearbox_W";
     if (tc) s += ",P_converter_W,converter_speed_ratio,lockup";
     if (fuel) s += ",fuel_g_s";
+    if (warm) s += run_columns("warm", tc);
+    if (prewarmed) s += run_columns("prewarmed", tc);
     s += "\n";
-    for (const auto& t : r.trace) {
+    for (size_t i = 0; i < r.trace.size(); ++i) {
+        const auto& t = r.trace[i];
         s += fmt::format("{},{},{},{},{},{},{},{},{}", csv_number(t.time), csv_fixed(t.speed * 3.6, 3),
                          csv_number(t.accel), t.gear, csv_number(t.input_speed * kRpm), csv_number(t.input_torque),
                          csv_number(t.engine_speed * kRpm), csv_number(t.engine_torque), csv_fixed(celsius(t.T_oil), 3));
@@ -88,6 +115,8 @@ std::string cycle_trace_csv(const cycle::Powertrain& pt, const cycle::CycleResul
         s += "," + csv_number(t.P_gearbox);
         if (tc) s += fmt::format(",{},{},{}", csv_number(t.P_tc), csv_number(t.tc_speed_ratio), t.lockup ? 1 : 0);
         if (fuel) s += "," + csv_number(t.fuel_rate * 1e3);
+        if (warm) s += run_cells(study.warm_trace[i], tc);
+        if (prewarmed) s += run_cells(study.prewarmed_trace[i], tc);
         s += "\n";
     }
     return s;

@@ -29,15 +29,22 @@ struct CycleStudy {
     std::string cycle_name;
     cycle::CycleResult cold;             // from the start temperature
     cycle::CycleTotals warm;             // from the warm temperature
+    std::vector<cycle::TraceRow> warm_trace;  // its time series (the same time steps as cold.trace)
     std::optional<cycle::PrewarmResult> prewarm;
     std::optional<cycle::CycleTotals> prewarmed;  // from the pre-warmed state
+    std::vector<cycle::TraceRow> prewarmed_trace;  // its time series (empty without pre-warming)
     double ideal_prewarm_time = 0;       // s, C_oil dT / P without heat loss
     double seconds_per_run = 0;          // wall-clock time of the run from the start temperature
 };
 
 CycleStudy run_cycle_study(const cycle::Powertrain& pt, const cycle::DriveCycle& dc, const CycleStudyOptions& o);
 
-std::string cycle_trace_csv(const cycle::Powertrain& pt, const cycle::CycleResult& r);
+// Time series of the run from the start temperature (its columns first, as they have always
+// been), then the warm-start reference run's oil temperature and transmission losses
+// (`warm_oil_temp_C`, `warm_P_gearbox_W`, `warm_P_converter_W` with a converter) and, after
+// pre-warming, the pre-warmed run's (`prewarmed_...`), on the same time steps, so that one file
+// holds what the summary compares.
+std::string cycle_trace_csv(const cycle::Powertrain& pt, const CycleStudy& s);
 std::string cycle_summary_text(const cycle::Powertrain& pt, const CycleStudy& s, const CycleStudyOptions& o);
 std::string cycle_summary_json(const cycle::Powertrain& pt, const CycleStudy& s, const CycleStudyOptions& o);
 
