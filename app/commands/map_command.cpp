@@ -14,7 +14,6 @@
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/interrupt.hpp"
-#include "gearloss/io/json.hpp"
 #include "gearloss/io/output_paths.hpp"
 #include "gearloss/io/sweep.hpp"
 #include "gearloss/map/form_spread.hpp"
@@ -322,7 +321,7 @@ private:
         }
         f.write(buf);
         f.commit();
-        write_optional_file(json_, summary.json(seconds, [&](io::Json& j) { map::spread_summary_json(j, axes, spread, results); }));
+        write_optional_file(json_, summary.json(seconds, [&](nlohmann::ordered_json& j) { map::spread_summary_json(j, axes, spread, results); }));
         return kOk;
     }
 };
