@@ -86,7 +86,7 @@ mut M7 mesh lib/gearloss/mesh/loss_factor.cpp "Wimmer sweep normalised by the wo
 mut M8 mesh lib/gearloss/mesh/ehl_contact.cpp "Jaeger mean flash constant 1.064 -> 1.11 (Blok's maximum constant)" \
     'if (std::abs(in.u1) > 0) dT1 = 1.064 * q1' 'if (std::abs(in.u1) > 0) dT1 = 1.11 * q1'
 mut M9 mesh lib/gearloss/mesh/ehl_contact.cpp "3-pressure Hertz shortcut: outer Gauss weight not doubled" \
-    '2 * 0.2369268850561891' '0.2369268850561891'
+    '2 * Gauss5::weights()[2]' 'Gauss5::weights()[2]'
 mut M10 mesh lib/gearloss/mesh/friction.cpp "boundary share (1 - Lambda/2)^2 -> (1 - Lambda/2.2)^2 (mixed film ends at 2.2)" \
     'const double s = 1.0 - 0.5 * std::max(lambda, 0.0);' 'const double s = 1.0 - std::max(lambda, 0.0) / 2.2;'
 mut S6 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "mixed friction rise read at a 10 % larger Lambda" \

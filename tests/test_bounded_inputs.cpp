@@ -382,22 +382,37 @@ TEST_CASE("recordings: exact duplicate rows are reported and counted once", "[bo
     CHECK(l.warnings[0] == "log.csv:8: row repeats line 7 exactly; counted once");
 }
 
-TEST_CASE("recordings: semicolon- and tab-separated files get a hint", "[bounded][recordings]") {
+TEST_CASE("recordings: semicolon- and tab-separated files are read, decimal commas named", "[bounded][recordings]") {
+    // A spreadsheet saved in a locale with decimal commas: ';' between cells is detected from the
+    // header, the decimal comma is refused at its cell with the separator named.
     const auto semi = input_error(
         [] { diagnosis::read_recordings_text("speed_in_rpm;torque_in_Nm;P_loss_W\n600;150;210,5\n", "semi.csv"); });
-    CHECK_THAT(semi.message, Catch::Contains("looks semicolon-separated; gearloss reads comma-separated CSV"));
-    CHECK(semi.line == 1);
-    const auto tab = input_error(
-        [] { diagnosis::read_recordings_text("speed_in_rpm\ttorque_in_Nm\tP_loss_W\n600\t150\t210\n", "tab.csv"); });
-    CHECK_THAT(tab.message, Catch::Contains("looks tab-separated; gearloss reads comma-separated CSV"));
+    CHECK_THAT(semi.message, Catch::Contains("'210,5' has a decimal comma") &&
+                                 Catch::Contains("the columns are separated by ';' (detected)"));
+    CHECK(semi.line == 2);
+    CHECK(semi.column == 3);
+    // With '.' decimals the same file is read as its comma-separated twin.
+    const auto comma = diagnosis::read_recordings_text("speed_in_rpm,torque_in_Nm,P_loss_W\n600,150,210.5\n", "c.csv");
+    const auto semi_ok = diagnosis::read_recordings_text("speed_in_rpm;torque_in_Nm;P_loss_W\n600;150;210.5\n", "s.csv");
+    const auto tab = diagnosis::read_recordings_text("speed_in_rpm\ttorque_in_Nm\tP_loss_W\n600\t150\t210.5\n", "tab.csv");
+    for (const auto* r : {&semi_ok, &tab}) {
+        REQUIRE(r->points.size() == 1);
+        CHECK(r->points[0].loss == comma.points[0].loss);
+        CHECK(r->points[0].torque_in == comma.points[0].torque_in);
+        CHECK(r->points[0].speed_in == comma.points[0].speed_in);
+    }
     // A comma header over semicolon rows: the cell count error carries the hint, at the row's line.
     const auto rows = input_error([] { diagnosis::read_recordings_text(kRecHeader + "600;150;210,5;50\n", "rows.csv"); });
     CHECK_THAT(rows.message, Catch::Contains("cells") && Catch::Contains("looks semicolon-separated"));
     CHECK(rows.line == 2);
-    // Cycle files too.
+    // Cycle files too: read with ';', a decimal comma named at its cell.
     TempDir dir;
-    const std::string cyc = dir.write("cycle.csv", "time_s;speed_kmh\n0;0\n1;5\n");
-    CHECK_THAT(input_error([&] { io::load_cycle_csv(cyc); }).message, Catch::Contains("looks semicolon-separated"));
+    const auto cyc = io::load_cycle_csv(dir.write("cycle.csv", "time_s;speed_kmh\n0;0\n1;5\n"));
+    CHECK(cyc.time.size() == 2);
+    CHECK(cyc.speed[1] == 5 / 3.6);
+    const auto dc = input_error([&] { io::load_cycle_csv(dir.write("dc.csv", "time_s;speed_kmh\n0;0\n1;5,5\n")); });
+    CHECK_THAT(dc.message, Catch::Contains("'5,5' has a decimal comma") && Catch::Contains("separated by ';' (detected)"));
+    CHECK(dc.line == 3);
 }
 
 TEST_CASE("recordings: bad cells are errors with line and column", "[bounded][recordings]") {

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <numbers>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/config.hpp"
-#include "gearloss/io/json.hpp"
 #include "gearloss/map/form_spread.hpp"
 #include "gearloss/model/validate.hpp"
 #include "gearloss/solver/operating_point.hpp"
@@ -209,10 +209,8 @@ TEST_CASE("form spread: combinations whose forms do not apply to the case are le
                Catch::StartsWith("72 of 108 form combinations do not apply to this case") &&
                    Catch::Contains("first: mesh.loss_factor=ohlendorf: mesh 'm' has eps_alpha = 2.086"));
     CHECK(map::not_applicable_note(axes, {}).empty());
-    io::Json j;
-    j.begin_object();
+    nlohmann::ordered_json j;
     map::spread_summary_json(j, axes, spread, nominal);
-    j.end_object();
-    CHECK_THAT(j.str(), Catch::Contains("\"combinations\":108,\"combinations_not_applicable\":72,"
+    CHECK_THAT(j.dump(), Catch::Contains("\"combinations\":108,\"combinations_not_applicable\":72,"
                                         "\"not_applicable\":[\"mesh.loss_factor=ohlendorf\","));
 }

@@ -7,7 +7,7 @@
 #include "commands/common.hpp"
 #include "gearloss/core/message_text.hpp"
 #include "gearloss/io/atomic_file.hpp"
-#include "gearloss/io/json.hpp"
+#include "gearloss/io/json_text.hpp"
 #include "gearloss/io/reports.hpp"
 
 namespace gearloss::app {
@@ -25,18 +25,10 @@ std::string oil_state_text(const io::Case& k) {
 }
 
 // The same as the JSON object of the key "oil_at_oil_temp".
-std::string oil_state_json(const io::Case& k) {
+nlohmann::ordered_json oil_state_json(const io::Case& k) {
     const auto s = k.model.oil.state(k.model.thermal.oil_temperature);
-    io::Json j;
-    j.begin_object();
-    j.key("temperature_C").value(s.T - 273.15);
-    j.key("nu_cSt").value(s.nu_cSt);
-    j.key("rho_kg_m3").value(s.rho);
-    j.key("eta_mPa_s").value(s.eta * 1e3);
-    j.key("alpha_p_1_Pa").value(s.alpha_p);
-    j.key("beta_T_1_K").value(s.beta_T);
-    j.end_object();
-    return j.str();
+    return {{"temperature_C", s.T - 273.15}, {"nu_cSt", s.nu_cSt},          {"rho_kg_m3", s.rho},
+            {"eta_mPa_s", s.eta * 1e3},      {"alpha_p_1_Pa", s.alpha_p}, {"beta_T_1_K", s.beta_T}};
 }
 
 // check_report with the oil line inserted after the oil block (before "operating points: N",
@@ -56,10 +48,9 @@ std::string report_with_oil_state(io::Case& k) {
 
 // check_json with the top-level key "oil_at_oil_temp" added last.
 std::string json_with_oil_state(const io::Case& k) {
-    std::string json = io::check_json(k);
-    if (json.size() < 2 || json.compare(json.size() - 2, 2, "}\n") != 0) throw std::logic_error("check json: unexpected layout");
-    json.resize(json.size() - 2);
-    return json + ",\"oil_at_oil_temp\":" + oil_state_json(k) + "}\n";
+    nlohmann::ordered_json j = io::check_json_object(k);
+    j["oil_at_oil_temp"] = oil_state_json(k);
+    return io::json_line(j);
 }
 
 class CheckCommand final : public Command {

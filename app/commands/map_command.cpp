@@ -13,7 +13,6 @@
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/interrupt.hpp"
-#include "gearloss/io/json.hpp"
 #include "gearloss/io/output_paths.hpp"
 #include "gearloss/io/sweep.hpp"
 #include "gearloss/map/form_spread.hpp"
@@ -314,7 +313,7 @@ private:
         f.write(buf);
         f.commit();
         write_csv_sidecar(out_, k, header, {.text_columns = {"forms_at_min", "forms_at_max"}, .units = {{"combinations_unsolved", "1"}}});
-        write_optional_file(json_, summary.json(seconds, [&](io::Json& j) { map::spread_summary_json(j, axes, spread, results); }));
+        write_optional_file(json_, summary.json(seconds, [&](nlohmann::ordered_json& j) { map::spread_summary_json(j, axes, spread, results); }));
         return kOk;
     }
 };

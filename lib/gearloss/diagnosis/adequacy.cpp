@@ -7,6 +7,7 @@
 #include <array>
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/fisher_f.hpp>
+#include <boost/math/statistics/univariate_statistics.hpp>
 #include <cmath>
 #include <Eigen/SparseCore>
 #include <cstddef>
@@ -79,14 +80,6 @@ double huber_kappa() {
     return std::erf(c / std::sqrt(2.0)) - 2 * c * phi + 2 * c * c * tail;
 }
 
-double median_of(std::vector<double> v) {
-    const std::size_t m = v.size() / 2;
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end());
-    const double hi = v[m];
-    if (v.size() % 2 == 1) return hi;
-    return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m)));
-}
-
 // Robust scale of values that have zero mean under the null: about zero, not about their
 // median, since a common shift is structure and not noise. Huber's proposal 2 by fixed-point
 // iteration from the median absolute value (a contraction for c = 2; converged to 1e-10).
@@ -94,7 +87,10 @@ double robust_scale(const std::vector<double>& e) {
     if (e.empty()) return 0;
     std::vector<double> a(e.size());
     std::transform(e.begin(), e.end(), a.begin(), [](double x) { return std::abs(x); });
-    double s = mad_consistency * median_of(a);
+    // The median absolute value (the mean of the middle two for an even count), on a copy: the
+    // sums below stay in the values' order.
+    std::vector<double> m = a;
+    double s = mad_consistency * boost::math::statistics::median(m);
     if (!(s > 0)) {  // more than half the values zero: start from the root mean square
         for (double x : a) s += x * x / static_cast<double>(a.size());
         s = std::sqrt(s);

@@ -10,6 +10,9 @@
 
 namespace gearloss::diagnosis::detail {
 
+// The upper of the two middle values for an even count (not their mean as in
+// boost::math::statistics::median and median_absolute_deviation): a value of the sample, and
+// the thresholds of the fits were tuned with it.
 std::pair<double, double> robust_centre_scale(std::vector<double> v, double floor) {
     if (v.empty()) return {0.0, floor};
     std::sort(v.begin(), v.end());
@@ -176,6 +179,9 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
 
 namespace {
 
+// Pearson's r by the two-pass sums, 0 for fewer than three points or a constant variable
+// (boost::math::statistics::correlation_coefficient updates running means instead, so other
+// last digits, and gives 1 when both are constant).
 double pearson(const std::vector<double>& x, const std::vector<double>& y) {
     const size_t n = x.size();
     if (n < 3) return 0;

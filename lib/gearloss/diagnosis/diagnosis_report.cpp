@@ -9,7 +9,7 @@
 
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/csv_read.hpp"
-#include "gearloss/io/json.hpp"
+#include "gearloss/io/json_text.hpp"
 
 namespace gearloss::diagnosis {
 
@@ -91,143 +91,104 @@ std::string diagnosis_text(const Diagnosis& d) {
 }
 
 std::string diagnosis_json(const Diagnosis& d) {
-    io::Json j;
-    j.begin_object();
-    j.key("verdict").value(d.verdict);
-    j.key("summary").value(d.summary);
-    j.key("location").value(d.location);
-    j.key("remaining").value(d.remaining);
-    j.key("points").value(d.points);
-    j.key("rmse_before").value(d.rmse_before);
-    j.key("rmse_after").value(d.rmse_after);
-    j.key("cv_rmse_after").value(d.cv_rmse_after);
+    nlohmann::ordered_json j;
+    j["verdict"] = d.verdict;
+    j["summary"] = d.summary;
+    j["location"] = d.location;
+    j["remaining"] = d.remaining;
+    j["points"] = d.points;
+    j["rmse_before"] = d.rmse_before;
+    j["rmse_after"] = d.rmse_after;
+    j["cv_rmse_after"] = d.cv_rmse_after;
     if (d.has_temperature) {
-        j.key("temp_rmse_before").value(d.temp_rmse_before);
-        j.key("temp_rmse_after").value(d.temp_rmse_after);
+        j["temp_rmse_before"] = d.temp_rmse_before;
+        j["temp_rmse_after"] = d.temp_rmse_after;
     }
     // The noise the remainder was tested against, and the tests' p-values.
-    j.key("adequacy").begin_object();
+    auto& adequacy = j["adequacy"] = nlohmann::ordered_json::object();
     auto channel = [&](const char* key, const Diagnosis::Channel& c) {
-        j.key(key).begin_object();
-        j.key("noise").value(c.noise);
-        j.key("noise_source").value(c.noise_source);
-        j.key("fit_p").value(c.fit_p);
-        if (std::isfinite(c.fit_detectable)) j.key("fit_detectable").value(c.fit_detectable);
-        j.key("structure_p").value(c.structure_p);
-        j.key("structure_along").value(c.structure_along);
-        j.end_object();
+        auto& o = adequacy[key];
+        o["noise"] = c.noise;
+        o["noise_source"] = c.noise_source;
+        o["fit_p"] = c.fit_p;
+        if (std::isfinite(c.fit_detectable)) o["fit_detectable"] = c.fit_detectable;
+        o["structure_p"] = c.structure_p;
+        o["structure_along"] = c.structure_along;
     };
     channel("loss_relative", d.adequacy_loss);
     if (d.has_temperature) channel("oil_temperature_K", d.adequacy_temp);
-    if (std::isfinite(d.detectable)) j.key("detectable_remainder").value(d.detectable);
-    j.end_object();
+    if (std::isfinite(d.detectable)) adequacy["detectable_remainder"] = d.detectable;
     if (d.remainder) {
-        j.key("remainder_hypothesis").begin_object();
-        j.key("formula").value(d.remainder->formula);
-        j.key("cv_rmse_before").value(d.remainder->cv_rmse_before);
-        j.key("cv_rmse_after").value(d.remainder->cv_rmse_after);
-        j.key("terms").begin_array();
-        for (const auto& t : d.remainder->terms) {
-            j.begin_object();
-            j.key("basis").value(t.basis);
-            j.key("coefficient_W").value(t.coefficient);
-            j.key("uncertainty_W").value(t.uncertainty);
-            j.end_object();
-        }
-        j.end_array();
-        j.key("nearest").begin_array();
-        for (const auto& n : d.remainder->nearest) j.value(n);
-        j.end_array();
-        j.end_object();
+        auto& r = j["remainder_hypothesis"];
+        r["formula"] = d.remainder->formula;
+        r["cv_rmse_before"] = d.remainder->cv_rmse_before;
+        r["cv_rmse_after"] = d.remainder->cv_rmse_after;
+        r["terms"] = nlohmann::ordered_json::array();
+        for (const auto& t : d.remainder->terms)
+            r["terms"].push_back({{"basis", t.basis}, {"coefficient_W", t.coefficient}, {"uncertainty_W", t.uncertainty}});
+        r["nearest"] = d.remainder->nearest;
     }
     if (!d.oils.empty()) {
-        j.key("oils").begin_array();
-        for (const auto& o : d.oils) j.value(o);
-        j.end_array();
-        j.key("oil_differences").begin_array();
-        for (const auto& x : d.oil_differences) {
-            j.begin_object();
-            j.key("speed_rpm").value(x.speed_rpm);
-            j.key("torque_Nm").value(x.torque);
-            j.key("oil_a").value(x.oil_a);
-            j.key("oil_b").value(x.oil_b);
-            j.key("recorded_W").value(x.recorded);
-            j.key("model_before_W").value(x.model_before);
-            j.key("model_after_W").value(x.model_after);
-            j.end_object();
-        }
-        j.end_array();
+        j["oils"] = d.oils;
+        auto& diffs = j["oil_differences"] = nlohmann::ordered_json::array();
+        for (const auto& x : d.oil_differences)
+            diffs.push_back({{"speed_rpm", x.speed_rpm},
+                             {"torque_Nm", x.torque},
+                             {"oil_a", x.oil_a},
+                             {"oil_b", x.oil_b},
+                             {"recorded_W", x.recorded},
+                             {"model_before_W", x.model_before},
+                             {"model_after_W", x.model_after}});
     }
-    j.key("findings").begin_array();
+    auto& findings = j["findings"] = nlohmann::ordered_json::array();
     for (const auto& f : d.findings) {
-        j.begin_object();
-        j.key("effect").value(f.effect);
-        j.key("description").value(f.description);
+        nlohmann::ordered_json o;
+        o["effect"] = f.effect;
+        o["description"] = f.description;
         // Multi-oil campaigns: the oil a finding concerns alone; null: every oil.
-        if (f.oil.empty()) j.key("oil").null();
-        else j.key("oil").value(f.oil);
-        j.key("parameters").begin_object();
-        j.key(f.parameter.name).begin_object();
-        j.key("value").value(f.parameter.value);
-        j.key("uncertainty").value(f.parameter.uncertainty);
-        j.key("unit").value(f.parameter.unit);
+        o["oil"] = f.oil.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(f.oil);
+        auto& p = o["parameters"][f.parameter.name];
+        p["value"] = f.parameter.value;
+        p["uncertainty"] = f.parameter.uncertainty;
+        p["unit"] = f.parameter.unit;
         if (!f.parameter.form.empty()) {
-            j.key("form").value(f.parameter.form);
-            j.key("case_form").value(f.parameter.case_form);
+            p["form"] = f.parameter.form;
+            p["case_form"] = f.parameter.case_form;
         }
-        j.end_object();
-        j.end_object();
-        if (!f.rows.empty()) {
-            j.key("rows").begin_array();
-            for (int r : f.rows) j.value(r);
-            j.end_array();
-        }
-        j.key("rmse_before").value(f.rmse_before);
-        j.key("rmse_after").value(f.rmse_after);
-        j.key("cv_rmse_before").value(f.cv_rmse_before);
-        j.key("cv_rmse_after").value(f.cv_rmse_after);
+        if (!f.rows.empty()) o["rows"] = f.rows;
+        o["rmse_before"] = f.rmse_before;
+        o["rmse_after"] = f.rmse_after;
+        o["cv_rmse_before"] = f.cv_rmse_before;
+        o["cv_rmse_after"] = f.cv_rmse_after;
         if (d.has_temperature) {
-            j.key("temp_rmse_before").value(f.temp_rmse_before);
-            j.key("temp_rmse_after").value(f.temp_rmse_after);
+            o["temp_rmse_before"] = f.temp_rmse_before;
+            o["temp_rmse_after"] = f.temp_rmse_after;
         }
-        j.key("delta_bic").value(f.delta_bic);
-        j.key("cv_loglik_gain").value(f.cv_gain);
-        j.key("stability").value(f.stability);
-        j.key("equivalent").begin_array();
-        for (const auto& e : f.equivalent) j.value(e);
-        j.end_array();
-        j.key("separating_measurement").value(f.separating_measurement);
-        j.end_object();
+        o["delta_bic"] = f.delta_bic;
+        o["cv_loglik_gain"] = f.cv_gain;
+        o["stability"] = f.stability;
+        o["equivalent"] = f.equivalent;
+        o["separating_measurement"] = f.separating_measurement;
+        findings.push_back(std::move(o));
     }
-    j.end_array();
-    j.key("outliers").begin_array();
-    for (const auto& o : d.outliers) {
-        j.begin_object();
-        j.key("row").value(o.row);
-        j.key("reason").value(o.reason);
-        j.end_object();
-    }
-    j.end_array();
-    j.key("candidates").begin_array();
+    auto& outliers = j["outliers"] = nlohmann::ordered_json::array();
+    for (const auto& o : d.outliers) outliers.push_back({{"row", o.row}, {"reason", o.reason}});
+    auto& candidates = j["candidates"] = nlohmann::ordered_json::array();
     for (const auto& c : d.candidates) {
-        j.begin_object();
-        j.key("effect").value(c.effect);
+        nlohmann::ordered_json o;
+        o["effect"] = c.effect;
         if (c.rejected.empty()) {
-            j.key("delta_bic").value(c.delta_bic);
-            j.key("fitted").value(c.value);
+            o["delta_bic"] = c.delta_bic;
+            o["fitted"] = c.value;
         } else {
-            j.key("delta_bic").null();
-            j.key("fitted").null();
-            j.key("rejected").value(c.rejected);
+            o["delta_bic"] = nullptr;
+            o["fitted"] = nullptr;
+            o["rejected"] = c.rejected;
         }
-        j.end_object();
+        candidates.push_back(std::move(o));
     }
-    j.end_array();
-    j.key("warnings").begin_array();
-    for (const auto& w : d.warnings) j.value(w);
-    j.end_array();
-    j.end_object();
-    return j.str() + "\n";
+    j["warnings"] = d.warnings;
+    return io::json_line(j);
 }
 
 std::string residuals_csv(const Diagnosis& d) {

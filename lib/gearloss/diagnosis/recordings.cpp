@@ -27,7 +27,6 @@ constexpr double kMaxTime = 1e12;
 // Exact duplicate rows named one by one in the warnings; further ones are counted.
 constexpr int kDuplicateWarnings = 10;
 
-using io::split_csv_line;
 
 // A column is a quantity and its unit, "speed_in_rpm", "speed_in_Hz", "speed_in_1/min",
 // "speed_in_rad/s", "torque_in_Nm", "P_loss_kW", "oil_temp_C", "oil_temp_K", "time_min":
@@ -86,23 +85,24 @@ struct Table {
     std::vector<std::vector<std::string>> rows;
     std::vector<int> lines;
     std::vector<int> data_rows;         // 1 = first data line of the file (exact duplicates merged keep their number)
+    char separator = ',';               // detected from the header (io::detect_separator)
 };
 
-Table read_table(const std::string& file, std::istream& in, std::vector<std::string>& warnings) {
-    std::string line;
-    int ln = 0;
+Table read_table(const std::string& file, const std::string& text, std::vector<std::string>& warnings) {
+    io::CsvReader csv(text, file);
+    io::CsvRecord rec;
     Table t;
-    std::vector<std::string> header;
-    while (std::getline(in, line)) {
-        ++ln;
-        if (line.empty() || line[0] == '#') continue;
-        if (line.size() >= 3 && static_cast<unsigned char>(line[0]) == 0xEF) line = line.substr(3);  // UTF-8 BOM
-        header = split_csv_line(line);
-        if (header.size() == 1)
-            if (const std::string hint = io::separator_hint(line); !hint.empty()) throw InputError(file, ln, 0, "", hint);
-        break;
-    }
-    if (header.empty()) throw InputError(file, ln, 0, "", "no header line");
+    // A note for the header's messages when the columns are not comma-separated.
+    const auto noted = [&](const std::string& msg) {
+        const std::string note = io::separator_note(csv.separator());
+        return note.empty() ? msg : note + "; " + msg;
+    };
+    if (!csv.next(rec)) throw InputError(file, csv.line(), 0, "", "no header line");
+    int ln = rec.line;
+    const std::vector<std::string> header = rec.cells;
+    t.separator = csv.separator();
+    if (header.size() == 1)
+        if (const std::string hint = io::separator_hint(std::string(rec.text)); !hint.empty()) throw InputError(file, ln, 0, "", hint);
     t.header = header;
     t.def.resize(header.size());
     std::vector<std::string> unknown;
@@ -122,21 +122,25 @@ Table read_table(const std::string& file, std::istream& in, std::vector<std::str
     // line is not quoted.
     if (t.col.empty())
         throw InputError(file, ln, 0, "",
-                         "the header names none of the recordings columns (speed_in_rpm, torque_in_Nm, P_loss_W, "
-                         "oil_temp_C, time_s, ...); this is not a gearloss recordings CSV file");
+                         noted("the header names none of the recordings columns (speed_in_rpm, torque_in_Nm, P_loss_W, "
+                               "oil_temp_C, time_s, ...); this is not a gearloss recordings CSV file"));
     warnings.insert(warnings.end(), unknown.begin(), unknown.end());
     // Exact duplicates (every cell equal after trimming): a row exported twice would count
     // twice as evidence. Merged into the first, with a warning naming both lines.
     std::unordered_map<std::string, int> first_line;
     int duplicates = 0, data_row = 0;
-    while (std::getline(in, line)) {
-        ++ln;
-        if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r,") == std::string::npos) continue;
+    while (csv.next(rec)) {
+        ln = rec.line;
+        // A row of empty cells (a spreadsheet's blank row: ",,,,") is no data.
+        if (std::all_of(rec.cells.begin(), rec.cells.end(), [](const std::string& c) { return c.empty(); })) continue;
         ++data_row;
-        auto cells = split_csv_line(line);
-        if (cells.size() != header.size()) {
-            std::string msg = fmt::format("row has {} cells, the header has {}", cells.size(), header.size());
-            if (const std::string hint = io::separator_hint(line); !hint.empty()) msg += "; " + hint;
+        auto& cells = rec.cells;
+        if (cells.size() != t.header.size()) {
+            std::string msg = fmt::format("row has {} cells, the header has {}", cells.size(), t.header.size());
+            if (const std::string hint = io::separator_hint(std::string(rec.text), csv.separator()); !hint.empty())
+                msg += "; " + hint;
+            else if (const std::string note = io::separator_note(csv.separator()); !note.empty())
+                msg += "; " + note;
             throw InputError(file, ln, 0, "", msg);
         }
         std::string key;
@@ -171,7 +175,7 @@ double cell(const std::string& file, const Table& t, size_t r, const std::string
     const std::string& s = t.rows[r][it->second];
     const std::string& name = t.header[it->second];
     const int column = static_cast<int>(it->second + 1);
-    const double v = io::csv_cell_number(s, file, t.lines[r], column, name);
+    const double v = io::csv_cell_number(s, file, t.lines[r], column, name, t.separator);
     if (present) *present = true;
     const double si = v * t.def[it->second].scale + t.def[it->second].offset;
     if (!std::isfinite(si))
@@ -217,8 +221,7 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
     io::check_input_text(text, file, io::kMaxCsvFileBytes);
     Recordings rec;
     rec.file = file;
-    std::istringstream in(text);
-    Table t = read_table(file, in, rec.warnings);
+    Table t = read_table(file, text, rec.warnings);
     auto get = [&](size_t r, const char* key, bool* present = nullptr) { return cell(file, t, r, key, present); };
 
     require(file, t, "speed_in", "speed_in_rpm");

@@ -1,5 +1,6 @@
 #include "gearloss/io/csv_read.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -217,16 +218,17 @@ std::string name_problem(std::string_view s, std::size_t max_bytes) {
     return {};
 }
 
-std::string separator_hint(const std::string& line) {
+std::string separator_hint(const std::string& line, char separator) {
     // Called once a line is known to be wrong (one header cell, a cell count that differs):
-    // a semicolon there is a separator (with decimal commas in the cells, as Excel writes it
-    // in many locales).
-    if (line.find(';') != std::string::npos)
-        return "the file looks semicolon-separated; gearloss reads comma-separated CSV (',' between cells, '.' as the "
-               "decimal point)";
-    if (line.find('\t') != std::string::npos && line.find(',') == std::string::npos)
-        return "the file looks tab-separated; gearloss reads comma-separated CSV (',' between cells)";
-    return "";
+    // a line split more often by another separator than by the file's is split by that one
+    // (a row pasted from a spreadsheet saved in another locale).
+    const auto count = [&](char c) { return std::count(line.begin(), line.end(), c); };
+    const char other = detect_separator(line);
+    if (other == separator || count(other) <= count(separator)) return "";
+    const char* looks = other == ';' ? "semicolon" : other == '\t' ? "tab" : "comma";
+    const std::string sep = separator == '\t' ? "tabs" : fmt::format("'{}'", separator);
+    return fmt::format("the line looks {}-separated, the header's columns are separated by {}; one separator throughout",
+                       looks, sep);
 }
 
 }  // namespace gearloss::io

@@ -1,8 +1,9 @@
 #pragma once
-// Reading input (recordings, drive cycles, and the bounded file reader every input
-// file goes through): one line into trimmed cells (double quotes protect commas), a
-// cell into a finite number or an error naming the place, and the bounds on what is
-// read at all (README "Reliability": only regular files, sizes, line lengths, text).
+// Reading input (recordings, drive cycles, map shards, and the bounded file reader every
+// input file goes through): a shard's line into its cells as written (the records of the
+// other files: csv_records.hpp), a cell into a finite number or an error naming the place,
+// and the bounds on what is read at all (README "Reliability": only regular files, sizes,
+// line lengths, text).
 #include <charconv>
 #include <cmath>
 #include <cstddef>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "gearloss/core/errors.hpp"
+#include "gearloss/io/csv_records.hpp"
 
 namespace gearloss::io {
 
@@ -51,8 +53,9 @@ bool is_printable_utf8(std::string_view s);
 // at most max_bytes. Two names that look alike are then the same bytes.
 std::string name_problem(std::string_view s, std::size_t max_bytes);
 
-// A hint when a CSV line is separated by semicolons or tabs instead of commas ("" otherwise).
-std::string separator_hint(const std::string& line);
+// A hint when a CSV line holds none of the file's separator (detected from its header) but
+// another one: it "looks semicolon-separated" (or tab- or comma-); "" otherwise.
+std::string separator_hint(const std::string& line, char separator = ',');
 
 // The cells of a CSV line as written: split at commas outside double quotes, nothing removed
 // (a merge checks cells byte for byte).
@@ -70,20 +73,6 @@ inline std::vector<std::string_view> split_csv_cells(std::string_view line) {
     return cells;
 }
 
-// The cells read as values: quotes and carriage returns dropped, blanks at either end trimmed.
-inline std::vector<std::string> split_csv_line(const std::string& line) {
-    std::vector<std::string> out;
-    for (const std::string_view raw : split_csv_cells(line)) {
-        std::string s;
-        for (char c : raw)
-            if (c != '"' && c != '\r') s += c;
-        s.erase(0, s.find_first_not_of(" \t"));
-        s.erase(s.find_last_not_of(" \t") + 1);
-        out.push_back(std::move(s));
-    }
-    return out;
-}
-
 // A cell read as a whole number (std::from_chars: no blank, '+' or hexadecimal): what it is.
 enum class CellNumber { number, not_finite, not_number };
 inline CellNumber read_cell_number(std::string_view s, double& v) {
@@ -93,16 +82,19 @@ inline CellNumber read_cell_number(std::string_view s, double& v) {
     return ec == std::errc() && p == s.data() + s.size() ? CellNumber::number : CellNumber::not_number;
 }
 
-// The cell as a finite number; InputError at file:line:column, key `column`, otherwise.
+// The cell as a finite number; InputError at file:line:column, key `column`, otherwise (a
+// number with a decimal comma says so, and names the file's separator when it is not ',').
 inline double csv_cell_number(const std::string& s, const std::string& file, int line, int column,
-                              const std::string& column_name) {
+                              const std::string& column_name, char separator = ',') {
     if (s.empty()) throw InputError(file, line, column, column_name, "empty cell; a number is expected");
     double v = 0;
     const CellNumber kind = read_cell_number(s, v);
     if (kind == CellNumber::not_finite)
         throw InputError(file, line, column, column_name, "'" + excerpt(s) + "' is out of range (not a finite number)");
-    if (kind == CellNumber::not_number)
-        throw InputError(file, line, column, column_name, "'" + excerpt(s) + "' is not a number");
+    if (kind == CellNumber::not_number) {
+        const std::string decimal_comma = decimal_comma_problem(s, separator);
+        throw InputError(file, line, column, column_name, decimal_comma.empty() ? "'" + excerpt(s) + "' is not a number" : decimal_comma);
+    }
     return v;
 }
 

@@ -8,7 +8,7 @@
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/csv_format.hpp"
-#include "gearloss/io/json.hpp"
+#include "gearloss/io/json_text.hpp"
 #include "gearloss/model/validate.hpp"
 
 namespace gearloss::io {
@@ -96,22 +96,22 @@ std::string cycle_trace_csv(const cycle::Powertrain& pt, const cycle::CycleResul
 namespace {
 double litres(const cycle::Powertrain& pt, double kg) { return kg / pt.vehicle.engine.fuel_density * 1e3; }
 
-void totals_json(Json& j, const cycle::Powertrain& pt, const cycle::CycleTotals& t) {
-    j.begin_object();
-    j.key("oil_temp_start_C").value(celsius(t.start[0]));
-    j.key("oil_temp_end_C").value(celsius(t.end[0]));
-    j.key("gearbox_loss_kJ").value(t.gearbox_loss() / 1e3);
+nlohmann::ordered_json totals_json(const cycle::Powertrain& pt, const cycle::CycleTotals& t) {
+    nlohmann::ordered_json j;
+    j["oil_temp_start_C"] = celsius(t.start[0]);
+    j["oil_temp_end_C"] = celsius(t.end[0]);
+    j["gearbox_loss_kJ"] = t.gearbox_loss() / 1e3;
     const auto& mechs = pt.thermal_model().mechanisms;
     for (size_t k = 0; k < mechs.size(); ++k)
-        j.key(std::string(mechs[k].name()) + "_kJ").value(k < t.E_mech.size() ? t.E_mech[k] / 1e3 : 0.0);
-    j.key("converter_kJ").value(t.E_tc / 1e3);
-    j.key("heat_to_ambient_kJ").value(t.E_ambient / 1e3);
-    j.key("gearbox_mean_efficiency").value(t.mean_efficiency());
+        j[std::string(mechs[k].name()) + "_kJ"] = k < t.E_mech.size() ? t.E_mech[k] / 1e3 : 0.0;
+    j["converter_kJ"] = t.E_tc / 1e3;
+    j["heat_to_ambient_kJ"] = t.E_ambient / 1e3;
+    j["gearbox_mean_efficiency"] = t.mean_efficiency();
     if (t.has_fuel) {
-        j.key("fuel_L").value(litres(pt, t.fuel));
-        j.key("fuel_L_per_100km").value(t.distance > 0 ? litres(pt, t.fuel) / (t.distance / 1e5) : 0.0);
+        j["fuel_L"] = litres(pt, t.fuel);
+        j["fuel_L_per_100km"] = t.distance > 0 ? litres(pt, t.fuel) / (t.distance / 1e5) : 0.0;
     }
-    j.end_object();
+    return j;
 }
 
 std::string totals_text(const cycle::Powertrain& pt, const cycle::CycleTotals& t, const char* label) {
@@ -175,39 +175,34 @@ std::string cycle_summary_text(const cycle::Powertrain& pt, const CycleStudy& s,
 }
 
 std::string cycle_summary_json(const cycle::Powertrain& pt, const CycleStudy& s, const CycleStudyOptions& o) {
-    Json j;
+    nlohmann::ordered_json j;
     const auto& c = s.cold.totals;
-    j.begin_object();
-    j.key("cycle").value(s.cycle_name);
-    j.key("duration_s").value(c.duration);
-    j.key("distance_km").value(c.distance / 1e3);
-    j.key("wheel_energy_kJ").value(c.E_wheel / 1e3);
-    j.key("ambient_C").value(celsius(o.ambient));
-    j.key("start");
-    totals_json(j, pt, c);
-    j.key("warm_start");
-    totals_json(j, pt, s.warm);
+    j["cycle"] = s.cycle_name;
+    j["duration_s"] = c.duration;
+    j["distance_km"] = c.distance / 1e3;
+    j["wheel_energy_kJ"] = c.E_wheel / 1e3;
+    j["ambient_C"] = celsius(o.ambient);
+    j["start"] = totals_json(pt, c);
+    j["warm_start"] = totals_json(pt, s.warm);
     if (s.prewarm) {
         const auto& p = *s.prewarm;
-        j.key("prewarm").begin_object();
-        j.key("target_C").value(celsius(*o.prewarm_target));
-        j.key("heater_W").value(o.heater_power);
-        j.key("ideal_time_s").value(s.ideal_prewarm_time);
-        j.key("reached").value(p.reached);
-        j.key("time_s").value(p.time);
-        j.key("energy_kJ").value(p.energy / 1e3);
-        j.key("heat_lost_kJ").value(p.heat_lost / 1e3);
-        if (!p.reached) j.key("levels_off_at_C").value(celsius(p.max_oil_temperature));
-        j.key("run");
-        totals_json(j, pt, *s.prewarmed);
+        nlohmann::ordered_json w;
+        w["target_C"] = celsius(*o.prewarm_target);
+        w["heater_W"] = o.heater_power;
+        w["ideal_time_s"] = s.ideal_prewarm_time;
+        w["reached"] = p.reached;
+        w["time_s"] = p.time;
+        w["energy_kJ"] = p.energy / 1e3;
+        w["heat_lost_kJ"] = p.heat_lost / 1e3;
+        if (!p.reached) w["levels_off_at_C"] = celsius(p.max_oil_temperature);
+        w["run"] = totals_json(pt, *s.prewarmed);
         if (c.has_fuel) {
-            j.key("fuel_saved_L").value(litres(pt, c.fuel - s.prewarmed->fuel));
-            j.key("fuel_saved_percent").value(100 * relative_saving(c.fuel, s.prewarmed->fuel));
+            w["fuel_saved_L"] = litres(pt, c.fuel - s.prewarmed->fuel);
+            w["fuel_saved_percent"] = 100 * relative_saving(c.fuel, s.prewarmed->fuel);
         }
-        j.end_object();
+        j["prewarm"] = std::move(w);
     }
-    j.end_object();
-    return j.str() + "\n";
+    return json_line(j);
 }
 
 }  // namespace gearloss::io

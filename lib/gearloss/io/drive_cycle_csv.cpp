@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/csv_read.hpp"
@@ -16,18 +15,22 @@ using cycle::DriveCycle;
 
 DriveCycle load_cycle_csv(const std::string& file) {
     // A regular file of at most 64 MiB (a FIFO or a device is refused by name, unread).
-    std::istringstream in(read_input_file(file, kMaxCsvFileBytes));
+    const std::string text = read_input_file(file, kMaxCsvFileBytes);
+    CsvReader csv(text, file);
+    CsvRecord rec;
     DriveCycle c;
     c.name = fs::path(file).stem().string();
-    std::string line;
     int ln = 0;
     int it = -1, iv = -1, ig = -1;
     size_t ncol = 0;
-    while (std::getline(in, line)) {
-        ++ln;
-        if (ln == 1 && line.size() >= 3 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);  // BOM
-        if (line.empty() || line[0] == '#') continue;
-        const auto cells = split_csv_line(line);
+    // The detected separator, when it is not ',', for the messages about the layout.
+    const auto noted = [&](const std::string& msg) {
+        const std::string note = separator_note(csv.separator());
+        return note.empty() ? msg : msg + "; " + note;
+    };
+    while (csv.next(rec)) {
+        ln = rec.line;
+        const auto& cells = rec.cells;
         if (it < 0) {
             for (size_t k = 0; k < cells.size(); ++k) {
                 int* slot = cells[k] == "time_s" ? &it : cells[k] == "speed_kmh" ? &iv : cells[k] == "gear" ? &ig : nullptr;
@@ -37,26 +40,28 @@ DriveCycle load_cycle_csv(const std::string& file) {
                 *slot = static_cast<int>(k);
             }
             if (it < 0 || iv < 0) {
-                const std::string hint = cells.size() == 1 ? separator_hint(line) : std::string();
-                throw InputError(file, ln, 1, "", hint.empty() ? "header must name the columns 'time_s' and 'speed_kmh' (optional 'gear')" : hint);
+                const std::string hint = cells.size() == 1 ? separator_hint(std::string(rec.text)) : std::string();
+                throw InputError(file, ln, 1, "",
+                                 hint.empty() ? noted("header must name the columns 'time_s' and 'speed_kmh' (optional 'gear')") : hint);
             }
             ncol = cells.size();
             continue;
         }
         if (cells.size() != ncol) {
-            const std::string hint = separator_hint(line);
-            throw InputError(file, ln, 1, "", "expected " + std::to_string(ncol) + " cells, found " + std::to_string(cells.size()) +
-                                                  (hint.empty() ? "" : "; " + hint));
+            const std::string hint = separator_hint(std::string(rec.text), csv.separator());
+            const std::string msg = "expected " + std::to_string(ncol) + " cells, found " + std::to_string(cells.size());
+            throw InputError(file, ln, 1, "", hint.empty() ? noted(msg) : msg + "; " + hint);
         }
-        const double t = csv_cell_number(cells[it], file, ln, it + 1, "time_s");
-        const double v = csv_cell_number(cells[iv], file, ln, iv + 1, "speed_kmh");
+        const char sep = csv.separator();
+        const double t = csv_cell_number(cells[it], file, ln, it + 1, "time_s", sep);
+        const double v = csv_cell_number(cells[iv], file, ln, iv + 1, "speed_kmh", sep);
         if (v < 0 || v > 500) throw InputError(file, ln, iv + 1, "speed_kmh", "speed must be in [0, 500] km/h");
         if (!c.time.empty() && !(t > c.time.back()))
             throw InputError(file, ln, it + 1, "time_s", "time must increase from row to row");
         c.time.push_back(t);
         c.speed.push_back(v / 3.6);
         if (ig >= 0) {
-            const double g = csv_cell_number(cells[ig], file, ln, ig + 1, "gear");
+            const double g = csv_cell_number(cells[ig], file, ln, ig + 1, "gear", sep);
             if (g < 0 || g > 20 || g != std::floor(g)) throw InputError(file, ln, ig + 1, "gear", "gear must be 0-20");
             c.gear.push_back(static_cast<int>(g));
         }

@@ -9,7 +9,7 @@
 #include "gearloss/core/message_text.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 #include "gearloss/mesh/ehl_path.hpp"
-#include "gearloss/io/json.hpp"
+#include "gearloss/io/json_text.hpp"
 
 namespace gearloss::io {
 
@@ -152,113 +152,93 @@ std::string check_report(const Case& c) {
     return s;
 }
 
-std::string check_json(const Case& c) {
+nlohmann::ordered_json check_json_object(const Case& c) {
     const auto& m = c.model;
     const auto& gb = m.gearbox;
     const auto& L = m.layout;
-    Json j;
-    j.begin_object();
-    j.key("file").value(c.file);
-    j.key("name").value(m.name);
-    j.key("valid").value(true);
-    j.key("ratio_name").value(m.ratio);
-    j.key("speed_ratio_out_in").value(L.ratio);
-    // A key with the values of the two gears of a mesh.
-    const auto both = [&j](const char* key, const auto& a, const auto& b) { j.key(key).begin_array().value(a).value(b).end_array(); };
-    j.key("meshes").begin_array();
+    using nlohmann::ordered_json;
+    ordered_json j;
+    j["file"] = c.file;
+    j["name"] = m.name;
+    j["valid"] = true;
+    j["ratio_name"] = m.ratio;
+    j["speed_ratio_out_in"] = L.ratio;
+    j["meshes"] = ordered_json::array();
     for (size_t i = 0; i < gb.meshes.size(); ++i) {
         const auto& md = L.meshes[i];
         const auto& g = md.geom;
-        j.begin_object();
-        j.key("name").value(gb.meshes[i].name);
-        both("gears", gb.gears[gb.meshes[i].gear[0]].spec.name, gb.gears[gb.meshes[i].gear[1]].spec.name);
-        j.key("loaded").value(md.loaded);
-        j.key("u").value(g.u);
-        j.key("centre_distance_mm").value(g.a_w * 1e3);
-        j.key("reference_centre_distance_mm").value(g.a * 1e3);
-        j.key("working_pressure_angle_deg").value(g.alpha_wt * deg);
-        both("tip_diameters_mm", g.da[0] * 1e3, g.da[1] * 1e3);
-        both("tip_sources", geometry::to_string(g.tip_source[0]), geometry::to_string(g.tip_source[1]));
-        both("tip_alteration_factors", g.k_applied[0], g.k_applied[1]);
-        both("root_diameters_mm", g.df[0] * 1e3, g.df[1] * 1e3);
-        both("working_pitch_diameters_mm", g.dw[0] * 1e3, g.dw[1] * 1e3);
-        j.key("eps_1").value(g.eps1);
-        j.key("eps_2").value(g.eps2);
-        j.key("eps_alpha").value(g.eps_alpha);
-        j.key("eps_beta").value(g.eps_beta);
-        j.key("eps_gamma").value(g.eps_gamma);
-        j.key("H_V_ohlendorf").value(md.H_V_ohlendorf);
-        j.key("H_V_buckingham").value(md.H_V_buckingham);
-        j.key("H_V_wimmer").value(md.H_V_wimmer);
-        j.key("H_V_model").value(mesh::to_string(mesh::mesh_forms(m).loss_factor));
-        j.key("H_V").value(md.loss_factor(mesh::mesh_forms(m).loss_factor));
-        j.key("rho_redC_mm").value(g.rho_redC * 1e3);
-        j.end_object();
+        ordered_json o;
+        // A key with the values of the two gears of a mesh: [gear 1, gear 2].
+        o["name"] = gb.meshes[i].name;
+        o["gears"] = {gb.gears[gb.meshes[i].gear[0]].spec.name, gb.gears[gb.meshes[i].gear[1]].spec.name};
+        o["loaded"] = md.loaded;
+        o["u"] = g.u;
+        o["centre_distance_mm"] = g.a_w * 1e3;
+        o["reference_centre_distance_mm"] = g.a * 1e3;
+        o["working_pressure_angle_deg"] = g.alpha_wt * deg;
+        o["tip_diameters_mm"] = {g.da[0] * 1e3, g.da[1] * 1e3};
+        o["tip_sources"] = {geometry::to_string(g.tip_source[0]), geometry::to_string(g.tip_source[1])};
+        o["tip_alteration_factors"] = {g.k_applied[0], g.k_applied[1]};
+        o["root_diameters_mm"] = {g.df[0] * 1e3, g.df[1] * 1e3};
+        o["working_pitch_diameters_mm"] = {g.dw[0] * 1e3, g.dw[1] * 1e3};
+        o["eps_1"] = g.eps1;
+        o["eps_2"] = g.eps2;
+        o["eps_alpha"] = g.eps_alpha;
+        o["eps_beta"] = g.eps_beta;
+        o["eps_gamma"] = g.eps_gamma;
+        o["H_V_ohlendorf"] = md.H_V_ohlendorf;
+        o["H_V_buckingham"] = md.H_V_buckingham;
+        o["H_V_wimmer"] = md.H_V_wimmer;
+        o["H_V_model"] = mesh::to_string(mesh::mesh_forms(m).loss_factor);
+        o["H_V"] = md.loss_factor(mesh::mesh_forms(m).loss_factor);
+        o["rho_redC_mm"] = g.rho_redC * 1e3;
+        j["meshes"].push_back(std::move(o));
     }
-    j.end_array();
-    j.key("shafts").begin_array();
-    for (size_t i = 0; i < gb.shafts.size(); ++i) {
-        j.begin_object();
-        j.key("name").value(gb.shafts[i].name);
-        j.key("x_mm").value(L.shaft_centre[i].x() * 1e3);
-        j.key("y_mm").value(L.shaft_centre[i].y() * 1e3);
-        j.key("speed_ratio").value(L.body_speed_ratio[L.body_of_shaft[i]]);
-        j.end_object();
-    }
-    j.end_array();
-    j.key("gears").begin_array();
-    for (size_t g = 0; g < gb.gears.size(); ++g) {
-        j.begin_object();
-        j.key("name").value(gb.gears[g].spec.name);
-        j.key("speed_ratio").value(L.body_speed_ratio[L.body_of_gear[g]]);
-        j.key("immersion_mm").value(L.gear_immersion[g] * 1e3);
-        j.end_object();
-    }
-    j.end_array();
-    j.key("bearings").begin_array();
-    for (size_t i = 0; i < gb.bearings.size(); ++i) {
-        j.begin_object();
-        j.key("name").value(gb.bearings[i].name);
-        j.key("type").value(bearings::to_string(gb.bearings[i].spec.type));
-        j.key("speed_ratio").value(L.bearing_speed_ratio[i]);
-        j.key("Fr_per_Nm").value(L.bearing_Fr_pos[i]);
-        j.key("Fa_per_Nm").value(L.bearing_Fa_pos[i]);
-        j.end_object();
-    }
-    j.end_array();
+    j["shafts"] = ordered_json::array();
+    for (size_t i = 0; i < gb.shafts.size(); ++i)
+        j["shafts"].push_back({{"name", gb.shafts[i].name},
+                               {"x_mm", L.shaft_centre[i].x() * 1e3},
+                               {"y_mm", L.shaft_centre[i].y() * 1e3},
+                               {"speed_ratio", L.body_speed_ratio[L.body_of_shaft[i]]}});
+    j["gears"] = ordered_json::array();
+    for (size_t g = 0; g < gb.gears.size(); ++g)
+        j["gears"].push_back({{"name", gb.gears[g].spec.name},
+                              {"speed_ratio", L.body_speed_ratio[L.body_of_gear[g]]},
+                              {"immersion_mm", L.gear_immersion[g] * 1e3}});
+    j["bearings"] = ordered_json::array();
+    for (size_t i = 0; i < gb.bearings.size(); ++i)
+        j["bearings"].push_back({{"name", gb.bearings[i].name},
+                                 {"type", bearings::to_string(gb.bearings[i].spec.type)},
+                                 {"speed_ratio", L.bearing_speed_ratio[i]},
+                                 {"Fr_per_Nm", L.bearing_Fr_pos[i]},
+                                 {"Fa_per_Nm", L.bearing_Fa_pos[i]}});
     const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
-    j.key("oil").begin_object();
-    j.key("name").value(m.oil.name);
-    j.key("base").value(lubricant::to_string(m.oil.base));
-    j.key("nu40_cSt").value(s40.nu_cSt);
-    j.key("nu100_cSt").value(s100.nu_cSt);
-    j.key("rho15_kg_m3").value(m.oil.rho15);
-    j.key("X_L").value(m.oil.X_L);
-    j.key("max_temperature_C").value(m.oil.max_temperature - 273.15);
-    j.end_object();
-    j.key("mechanisms").begin_array();
+    j["oil"] = {{"name", m.oil.name},
+                {"base", lubricant::to_string(m.oil.base)},
+                {"nu40_cSt", s40.nu_cSt},
+                {"nu100_cSt", s100.nu_cSt},
+                {"rho15_kg_m3", m.oil.rho15},
+                {"X_L", m.oil.X_L},
+                {"max_temperature_C", m.oil.max_temperature - 273.15}};
+    j["mechanisms"] = ordered_json::array();
     for (size_t i = 0; i < m.mechanisms.size(); ++i) {
         const auto& mech = m.mechanisms[i];
-        j.begin_object().key("name").value(std::string(mech.name())).key("column").value(std::string(mech.column()));
-        j.key("forms").begin_array();
-        for (const auto& a : mech.forms(m)) {
-            j.begin_object().key("axis").value(a.axis).key("selected").value(mech.form(m, a.axis)).key("forms").begin_array();
-            for (const auto& f : a.forms) j.value(f);
-            j.end_array().end_object();
-        }
-        j.end_array().key("parameters").begin_object();
-        const auto params = mech.parameters();
-        for (size_t k = 0; k < params.size(); ++k) j.key(params[k].name).value(mech.parameter(params[k].name));
-        j.end_object().end_object();
+        ordered_json o;
+        o["name"] = std::string(mech.name());
+        o["column"] = std::string(mech.column());
+        o["forms"] = ordered_json::array();
+        for (const auto& a : mech.forms(m))
+            o["forms"].push_back({{"axis", a.axis}, {"selected", mech.form(m, a.axis)}, {"forms", a.forms}});
+        o["parameters"] = ordered_json::object();
+        for (const auto& p : mech.parameters()) o["parameters"][p.name] = mech.parameter(p.name);
+        j["mechanisms"].push_back(std::move(o));
     }
-    j.end_array();
-    j.key("operating_points").value(c.grid.size());
-    j.key("warnings").begin_array();
-    for (const auto& w : c.warnings) j.value(w);
-    j.end_array();
-    j.end_object();
-    return j.str() + "\n";
+    j["operating_points"] = c.grid.size();
+    j["warnings"] = c.warnings;
+    return j;
 }
+
+std::string check_json(const Case& c) { return json_line(check_json_object(c)); }
 
 std::string mesh_profile_csv(const Case& c, const std::string& mesh_name, double omega_in, double torque_in,
                              double oil_temperature, int positions) {

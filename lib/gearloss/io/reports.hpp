@@ -1,5 +1,6 @@
 #pragma once
 // Human-readable and JSON reports for `gearloss point` and `gearloss check`.
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "gearloss/io/config.hpp"
@@ -9,6 +10,8 @@ namespace gearloss::io {
 
 std::string point_report(const Case& c, const solver::PointResult& r);
 std::string check_report(const Case& c);
+// check --json: the derived data as a JSON object (members in a fixed order), and as text.
+nlohmann::ordered_json check_json_object(const Case& c);
 std::string check_json(const Case& c);
 // Local thermal-EHL state along the path of contact of mesh `mesh_name` at the
 // point's oil temperature (CSV). Throws InputError for an unknown or idle mesh.

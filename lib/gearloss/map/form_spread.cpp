@@ -9,7 +9,7 @@
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/csv_format.hpp"
 #include "gearloss/io/interrupt.hpp"
-#include "gearloss/io/json.hpp"
+#include <nlohmann/json.hpp>
 #include "gearloss/losses/loss_mechanism.hpp"
 #include "gearloss/model/validate.hpp"
 
@@ -153,7 +153,7 @@ std::string spread_csv_cells(const std::vector<SpreadAxis>& axes, const PointSpr
                        combination_label(axes, s.at_max), s.unsolved);
 }
 
-void spread_summary_json(io::Json& j, const std::vector<SpreadAxis>& axes, const SpreadResult& spread,
+void spread_summary_json(nlohmann::ordered_json& j, const std::vector<SpreadAxis>& axes, const SpreadResult& spread,
                          const std::vector<solver::PointResult>& nominal) {
     const auto& spreads = spread.points;
     double widest = 0;  // (P_max - P_min) / P_nominal
@@ -165,25 +165,18 @@ void spread_summary_json(io::Json& j, const std::vector<SpreadAxis>& axes, const
         const double w = (spreads[p].P_max - spreads[p].P_min) / P;
         if (w > widest) widest = w, at = p;
     }
-    j.key("spread").begin_object();
-    j.key("axes").begin_array();
-    for (const auto& a : axes) {
-        j.begin_object().key("axis").value(a.label()).key("nominal").value(a.nominal).key("forms").begin_array();
-        for (const auto& f : a.forms) j.value(f);
-        j.end_array().end_object();
-    }
-    j.end_array();
-    j.key("combinations").value(combination_count(axes));
-    j.key("combinations_not_applicable").value(spread.not_applicable.size());
-    j.key("not_applicable").begin_array();
-    for (const auto& n : spread.not_applicable) j.value(combination_label(axes, n.combination));
-    j.end_array();
-    j.key("points_with_unsolved_combinations").value(points_unsolved);
-    j.key("widest_relative_spread").value(widest);
+    nlohmann::ordered_json s;
+    s["axes"] = nlohmann::ordered_json::array();
+    for (const auto& a : axes) s["axes"].push_back({{"axis", a.label()}, {"nominal", a.nominal}, {"forms", a.forms}});
+    s["combinations"] = combination_count(axes);
+    s["combinations_not_applicable"] = spread.not_applicable.size();
+    s["not_applicable"] = nlohmann::ordered_json::array();
+    for (const auto& n : spread.not_applicable) s["not_applicable"].push_back(combination_label(axes, n.combination));
+    s["points_with_unsolved_combinations"] = points_unsolved;
+    s["widest_relative_spread"] = widest;
     if (widest > 0)
-        j.key("widest_at").begin_object().key("speed_in_rpm").value(nominal[at].speed_in * 30.0 / std::numbers::pi)
-            .key("torque_in_Nm").value(nominal[at].torque_in).end_object();
-    j.end_object();
+        s["widest_at"] = {{"speed_in_rpm", nominal[at].speed_in * 30.0 / std::numbers::pi}, {"torque_in_Nm", nominal[at].torque_in}};
+    j["spread"] = std::move(s);
 }
 
 }  // namespace gearloss::map

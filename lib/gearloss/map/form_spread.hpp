@@ -6,13 +6,11 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "gearloss/io/config.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/model/model.hpp"
-
-namespace gearloss::io {
-class Json;
-}
 
 namespace gearloss::map {
 
@@ -85,7 +83,7 @@ std::string spread_csv_cells(const std::vector<SpreadAxis>& axes, const PointSpr
 // The JSON summary's "spread" member: the axes, the combination count, the combinations that
 // do not apply to the case (count and labels), the points some combination could not solve,
 // and the widest spread relative to the nominal loss.
-void spread_summary_json(io::Json& j, const std::vector<SpreadAxis>& axes, const SpreadResult& spread,
+void spread_summary_json(nlohmann::ordered_json& j, const std::vector<SpreadAxis>& axes, const SpreadResult& spread,
                          const std::vector<solver::PointResult>& nominal);
 
 }  // namespace gearloss::map

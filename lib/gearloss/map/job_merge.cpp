@@ -72,8 +72,12 @@ bool is_status(std::string_view s) {
 // a status the solver gives. An edited or damaged shard is not merged into a map.
 void check_row(const std::string& file, int line, std::string_view row, const Columns& columns) {
     const auto cells = io::split_csv_cells(row);
-    if (cells.size() != columns.count)
-        throw InputError(file, line, 0, "", fmt::format("{} cells, the header has {}", cells.size(), columns.count));
+    if (cells.size() != columns.count) {
+        // A shard saved again by a spreadsheet in a locale with decimal commas: ';' between cells.
+        const std::string hint = io::separator_hint(std::string(row));
+        throw InputError(file, line, 0, "",
+                         fmt::format("{} cells, the header has {}{}", cells.size(), columns.count, hint.empty() ? "" : "; " + hint));
+    }
     for (size_t i = columns.labels; i < cells.size(); ++i) {
         const std::string_view cell = cells[i];
         const auto fail = [&](const std::string& why) {

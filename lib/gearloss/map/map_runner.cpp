@@ -17,7 +17,6 @@
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/issue_location.hpp"
-#include "gearloss/io/json.hpp"
 #include "gearloss/io/yaml_reader.hpp"
 #include "gearloss/losses/loss_mechanism.hpp"
 #include "gearloss/model/validate.hpp"

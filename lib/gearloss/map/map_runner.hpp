@@ -8,10 +8,6 @@
 #include "gearloss/map/map_summary.hpp"
 #include "gearloss/solver/operating_point.hpp"
 
-namespace gearloss::io {
-class Json;
-}
-
 namespace gearloss::map {
 
 struct MapOptions {

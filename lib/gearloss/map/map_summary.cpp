@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gearloss/io/json.hpp"
+#include "gearloss/io/json_text.hpp"
 
 namespace gearloss::map {
 
@@ -40,30 +40,26 @@ void MapSummary::add(const PointFacts& r) {
     }
 }
 
-std::string MapSummary::json(double seconds, const std::function<void(io::Json&)>& more) const {
-    io::Json j;
-    j.begin_object();
-    j.key("points").value(points_);
-    j.key("ok").value(ok_ - above_limit_);
-    j.key("above_oil_limit").value(above_limit_);
-    j.key("no_equilibrium").value(no_equilibrium_);
-    j.key("out_of_range").value(out_of_range_);
-    j.key("seconds").value(seconds);
-    j.key("points_per_second").value(seconds > 0 ? points_ / seconds : 0.0);
+std::string MapSummary::json(double seconds, const std::function<void(nlohmann::ordered_json&)>& more) const {
+    nlohmann::ordered_json j;
+    j["points"] = points_;
+    j["ok"] = ok_ - above_limit_;
+    j["above_oil_limit"] = above_limit_;
+    j["no_equilibrium"] = no_equilibrium_;
+    j["out_of_range"] = out_of_range_;
+    j["seconds"] = seconds;
+    j["points_per_second"] = seconds > 0 ? static_cast<double>(points_) / seconds : 0.0;
     if (ok_ > 0) {
-        j.key("loss_W").begin_object().key("min").value(P_min_).key("max").value(P_max_).end_object();
-        j.key("oil_temp_C").begin_object().key("min").value(T_min_ - 273.15).key("max").value(T_max_ - 273.15).end_object();
+        j["loss_W"] = {{"min", P_min_}, {"max", P_max_}};
+        j["oil_temp_C"] = {{"min", T_min_ - 273.15}, {"max", T_max_ - 273.15}};
     }
-    if (n_eff_ > 0)
-        j.key("efficiency").begin_object().key("min").value(eff_min_).key("max").value(eff_max_).key("mean")
-            .value(eff_sum_ / n_eff_).end_object();
+    if (n_eff_ > 0) j["efficiency"] = {{"min", eff_min_}, {"max", eff_max_}, {"mean", eff_sum_ / static_cast<double>(n_eff_)}};
     if (more) more(j);
-    j.end_object();
-    return j.str() + "\n";
+    return io::json_line(j);
 }
 
 std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds,
-                             const std::function<void(io::Json&)>& more) {
+                             const std::function<void(nlohmann::ordered_json&)>& more) {
     MapSummary s;
     for (const auto& r : results) s.add(r);
     return s.json(seconds, more);

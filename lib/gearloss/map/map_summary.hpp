@@ -8,11 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "gearloss/solver/operating_point.hpp"
 
-namespace gearloss::io {
-class Json;
-}
 
 namespace gearloss::map {
 
@@ -33,7 +32,7 @@ public:
     size_t evaluations() const { return evaluations_; }
     size_t no_equilibrium() const { return no_equilibrium_; }
     // The JSON object; `more` adds members (e.g. the form spread).
-    std::string json(double seconds, const std::function<void(io::Json&)>& more = {}) const;
+    std::string json(double seconds, const std::function<void(nlohmann::ordered_json&)>& more = {}) const;
 
 private:
     size_t points_ = 0, ok_ = 0, above_limit_ = 0, no_equilibrium_ = 0, out_of_range_ = 0, n_eff_ = 0, evaluations_ = 0;
@@ -42,6 +41,6 @@ private:
 
 // The summary of results held whole.
 std::string map_summary_json(const std::vector<solver::PointResult>& results, double seconds,
-                             const std::function<void(io::Json&)>& more = {});
+                             const std::function<void(nlohmann::ordered_json&)>& more = {});
 
 }  // namespace gearloss::map

@@ -225,7 +225,22 @@ std::string header_line(std::string_view text) {
 std::vector<std::string> header_columns(std::string_view line) {
     while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.remove_suffix(1);
     if (line.empty()) return {};
-    return io::split_csv_line(std::string(line));
+    // Cells as gearloss writes them (io::csv_cell): split at commas outside quotes, a quoted
+    // cell unquoted ("" inside it is one quote).
+    std::vector<std::string> out;
+    for (std::string_view raw : io::split_csv_cells(line)) {
+        if (raw.size() >= 2 && raw.front() == '"' && raw.back() == '"') {
+            std::string s;
+            for (size_t i = 1; i + 1 < raw.size(); ++i) {
+                s += raw[i];
+                if (raw[i] == '"' && raw[i + 1] == '"') ++i;
+            }
+            out.push_back(std::move(s));
+        } else {
+            out.emplace_back(raw);
+        }
+    }
+    return out;
 }
 
 std::string json_text(const ordered_json& j) {

@@ -57,7 +57,8 @@ nlohmann::ordered_json merged_metadata(const std::vector<std::string>& shards, c
 
 // The header of a CSV text: its first line that does not start with '#' (without the newline).
 std::string header_line(std::string_view csv_text);
-// The column names of a header line (cells split as io::split_csv_line: quotes removed).
+// The cells of a CSV line gearloss wrote (a header's column names): split at commas outside
+// quotes, quoted cells unquoted.
 std::vector<std::string> header_columns(std::string_view header_line);
 
 // The '#' provenance lines at the top of a VECTO table (program version, case file, name and

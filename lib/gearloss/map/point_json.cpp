@@ -21,9 +21,7 @@ ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : orde
 
 ordered_json row_object(const std::string& header, const std::string& row) {
     const auto names = header_columns(header);
-    std::string line = row;
-    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
-    const auto cells = io::split_csv_line(line);
+    const auto cells = header_columns(row);  // a row's cells, split the same way
     ordered_json o = ordered_json::object();
     for (size_t i = 0; i < names.size() && i < cells.size(); ++i) {
         double v = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <limits>
@@ -30,10 +31,12 @@ double RoelandsLaw::viscosity(double p) const {
 
 namespace {
 
-// 5-point Gauss-Legendre on [-1, 1]. The Hertz pressure is even in x, so the five nodes
-// give three distinct pressures: the centre and two symmetric pairs (weights doubled).
-constexpr std::array<double, 3> kX = {0.0, 0.5384693101056831, 0.9061798459386640};
-constexpr std::array<double, 3> kW = {0.5688888888888889, 2 * 0.4786286704993665, 2 * 0.2369268850561891};
+// 5-point Gauss-Legendre on [-1, 1] (Boost.Math's rule: the nodes 0 <= x0 < x1 < x2 and their
+// weights). The Hertz pressure is even in x, so the five nodes give three distinct pressures:
+// the centre and two symmetric pairs (weights doubled).
+using Gauss5 = boost::math::quadrature::gauss<double, 5>;
+const std::array<double, 3> kX = {Gauss5::abscissa()[0], Gauss5::abscissa()[1], Gauss5::abscissa()[2]};
+const std::array<double, 3> kW = {Gauss5::weights()[0], 2 * Gauss5::weights()[1], 2 * Gauss5::weights()[2]};
 
 struct Traction {
     double tau_mean = 0, p_mean = 0;

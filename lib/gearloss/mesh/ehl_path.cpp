@@ -1,6 +1,7 @@
 #include "gearloss/mesh/ehl_path.hpp"
 
 #include <algorithm>
+#include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <limits>
 
@@ -77,10 +78,14 @@ PathProfile ehl_path(const geometry::PairGeometry& g, double L_mean, double omeg
 
 namespace {
 
-constexpr double kG3x[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-constexpr double kG3w[3] = {0.5555555555555556, 0.8888888888888888, 0.5555555555555556};
-constexpr double kG4x[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-constexpr double kG4w[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+// Gauss-Legendre rules on [-1, 1], nodes in increasing order, from Boost.Math's tables of the
+// non-negative nodes (x0 < x1 ...) and their weights.
+using Gauss3 = boost::math::quadrature::gauss<double, 3>;
+using Gauss4 = boost::math::quadrature::gauss<double, 4>;
+const double kG3x[3] = {-Gauss3::abscissa()[1], Gauss3::abscissa()[0], Gauss3::abscissa()[1]};
+const double kG3w[3] = {Gauss3::weights()[1], Gauss3::weights()[0], Gauss3::weights()[1]};
+const double kG4x[4] = {-Gauss4::abscissa()[1], -Gauss4::abscissa()[0], Gauss4::abscissa()[0], Gauss4::abscissa()[1]};
+const double kG4w[4] = {Gauss4::weights()[1], Gauss4::weights()[0], Gauss4::weights()[0], Gauss4::weights()[1]};
 
 // Spur pair: the path A-E split at the load-share jumps B, D and the sliding kink C;
 // 3-point Gauss-Legendre per segment (12 contact solutions).
