@@ -101,6 +101,26 @@ void set_command_line(int argc, char** argv) { command_line_storage().assign(arg
 
 const std::vector<std::string>& command_line() { return command_line_storage(); }
 
+void write_csv_sidecar(const std::string& csv, const io::Case& k, std::string_view header_line,
+                       map::MetadataRequest r) {
+    if (!map::wants_sidecar(csv)) return;
+    const auto& argv = command_line();
+    r.command = argv.size() > 1 ? argv[1] : "";
+    r.command_line = argv;
+    r.columns = map::header_columns(header_line);
+    map::write_sidecar(csv, map::output_metadata(k, r));
+}
+
+void write_csv_file(const std::string& csv, const std::string& text, const io::Case& k, map::MetadataRequest r) {
+    write_file(csv, text);
+    write_csv_sidecar(csv, k, map::header_line(text), std::move(r));
+}
+
+std::pair<std::string, std::string> sidecar_output(const std::string& option, const std::string& csv) {
+    if (!map::wants_sidecar(csv)) return {option + " (its metadata)", ""};
+    return {option + " (its metadata " + map::sidecar_path(csv) + ")", map::sidecar_path(csv)};
+}
+
 void write_file(const std::string& file, const std::string& text) {
     io::AtomicFile f(file);
     f.write(text);

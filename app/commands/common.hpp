@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gearloss/io/config.hpp"
+#include "gearloss/map/output_metadata.hpp"
 #include "gearloss/units/units.hpp"
 
 namespace gearloss::app {
@@ -54,6 +55,18 @@ double temperature_difference(const std::string& text, const char* what);
 // The command line as given (main sets it), for the sidecar metadata of outputs.
 void set_command_line(int argc, char** argv);
 const std::vector<std::string>& command_line();
+
+// The sidecar FILE.meta.json of a CSV written to `csv` (map::write_sidecar; nothing for standard
+// output or a device): the case as the command used it, the CSV's header line, and what else
+// the request says (oils, text columns). Written atomically with the command's other outputs:
+// a run that fails leaves neither.
+void write_csv_sidecar(const std::string& csv, const io::Case& k, std::string_view header_line,
+                       map::MetadataRequest r = {});
+// `text` (a CSV, after any '#' lines its header) into `csv`, and its sidecar.
+void write_csv_file(const std::string& csv, const std::string& text, const io::Case& k, map::MetadataRequest r = {});
+// The sidecar a CSV output `csv` of option `option` adds, as an (option, path) pair for
+// io::require_distinct_outputs and io::require_outputs_not_inputs (path empty: none).
+std::pair<std::string, std::string> sidecar_output(const std::string& option, const std::string& csv);
 
 // `text` into `file` (atomically; "-" = stdout).
 void write_file(const std::string& file, const std::string& text);

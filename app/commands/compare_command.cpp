@@ -1,4 +1,4 @@
-// gearloss compare: the same map for two oils and their differences per point (B - A).
+// gearloss compare: the same map for two or more oils and their differences per point (oil k - oil A).
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "commands/grid_overrides.hpp"
@@ -6,7 +6,7 @@
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/io/output_paths.hpp"
-#include "gearloss/map/compare.hpp"
+#include "gearloss/map/compare_oils.hpp"
 #include "gearloss/map/map_runner.hpp"
 
 namespace gearloss::app {
@@ -15,14 +15,18 @@ namespace {
 class CompareCommand final : public Command {
 public:
     CLI::App* add_to(CLI::App& app) override {
-        auto* s = app.add_subcommand("compare", "the same map for two oils and their differences per point (B - A)");
+        auto* s = app.add_subcommand("compare", "the same map for two or more oils and their differences per point "
+                                                "(oil k - the first oil)");
         s->add_option("config", common_.config, "gearbox case (YAML)")->required();
-        s->add_option("--oil", oils_, "oil files A and B (give --oil twice)")->required();
+        s->add_option("--oil", oils_, "oil files: the reference A first, then each oil compared with it (give --oil "
+                                      "two or more times)")->required();
         s->add_option("--ratio", common_.ratio, "select a ratio defined under gearbox.ratios");
         s->add_option("--oil-temp", common_.oil_temp, "fixed oil temperature (e.g. 70degC): no thermal solve");
         grid_.add_to(*s, "override the input speeds", "override the input torques");
         s->add_option("-o,--output", out_, "output CSV ('-' = stdout)");
         s->add_option("--threads", threads_, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+        s->add_flag("--detail", detail_, "add each mechanism's loss per oil and its difference to the first oil");
+        s->add_option("--json", json_, "also write the comparison as JSON (summary per oil and every point) to this file");
         s->footer("Example: gearloss compare configs/transfer-box.yaml --oil configs/oils/75W90-A.yaml "
                   "--oil configs/oils/75W140-A.yaml -o diff.csv");
         return s;
@@ -31,31 +35,53 @@ public:
     int run() override {
         std::vector<std::pair<std::string, std::string>> inputs = {{"config", common_.config}};
         for (const auto& f : oils_) inputs.emplace_back("--oil", f);
-        io::require_outputs_not_inputs({{"--output", out_}}, inputs);
-        if (oils_.size() != 2) throw InputError("", 0, 0, "--oil", "compare needs exactly two oils (--oil A --oil B)");
-        io::Case base = load_with_options(common_);  // common_.oil stays empty: the two oils are --oil A and B
+        const std::vector<std::pair<std::string, std::string>> outputs = {
+            {"--output", out_}, sidecar_output("--output", out_), {"--json", json_}};
+        io::require_distinct_outputs(outputs);
+        io::require_outputs_not_inputs(outputs, inputs);
+        if (oils_.size() < 2) throw InputError("", 0, 0, "--oil", "compare needs two or more oils (--oil A --oil B ...)");
+        io::Case base = load_with_options(common_);  // common_.oil stays empty: the oils are the --oil files
         grid_.apply(base, {"600,700rpm", "150,200Nm"});  // a point list with --speed/--torque: as map
-        io::Case a = base, b = base;
-        io::replace_oil(a, io::load_oil_file(oils_[0]));
-        io::replace_oil(b, io::load_oil_file(oils_[1]));
-        for (int i : {0, 1}) {  // each oil with the grid (gearloss/model/validate.hpp)
-            map::CaseOverrides o = grid_.case_overrides();
+        std::vector<io::Case> cases(oils_.size(), base);
+        for (size_t i = 0; i < oils_.size(); ++i) {
+            io::replace_oil_file(cases[i], oils_[i]);
+            map::CaseOverrides o = grid_.case_overrides();  // each oil with the grid (gearloss/model/validate.hpp)
             o.oil_temp = common_.oil_temp;
             o.oil = oils_[i];
-            map::validate_case(i ? b : a, o);
+            map::validate_case(cases[i], o);
         }
         map::MapOptions mo;
         mo.threads = threads_;
         ProgressMeter meter;
         mo.progress = meter.callback();
-        const auto ra = map::run_map(a.model, a.grid, mo);
-        io::throw_if_interrupted();  // not the second map
-        const auto rb = map::run_map(b.model, b.grid, mo);
-        if (!io::g_interrupted) {
-            io::AtomicFile f(out_);
-            f.write(map::compare_header(a.model.oil.name, b.model.oil.name));
-            for (size_t i = 0; i < ra.size(); ++i) f.write(map::compare_row(ra[i], rb[i]));
-            f.commit();
+        std::vector<std::vector<solver::PointResult>> maps;
+        for (const auto& c : cases) {
+            maps.push_back(map::run_map(c.model, c.grid, mo));
+            io::throw_if_interrupted();  // not the next map
+        }
+        std::vector<std::string> names;
+        map::MetadataRequest meta;
+        for (size_t i = 0; i < cases.size(); ++i) {
+            names.push_back(cases[i].model.oil.name);
+            meta.oils.push_back({cases[i].model.oil, oils_[i]});
+        }
+        // The metadata's case: the first oil's (its assumed values); "oils" lists every oil.
+        const auto& m = cases[0].model;
+        const std::string header = map::compare_oils_header(m, names, detail_);
+        io::AtomicFile f(out_);
+        f.write(header);
+        std::vector<const solver::PointResult*> row(maps.size());
+        for (size_t i = 0; i < maps[0].size(); ++i) {
+            for (size_t k = 0; k < maps.size(); ++k) row[k] = &maps[k][i];
+            f.write(map::compare_oils_row(m, row, detail_));
+        }
+        f.commit();
+        write_csv_sidecar(out_, cases[0], header, meta);
+        if (!json_.empty()) {
+            meta.command = command_line().size() > 1 ? command_line()[1] : "compare";
+            meta.command_line = command_line();
+            meta.columns.clear();
+            write_file(json_, map::json_text(map::compare_json(m, names, maps, map::output_metadata(cases[0], meta))));
         }
         return kOk;
     }
@@ -64,8 +90,9 @@ private:
     CommonOptions common_;
     GridOverrides grid_;
     std::vector<std::string> oils_;
-    std::string out_ = "-";
+    std::string out_ = "-", json_;
     int threads_ = 0;
+    bool detail_ = false;
 };
 
 }  // namespace

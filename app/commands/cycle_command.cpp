@@ -41,8 +41,10 @@ public:
     }
 
     int run() override {
-        io::require_distinct_outputs({{"--output", out_}, {"--json", json_}});
-        io::require_outputs_not_inputs({{"--output", out_}, {"--json", json_}},
+        const std::vector<std::pair<std::string, std::string>> outputs = {
+            {"--output", out_}, sidecar_output("--output", out_), {"--json", json_}};
+        io::require_distinct_outputs(outputs);
+        io::require_outputs_not_inputs(outputs,
                                        {{"config", config_}, {"--oil", oil_}, {"--cycle", cycle_}});
         io::Case k = io::load_case(config_);
         map::CaseOverrides no_grid;  // a cycle has no operating grid
@@ -67,7 +69,15 @@ public:
             std::fprintf(stderr, "cycle %s: %zu steps simulated in %.2f ms\n", dc.name.c_str(), dc.time.size() - 1,
                          1e3 * study.seconds_per_run);
         write_optional_file(json_, io::cycle_summary_json(pt, study, so));
-        write_optional_file(out_, io::cycle_trace_csv(pt, study));
+        if (!out_.empty()) {
+            // The sidecar's case: the case with --oil; a cycle's oil temperature is transient.
+            io::Case described = k;
+            if (!oil_.empty()) io::replace_oil_file(described, oil_);
+            write_csv_file(out_, io::cycle_trace_csv(pt, study), described,
+                           {.thermal = {{"mode", "transient"}, {"oil_temperature_C", nullptr},
+                                        {"start_temperature_C", so.start_temperature - 273.15},
+                                        {"ambient_C", so.ambient - 273.15}}});
+        }
         return kOk;
     }
 

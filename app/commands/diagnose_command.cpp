@@ -38,7 +38,8 @@ public:
 
     int run() override {
         const std::vector<std::pair<std::string, std::string>> outputs = {
-            {"--json", json_}, {"--residuals", residuals_}, {"--write-config", write_config_}};
+            {"--json", json_}, {"--residuals", residuals_}, sidecar_output("--residuals", residuals_),
+            {"--write-config", write_config_}};
         io::require_distinct_outputs(outputs);
         io::require_outputs_not_inputs(outputs,
                                        {{"config", common_.config}, {"--oil", common_.oil}, {"recordings", recordings_}});
@@ -67,7 +68,7 @@ public:
         if (tty) std::fputs("\r\033[K", stderr);
         io::write_stdout(diagnosis::diagnosis_text(d));
         write_optional_file(json_, diagnosis::diagnosis_json(d));
-        write_optional_file(residuals_, diagnosis::residuals_csv(d));
+        if (!residuals_.empty()) write_csv_file(residuals_, diagnosis::residuals_csv(d), k);
         if (!write_config_.empty()) diagnosis::write_calibrated_config(common_.config, write_config_, d);
         return kOk;
     }

@@ -65,9 +65,8 @@ public:
     }
 
     int run() override {
-        io::require_distinct_outputs({{"--output", out_}, {"--json", json_}});
-        io::require_outputs_not_inputs({{"--output", out_}, {"--json", json_}},
-                                       {{"config", common_.config}, {"--oil", common_.oil}});
+        io::require_distinct_outputs(outputs());
+        io::require_outputs_not_inputs(outputs(), {{"config", common_.config}, {"--oil", common_.oil}});
         const bool axes_given = spread_axes_option_ && spread_axes_option_->count() > 0;
         if (axes_given && spread_axes_text_.empty())
             throw InputError("", 0, 0, "--spread-axes", "empty: name the axes, e.g. mesh.friction,windage.form");
@@ -112,11 +111,16 @@ private:
                                  .threads = threads_, .stats = stats_});
     }
 
+    // The files written: the CSV, its sidecar FILE.meta.json, the summary.
+    std::vector<std::pair<std::string, std::string>> outputs() const {
+        return {{"--output", out_}, sidecar_output("--output", out_), {"--json", json_}};
+    }
+
     // No output onto a file the case names (its oil file, a sweep's oil files).
     void require_outputs_not_named(const std::vector<std::pair<std::string, std::string>>& named) const {
         std::vector<std::pair<std::string, std::string>> inputs;
         for (const auto& [key, file] : named) inputs.emplace_back("named by the case at '" + key + "'", file);
-        io::require_outputs_not_inputs({{"--output", out_}, {"--json", json_}}, inputs);
+        io::require_outputs_not_inputs(outputs(), inputs);
     }
 
     // "mesh.friction,windage.form" -> its axes; an empty name is an error naming the option.
@@ -159,8 +163,14 @@ private:
                 file = stem + "_" + ratio + ".vtlm";
             }
             io::AtomicFile f(file);
-            map::write_vecto_table(k.model, k.grid.speeds, k.grid.torques, opt, [&f](std::string_view s) { f.write(s); });
+            f.write(map::vecto_provenance(k));  // '#' lines, skipped by VECTO's reader
+            std::string header;
+            map::write_vecto_table(k.model, k.grid.speeds, k.grid.torques, opt, [&](std::string_view s) {
+                if (header.empty()) header = map::header_line(s);
+                f.write(s);
+            });
             f.commit();
+            write_csv_sidecar(file, k, header);
         }
         return kOk;
     }
@@ -225,6 +235,8 @@ private:
     // the job (gearloss merge joins the shards).
     int run_job(io::Case k, const std::shared_ptr<io::Sweep>& sweep, const map::MapOptions& opt,
                 std::optional<double> oil_temp) {
+        io::Case described = k;  // the sidecar's case: the first variant, with the sweep's axes
+        described.sweep = sweep->axes();
         std::optional<map::MapJob> job;
         if (sweep->axes().empty()) {
             std::vector<map::MapJob::Variant> one;
@@ -257,6 +269,7 @@ private:
                          n ? double(summary.evaluations()) / n : 0.0, summary.no_equilibrium());
         }
         f.commit();
+        write_csv_sidecar(out_, described, job->header(detail_));
         write_optional_file(json_, summary.json(seconds));
         return kOk;
     }
@@ -309,7 +322,8 @@ private:
             return line + "," + cells + "\n";
         };
         io::AtomicFile f(out_);
-        f.write(with_spread(map::csv_header(k.model, detail_), map::spread_csv_header()));
+        const std::string header = with_spread(map::csv_header(k.model, detail_), map::spread_csv_header());
+        f.write(header);
         std::string buf;
         for (size_t i = 0; i < results.size(); ++i) {
             if ((i & 4095) == 0) io::throw_if_interrupted();
@@ -321,6 +335,7 @@ private:
         }
         f.write(buf);
         f.commit();
+        write_csv_sidecar(out_, k, header, {.text_columns = {"forms_at_min", "forms_at_max"}, .units = {{"combinations_unsolved", "1"}}});
         write_optional_file(json_, summary.json(seconds, [&](nlohmann::ordered_json& j) { map::spread_summary_json(j, axes, spread, results); }));
         return kOk;
     }

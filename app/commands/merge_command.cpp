@@ -21,11 +21,20 @@ public:
 
     int run() override {
         std::vector<std::pair<std::string, std::string>> inputs;
-        for (const auto& f : shards_) inputs.emplace_back("shards", f);
-        io::require_outputs_not_inputs({{"--output", out_}}, inputs);
+        for (const auto& f : shards_) {
+            inputs.emplace_back("shards", f);
+            inputs.emplace_back("shards (metadata)", map::sidecar_path(f));
+        }
+        io::require_outputs_not_inputs({{"--output", out_}, sidecar_output("--output", out_)}, inputs);
         io::AtomicFile f(out_);
-        map::merge_shards(shards_, [&f](std::string_view s) { f.write(s); });
+        std::string header;
+        map::merge_shards(shards_, [&](std::string_view s) {
+            if (header.empty()) header = map::header_line(s);
+            f.write(s);
+        });
         f.commit();
+        // The merged file's sidecar, from the first shard's (nothing for standard output).
+        if (map::wants_sidecar(out_)) map::write_sidecar(out_, map::merged_metadata(shards_, command_line(), header));
         return kOk;
     }
 

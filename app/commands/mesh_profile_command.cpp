@@ -24,14 +24,15 @@ public:
     }
 
     int run() override {
-        io::require_outputs_not_inputs({{"--output", out_}}, {{"config", common_.config}, {"--oil", common_.oil}});
+        io::require_outputs_not_inputs({{"--output", out_}, sidecar_output("--output", out_)},
+                                       {{"config", common_.config}, {"--oil", common_.oil}});
         io::Case k = load_with_options(common_);
         const double w = point_speed(speed_, "1600rpm");
         const double T = point_torque(torque_, "720Nm");
         const auto r = solver::solve_point(k.model, w, T);
         if (!solver::has_values(r.status))
             throw InputError("", 0, 0, "--speed", solver::status_text(r) + " at this point (give --oil-temp)");
-        write_file(out_, io::mesh_profile_csv(k, mesh_, w, T, r.oil_temperature, positions_));
+        write_csv_file(out_, io::mesh_profile_csv(k, mesh_, w, T, r.oil_temperature, positions_), k);
         return kOk;
     }
 

@@ -5,6 +5,7 @@
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/reports.hpp"
 #include "gearloss/map/map_runner.hpp"
+#include "gearloss/map/point_json.hpp"
 
 namespace gearloss::app {
 namespace {
@@ -16,23 +17,31 @@ public:
         add_common_options(*s, common_);
         s->add_option("--speed", speed_, "input speed, e.g. 800rpm")->required();
         s->add_option("--torque", torque_, "input torque, e.g. 250Nm")->required();
-        s->footer("Example: gearloss point configs/transfer-box.yaml --speed 800rpm --torque 250Nm");
+        s->add_option("--json", json_, "write the point as JSON to this file ('-' = stdout, instead of the text)");
+        s->footer("Example: gearloss point configs/transfer-box.yaml --speed 800rpm --torque 250Nm --json point.json");
         return s;
     }
 
     int run() override {
+        io::require_outputs_not_inputs({{"--json", json_}}, {{"config", common_.config}, {"--oil", common_.oil}});
         io::Case k = load_with_options(common_);
         const double w = point_speed(speed_, "800rpm");
         const double T = point_torque(torque_, "250Nm");
         map::validate_point(w, T);
         const auto r = solver::solve_point(k.model, w, T, true);
-        io::write_stdout(io::point_report(k, r));
+        if (json_ != "-") io::write_stdout(io::point_report(k, r));
+        if (!json_.empty()) {
+            map::MetadataRequest meta;
+            meta.command = "point";
+            meta.command_line = command_line();
+            write_file(json_, map::json_text(map::point_json(k, r, map::output_metadata(k, meta))));
+        }
         return kOk;
     }
 
 private:
     CommonOptions common_;
-    std::string speed_, torque_;
+    std::string speed_, torque_, json_;
 };
 
 }  // namespace

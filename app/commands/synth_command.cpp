@@ -25,7 +25,8 @@ public:
     }
 
     int run() override {
-        io::require_outputs_not_inputs({{"--output", out_}}, {{"config", common_.config}, {"--oil", common_.oil}});
+        io::require_outputs_not_inputs({{"--output", out_}, sidecar_output("--output", out_)},
+                                       {{"config", common_.config}, {"--oil", common_.oil}});
         io::Case k = load_with_options(common_);
         grid_.apply_checked(k, {"600,700rpm", "150,200Nm"});  // a point list with --speed/--torque: as map
         diagnosis::SynthOptions so;
@@ -34,7 +35,7 @@ public:
         so.noise_temp = temperature_difference(noise_temp_, "--noise-temp");
         so.seed = seed_;
         so.raw_log = format_ == "log";
-        write_file(out_, diagnosis::synthesize(k.model, k.grid, so));
+        write_csv_file(out_, diagnosis::synthesize(k.model, k.grid, so), k);
         return kOk;
     }
 

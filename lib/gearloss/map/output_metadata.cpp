@@ -120,6 +120,7 @@ ordered_json output_metadata(const io::Case& c, const MetadataRequest& r) {
     j["thermal"] = {{"mode", fixed ? "fixed" : "stabilised"},
                     {"oil_temperature_C", fixed ? number(m.thermal.oil_temperature - 273.15) : ordered_json(nullptr)},
                     {"ambient_C", number(m.thermal.ambient - 273.15)}};
+    if (!r.thermal.is_null()) j["thermal"] = r.thermal;
     // i = n_in / n_out, signed (negative: the output turns the other way).
     const double speed_ratio = m.layout.ratio;
     j["ratio"] = {{"name", text_or_null(m.ratio)},
@@ -153,6 +154,100 @@ ordered_json output_metadata(const io::Case& c, const MetadataRequest& r) {
     return j;
 }
 
+std::string vecto_provenance(const io::Case& c) {
+    const auto one_line = [](std::string s) {
+        std::ranges::replace_if(s, [](char ch) { return ch == '\n' || ch == '\r'; }, ' ');
+        return s;
+    };
+    const auto& m = c.model;
+    const bool fixed = m.thermal.mode == solver::ThermalMode::fixed;
+    const double speed_ratio = m.layout.ratio;
+    std::string s = fmt::format("# gearloss {} torque-loss table (VECTO .vtlm)\n", GEARLOSS_VERSION);
+    s += one_line(fmt::format("# case: {} ({}), hash {}", c.file, m.name, case_hash(c))) + "\n";
+    s += one_line(fmt::format("# oil: {} ({}){}", m.oil.name, lubricant::to_string(m.oil.base),
+                              c.oil_file.empty() ? "" : ", " + c.oil_file)) + "\n";
+    s += fixed ? fmt::format("# oil temperature: {:g} degC (fixed)\n", m.thermal.oil_temperature - 273.15)
+               : std::string("# oil temperature: stabilised (heat balance per point)\n");
+    s += one_line(fmt::format("# gear: {}, i = n_in/n_out = {:.6g}", m.ratio.empty() ? "(single ratio)" : m.ratio,
+                              speed_ratio != 0 ? 1.0 / speed_ratio : 0.0)) + "\n";
+    return s;
+}
+
+ordered_json merged_metadata(const std::vector<std::string>& shards, const std::vector<std::string>& command_line,
+                             std::string_view header) {
+    ordered_json j;
+    if (!shards.empty()) {
+        try {
+            j = ordered_json::parse(io::read_regular_file(sidecar_path(shards.front()), io::kMaxYamlFileBytes), nullptr, false);
+        } catch (const std::exception&) {
+            j = nullptr;  // no sidecar next to the shard (or not readable): the keys below only
+        }
+        if (!j.is_object() || j.value("format", "") != kMetadataFormat) j = nullptr;
+    }
+    if (j.is_null()) {
+        j = ordered_json::object();
+        j["format"] = kMetadataFormat;
+        j["gearloss_version"] = GEARLOSS_VERSION;
+        for (const char* key : {"case", "oil", "thermal", "ratio", "model_forms"}) j[key] = nullptr;
+        j["assumed"] = ordered_json::array();
+        j["sweep"] = ordered_json::array();
+    }
+    j["gearloss_version"] = GEARLOSS_VERSION;
+    j["command"] = "merge";
+    j["command_line"] = command_line;
+    j["merged_from"] = shards;
+    ordered_json columns = ordered_json::array();
+    const auto old = j.contains("columns") && j["columns"].is_array() ? j["columns"] : ordered_json::array();
+    for (const auto& name : header_columns(header)) {
+        ordered_json unit = column_unit(name) ? ordered_json(*column_unit(name)) : ordered_json(nullptr);
+        for (const auto& c : old)  // the shard's sidecar knows the text columns (sweep labels)
+            if (c.is_object() && c.value("name", "") == name && c.contains("unit")) unit = c["unit"];
+        columns.push_back({{"name", name}, {"unit", unit}});
+    }
+    j["columns"] = columns;
+    return j;
+}
+
+std::string header_line(std::string_view text) {
+    size_t a = 0;
+    while (a < text.size()) {
+        const size_t e = std::min(text.find('\n', a), text.size());
+        if (text[a] != '#') {
+            std::string_view line = text.substr(a, e - a);
+            if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+            return std::string(line);
+        }
+        a = e + 1;
+    }
+    return "";
+}
+
+std::vector<std::string> header_columns(std::string_view line) {
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.remove_suffix(1);
+    if (line.empty()) return {};
+    // Cells as gearloss writes them (io::csv_cell): split at commas outside quotes, a quoted
+    // cell unquoted ("" inside it is one quote).
+    std::vector<std::string> out;
+    for (std::string_view raw : io::split_csv_cells(line)) {
+        if (raw.size() >= 2 && raw.front() == '"' && raw.back() == '"') {
+            std::string s;
+            for (size_t i = 1; i + 1 < raw.size(); ++i) {
+                s += raw[i];
+                if (raw[i] == '"' && raw[i + 1] == '"') ++i;
+            }
+            out.push_back(std::move(s));
+        } else {
+            out.emplace_back(raw);
+        }
+    }
+    return out;
+}
+
+std::string json_text(const ordered_json& j) {
+    // dump() would throw on invalid UTF-8; names and titles are checked UTF-8 when read.
+    return j.dump(2, ' ', false, ordered_json::error_handler_t::replace) + "\n";
+}
+
 std::string sidecar_path(const std::string& csv_path) { return csv_path + ".meta.json"; }
 
 bool wants_sidecar(const std::string& csv_path) {
@@ -166,7 +261,7 @@ void write_sidecar(const std::string& csv_path, const ordered_json& meta) {
     io::AtomicFile f(sidecar_path(csv_path));
     // dump() would throw on invalid UTF-8; names and titles are checked UTF-8 when read, and
     // anything else (a path from the command line) is replaced rather than refused.
-    f.write(meta.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
+    f.write(json_text(meta));
     f.commit();
 }
 

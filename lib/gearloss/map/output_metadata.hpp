@@ -30,6 +30,8 @@ struct MetadataRequest {
     std::vector<MetadataOil> oils;          // compare: every oil, the reference first (then "oils" replaces "oil")
     // Unit of a column whose name does not say it (column_unit's answer otherwise).
     std::vector<std::pair<std::string, std::string>> units;
+    // Replaces the "thermal" object when not null (a drive cycle: "mode": "transient").
+    nlohmann::ordered_json thermal;
 };
 
 // The unit a column's name carries ("P_mesh_W": "W", "oil_temp_C": "degC", "Torque Loss [Nm]":
@@ -45,6 +47,31 @@ std::string case_hash(const io::Case& c);
 // The sidecar document for an output computed from `c` (the case as the command used it:
 // --oil, --oil-temp and --ratio applied).
 nlohmann::ordered_json output_metadata(const io::Case& c, const MetadataRequest& r);
+
+// The sidecar of `gearloss merge`'s output: the first shard's sidecar (every shard is one job,
+// merge checked their fingerprints) with the merge's command line, "merged_from" and the
+// columns of `header_line`; without a readable shard sidecar, the keys that need no case
+// (case, oil, thermal, ratio... null).
+nlohmann::ordered_json merged_metadata(const std::vector<std::string>& shards, const std::vector<std::string>& command_line,
+                                       std::string_view header_line);
+
+// The header of a CSV text: its first line that does not start with '#' (without the newline).
+std::string header_line(std::string_view csv_text);
+// The cells of a CSV line gearloss wrote (a header's column names): split at commas outside
+// quotes, quoted cells unquoted.
+std::vector<std::string> header_columns(std::string_view header_line);
+
+// The '#' provenance lines at the top of a VECTO table (program version, case file, name and
+// hash, oil, oil temperature, gear and its ratio). VECTO's CSV reader skips lines that start
+// with '#' (VECTO source, TU Graz for the European Commission, VectoCore/Utils/VectoCSVFile.cs:
+// ReadCSV parses with CommentTokens = {"#"}, and its own writer starts files with a
+// "# VECTO <version>" line), so the table reads as before. Each line is one line: line breaks
+// in a name or path are replaced by blanks.
+std::string vecto_provenance(const io::Case& c);
+
+// A JSON document as gearloss writes it: indented by 2, one trailing newline, non-finite
+// numbers as null, invalid UTF-8 (a path from the command line) replaced, never refused.
+std::string json_text(const nlohmann::ordered_json& j);
 
 // "map.csv" -> "map.csv.meta.json".
 std::string sidecar_path(const std::string& csv_path);
