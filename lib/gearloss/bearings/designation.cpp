@@ -66,9 +66,9 @@ std::optional<std::string> skf_series_of_designation(const std::string& text) {
     const auto k = designation_key(text);
     if (!k) return std::nullopt;
     const std::string& n = k->number;
-    if (n.find('/') != std::string::npos && k->prefix != "NK") return std::nullopt;
+    if (k->prefix == "K" || k->prefix == "NK" || k->prefix == "NKI" || k->prefix == "NA") return std::string("other");
+    if (n.find('/') != std::string::npos) return std::nullopt;
     if (k->prefix == "QJ") return std::string("QJ");
-    if (k->prefix == "K" || k->prefix == "NK" || k->prefix == "NA") return std::string("other");
     if (k->prefix == "N" || k->prefix == "NU" || k->prefix == "NJ" || k->prefix == "NUP") {
         if (n.size() == 3) return n.substr(0, 1);  // NJ 406 -> 4
         if (n.size() == 4) return n.substr(0, 2);  // NU 2210 -> 22
