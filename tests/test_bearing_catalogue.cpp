@@ -184,6 +184,26 @@ TEST_CASE("catalogue: ISO 15 dimension plan relations between series", "[bearing
         }
     }
     CHECK(compared > 60);
+    // 72 AC / 73 AC (25 deg, SKF (2018) 17000) against 72 B / 73 B (40 deg, SKF (2008) 6000 RU):
+    // the same ISO 15 dimension series, read from two editions' tables.
+    int angles = 0;
+    for (int code = 2; code <= 20; ++code) {
+        const std::string c = (code < 10 ? "0" : "") + std::to_string(code);
+        for (const char* s : {"72", "73"}) {
+            const auto* ac = cat().find(s + c + "AC");
+            const auto* b = cat().find(s + c + "B");
+            if (!ac || !b) continue;
+            INFO(s << c << " AC vs B");
+            CHECK(ac->d == Approx(b->d));
+            CHECK(ac->D == Approx(b->D));
+            CHECK(ac->B == Approx(b->B));
+            CHECK(ac->skf_series == std::string(s) + "AC");
+            CHECK(ac->contact_angle.value() == Approx(25 * 3.141592653589793 / 180));
+            ++angles;
+        }
+    }
+    CHECK(angles == 24);
+    CHECK(row("7308 AC").C.value() == Approx(56000));  // SKF (2018): 7308 ACCBM C 56 kN (transcription)
     // ISO 15 bore codes: 00..03 are 10, 12, 15, 17 mm, then d = 5 x code.
     CHECK(row("6200").d == Approx(10e-3));
     CHECK(row("6203").d == Approx(17e-3));
