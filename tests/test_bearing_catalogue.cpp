@@ -58,6 +58,17 @@ TEST_CASE("designation keys: spaces, suffixes, case", "[bearing_catalogue]") {
     CHECK(key("K 38x43x27") == "K38X43X27");
     CHECK(key("NK 25/20") == "NK25/20");
     CHECK(key("32206 BJ2/Q") == "32206B");
+    // A suffix after a blank, starting with a digit or not: the number ends at the blank.
+    CHECK(key("6307 2Z") == "6307");
+    CHECK(key("6307 2RS1") == "6307");
+    CHECK(key("6307 Z") == "6307");
+    CHECK(key("6307 2Z/C3") == "6307");
+    CHECK(key("NU2210 ECP") == "NU2210");
+    CHECK(key("NA 4905") == "NA4905");
+    CHECK(key("NA 49/22") == "NA49/22");
+    CHECK(key("NKI 25/20") == "NKI25/20");
+    CHECK(key("62/28") == "62/28");
+    CHECK(key("7308 AC") == "7308AC");
     CHECK_FALSE(bearings::designation_key("Q J"));
     // The SKF (2004) constants row of a designation: the fix for `series: NJ 406` (was rejected).
     CHECK(bearings::skf_series_of_designation("NJ 406").value() == "4");
