@@ -13,8 +13,18 @@ bool alpha(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
 
 std::optional<DesignationKey> designation_key(const std::string& text) {
     std::string s;  // upper case, no blanks; '.' and '-' start a suffix and are kept as marks
-    for (char c : text)
-        if (!std::isspace(static_cast<unsigned char>(c))) s += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    // A blank after the first group that holds a digit ends the number: "6307 2Z" is 6307 with
+    // the suffix 2Z (not 63072), while blanks after leading letters join them ("NU 2210").
+    size_t number_end = std::string::npos;
+    bool seen_digit = false;
+    for (char c : text) {
+        if (std::isspace(static_cast<unsigned char>(c))) {
+            if (seen_digit && number_end == std::string::npos) number_end = s.size();
+            continue;
+        }
+        seen_digit = seen_digit || digit(c);
+        s += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    }
     size_t i = 0;
     while (i < s.size() && alpha(s[i])) ++i;
     DesignationKey k;
@@ -38,12 +48,13 @@ std::optional<DesignationKey> designation_key(const std::string& text) {
         k.key = k.prefix + k.number;
         return k;
     }
+    const size_t end = std::min(s.size(), number_end);
     size_t j = i;
-    while (j < s.size() && digit(s[j])) ++j;
+    while (j < end && digit(s[j])) ++j;
     k.number = s.substr(i, j - i);
-    if (j < s.size() && s[j] == '/' && j + 1 < s.size() && digit(s[j + 1])) {  // 62/28: bore in mm after '/'
+    if (j < end && s[j] == '/' && j + 1 < end && digit(s[j + 1])) {  // 62/28: bore in mm after '/'
         size_t e = j + 1;
-        while (e < s.size() && digit(s[e])) ++e;
+        while (e < end && digit(s[e])) ++e;
         k.number = s.substr(i, e - i);
         j = e;
     }
@@ -66,9 +77,9 @@ std::optional<std::string> skf_series_of_designation(const std::string& text) {
     const auto k = designation_key(text);
     if (!k) return std::nullopt;
     const std::string& n = k->number;
-    if (n.find('/') != std::string::npos && k->prefix != "NK") return std::nullopt;
+    if (k->prefix == "K" || k->prefix == "NK" || k->prefix == "NKI" || k->prefix == "NA") return std::string("other");
+    if (n.find('/') != std::string::npos) return std::nullopt;
     if (k->prefix == "QJ") return std::string("QJ");
-    if (k->prefix == "K" || k->prefix == "NK" || k->prefix == "NA") return std::string("other");
     if (k->prefix == "N" || k->prefix == "NU" || k->prefix == "NJ" || k->prefix == "NUP") {
         if (n.size() == 3) return n.substr(0, 1);  // NJ 406 -> 4
         if (n.size() == 4) return n.substr(0, 2);  // NU 2210 -> 22

@@ -5,6 +5,10 @@
 // boundary dimensions (seals, cage, clearance, E design), and keeps those that do: the contact
 // angle letters of an angular contact ball bearing (B = 40 deg, AC = 25 deg, A = 30 deg) and
 // B (steep angle) of a 322/323 tapered roller bearing. "NJ 309 E" and "NJ 309 ECP" share a key.
+// Accepted forms: letters and number with or without a blank ("NU 2210", "NU2210"); the suffix
+// after '-', '.', '/' (tapered "J2/Q"), letters, or a blank ("6307 2Z", "6307 2RS1", "6307 Z":
+// a blank after the number ends it, so these are 6307, not 63072); "62/28" (bore after '/');
+// K Fw x Ew x Bc and NK / NKI Fw / B as their sizes.
 #include <optional>
 #include <string>
 

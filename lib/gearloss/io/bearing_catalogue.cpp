@@ -55,7 +55,8 @@ void read_row(const YamlNode& row, const std::vector<std::string>& cols, Catalog
 }
 }  // namespace
 
-void BearingCatalogue::load_file(const std::string& path) {
+void BearingCatalogue::load_file(const std::string& path, const std::string& shown) {
+    const std::string name = shown.empty() ? path : shown;
     const YamlNode root = YamlNode::load_file(path);
     root.allow_keys({"format", "sources", "series"});
     if (root.at("format").as_string() != "gearloss-bearing-catalogue/1")
@@ -100,11 +101,11 @@ void BearingCatalogue::load_file(const std::string& path) {
             e.ratings = ratings;
             e.verified = verified;
             const auto loc = row.location();
-            e.location = fmt::format("{}:{}", path, loc.line);
+            e.location = fmt::format("{}:{}", name, loc.line);
             by_key_[e.key] = e;
         }
     }
-    files_.push_back(path);
+    files_.push_back(name);
 }
 
 const CatalogueEntry* BearingCatalogue::find(const std::string& key) const {
@@ -128,7 +129,8 @@ const BearingCatalogue& shipped_bearing_catalogue(const std::string& key) {
     if (!cat) {
         const auto dir = data_dir(key, "bearing designations are looked up in the shipped catalogue bearings/catalogue.yaml");
         BearingCatalogue c;
-        c.load_file((dir / "bearings" / "catalogue.yaml").string());
+        // Shown relative to the data folder: the build or install path differs between machines.
+        c.load_file((dir / "bearings" / "catalogue.yaml").string(), "<gearloss data>/bearings/catalogue.yaml");
         cat = std::move(c);
     }
     return *cat;

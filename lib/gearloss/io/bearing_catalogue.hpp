@@ -23,7 +23,7 @@ struct CatalogueEntry {
     std::optional<double> C, C0;          // N
     std::optional<double> e, Y;           // tapered calculation factors
     std::optional<double> contact_angle;  // rad, when the series states it
-    std::string location;     // "file:line" of the row
+    std::string location;     // "file:line" of the row, file as shown (load_file)
     std::string ratings;      // the block's `ratings` source
     std::string verified;     // the block's `verified` text
 };
@@ -31,8 +31,9 @@ struct CatalogueEntry {
 class BearingCatalogue {
 public:
     // Adds the rows of a catalogue file; a row replaces an earlier one of the same key.
-    // InputError naming file:line:col and key for anything malformed.
-    void load_file(const std::string& path);
+    // InputError naming file:line:col and key for anything malformed. `shown` names the file in
+    // the rows' locations and in files() (what `check` prints; machine independent), default path.
+    void load_file(const std::string& path, const std::string& shown = "");
     const CatalogueEntry* find(const std::string& key) const;
     // Up to n printed designations whose keys are closest to `key`.
     std::vector<std::string> closest(const std::string& key, size_t n) const;

@@ -46,7 +46,7 @@ const BearingCatalogue& case_catalogue(const YamlNode& root, const std::string& 
         std::error_code ec;
         if (!std::filesystem::is_regular_file(p, ec))
             f.fail("bearing catalogue '" + excerpt(p.string(), 200) + "' does not exist or is not a file");
-        own->load_file(p.string());
+        own->load_file(p.string(), f.as_string());  // shown as written, relative to the case
     }
     return *own;
 }
