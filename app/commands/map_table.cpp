@@ -11,6 +11,8 @@
 #include "gearloss/map/fingerprint.hpp"
 #include "gearloss/map/loss_table.hpp"
 
+#include <nlohmann/json.hpp>
+
 namespace gearloss::app {
 namespace {
 
@@ -53,7 +55,10 @@ int run_table_format(const TableRequest& q) {
         std::vector<std::pair<std::string, std::string>> inputs;
         for (const auto& [key, file] : map::named_files({.config = q.common.config}))
             inputs.emplace_back("named by the case at '" + key + "'", file);
-        io::require_outputs_not_inputs({{"--output", q.out}, {"--json", q.json}}, inputs);
+        std::vector<std::pair<std::string, std::string>> outputs{{"--output", q.out}, {"--json", q.json}};
+        if (!co2mpas) outputs.push_back(sidecar_output("--output", q.out));
+        io::require_distinct_outputs(outputs);
+        io::require_outputs_not_inputs(outputs, inputs);
     }
     q.grid.apply_checked(k, kTableExamples, map::kMaxTablePoints);
     std::vector<std::string> ratios;
@@ -69,9 +74,14 @@ int run_table_format(const TableRequest& q) {
         write_file(q.out, map::co2mpas_json(t));
     } else {
         io::AtomicFile f(q.out);
-        f.write(map::loss_table_csv_header(k.model));
+        const std::string header = map::loss_table_csv_header(k.model);
+        f.write(header);
         const map::LossTable t = map::run_loss_table(k.model, axes, opt, [&f](std::string_view s) { f.write(s); });
         f.commit();
+        // The sidecar: the oil temperature is an axis of the table (fixed at each of its values).
+        nlohmann::ordered_json thermal{{"mode", "fixed"}, {"oil_temperature_C", nullptr}, {"oil_temperatures_C", nlohmann::ordered_json::array()}};
+        for (double T : axes.oil_temperatures) thermal["oil_temperatures_C"].push_back(T - 273.15);
+        write_csv_sidecar(q.out, k, header, {.text_columns = {"ratio"}, .thermal = std::move(thermal), .ratios = axes.ratios});
         write_optional_file(q.json, map::loss_table_json(t));
     }
     io::throw_if_interrupted();

@@ -79,6 +79,10 @@ def setUpModule():
     gearloss("map", case, "--speed", speeds, "--torque", torques, "-o", path("map.csv"))
     gearloss("map", case, "--oil-temp", "80degC", "-o", path("fixed.csv"))
     gearloss("map", case, "--oil-temp", "80degC", "--ratio", "high", "-o", path("meta.csv"))
+    gearloss("map", case, "--oil-temp", "70degC", "--ratio", "high", "-o", path("real.csv"))
+    # map.csv and fixed.csv stand for CSVs without their sidecar (an older gearloss, a copied file)
+    for name in ("map.csv", "fixed.csv"):
+        os.remove(path(name + ".meta.json"))
     # the sidecar the metadata writer gives (gearloss-metadata/1), written by hand here
     meta = {"format": "gearloss-metadata/1", "command": "map",
             "command_line": ["gearloss", "map", case, "--oil-temp", "80degC", "--ratio", "high", "-o", "meta.csv"],
@@ -147,6 +151,13 @@ class Pictures(unittest.TestCase):
         self.assertIn("oil fixed at 80 degC", d["title"])
         self.assertNotIn("stabilised", d["title"])
         self.assertEqual(d["levels"], "constant 80")  # one value, no offset notation
+
+    def test_map_title_from_the_written_sidecar(self):
+        # the sidecar gearloss wrote itself: the case's name from configs/transfer-box.yaml
+        d, _ = self.draw("map", path("real.csv"))
+        for part in ("Transfer gearbox", "oil 75W90-A", "70", "fixed", "ratio high"):
+            self.assertIn(part, d["title"])
+        self.assertNotIn("stabilised", d["title"])
 
     def test_map_title_from_sidecar(self):
         d, _ = self.draw("map", path("meta.csv"))

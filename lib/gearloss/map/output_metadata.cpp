@@ -42,8 +42,22 @@ std::string title(const io::Case& c, const MetadataRequest& r) {
         for (const auto& o : r.oils) oil += (oil.empty() ? "" : " vs ") + o.oil.name;
     }
     std::string s = fmt::format("{}, oil {}", m.name, oil);
-    if (!m.ratio.empty()) s += ", ratio " + m.ratio;
-    if (m.thermal.mode == solver::ThermalMode::fixed)
+    if (r.ratios.size() > 1) {
+        s += ", ratios";
+        for (size_t i = 0; i < r.ratios.size(); ++i) s += (i ? ", " : " ") + r.ratios[i];
+    } else if (!m.ratio.empty()) {
+        s += ", ratio " + m.ratio;
+    }
+    // A command that describes its own thermal state (a table's temperature axis, a cycle's transient).
+    if (r.thermal.is_object() && r.thermal.contains("oil_temperatures_C")) {
+        std::string list;
+        for (const auto& T : r.thermal["oil_temperatures_C"]) list += (list.empty() ? "" : ", ") + fmt::format("{:g}", T.get<double>());
+        s += ", oil temperatures " + list + " degC (fixed)";
+    } else if (r.thermal.is_object() && r.thermal.value("mode", "") == "transient") {
+        s += ", transient oil temperature";
+        if (r.thermal.contains("start_temperature_C") && r.thermal["start_temperature_C"].is_number())
+            s += fmt::format(" from {:g} degC", r.thermal["start_temperature_C"].get<double>());
+    } else if (m.thermal.mode == solver::ThermalMode::fixed)
         s += fmt::format(", oil temperature {:g} degC (fixed)", m.thermal.oil_temperature - 273.15);
     else
         s += ", stabilised oil temperature";

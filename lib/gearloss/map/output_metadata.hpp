@@ -32,6 +32,8 @@ struct MetadataRequest {
     std::vector<std::pair<std::string, std::string>> units;
     // Replaces the "thermal" object when not null (a drive cycle: "mode": "transient").
     nlohmann::ordered_json thermal;
+    // Every ratio the output covers when it is more than the case's one (a loss table), for the title.
+    std::vector<std::string> ratios;
 };
 
 // The unit a column's name carries ("P_mesh_W": "W", "oil_temp_C": "degC", "Torque Loss [Nm]":
