@@ -181,6 +181,28 @@ expect "map --json onto the case's oil file" 2 "--json .* is the input named by 
     "$bin" map "$tmp/oil-sweep.yaml" --json "$tmp/oils/75W90-A.yaml" -o "$tmp/sweep.csv"
 check "oil files unchanged" cmp -s "$tmp/oils/75W140-A.yaml" "$tmp/oil-before.yaml"
 check "oil file unchanged (--json)" cmp -s "$tmp/oils/75W90-A.yaml" "$src/configs/oils/75W90-A.yaml"
+# Every command that writes files refuses its case's oil file and a user bearing catalogue the
+# case names as outputs, as map does (report, point --json, mesh-profile, synth, cycle and
+# compare overwrote them before, exit 0).
+cp "$src/configs/manual-6speed.yaml" "$tmp/man.yaml"
+mkdir -p "$tmp/cat"
+printf 'format: gearloss-bearing-catalogue/1\nseries:\n  - series: "63"\n    type: deep_groove_ball\n    skf_series: "63"\n    columns: [designation, d, D, B, C, C0]\n    bearings:\n      - ["6307 X", 35, 80, 22, 36, 20]\n' > "$tmp/cat/own.yaml"
+printf '\nbearing_catalogue: cat/own.yaml\n' >> "$tmp/man.yaml"
+cp "$tmp/oils/75W90-A.yaml" "$tmp/oil-before.yaml"
+cp "$tmp/cat/own.yaml" "$tmp/cat-before.yaml"
+p1=(--speed 1000rpm --torque 50Nm)
+for target in "$tmp/oils/75W90-A.yaml" "$tmp/cat/own.yaml"; do
+    t=$(basename "$target")
+    expect "report -o onto $t" 2 "is the input named by the case" "$bin" report "$tmp/man.yaml" "${p1[@]}" --no-spread -o "$target"
+    expect "point --json onto $t" 2 "is the input named by the case" "$bin" point "$tmp/man.yaml" "${p1[@]}" --json "$target"
+    expect "synth -o onto $t" 2 "is the input named by the case" "$bin" synth "$tmp/man.yaml" "${p1[@]}" -o "$target"
+    expect "cycle -o onto $t" 2 "is the input named by the case" "$bin" cycle "$tmp/man.yaml" --cycle nedc --start-temp 20degC -o "$target"
+    expect "compare -o onto $t" 2 "is the input named by the case" "$bin" compare "$tmp/man.yaml" --oil "$tmp/oils/75W90-A.yaml" \
+        --oil "$tmp/oils/75W140-A.yaml" "${p1[@]}" -o "$target"
+done
+check "oil file unchanged (every command)" cmp -s "$tmp/oils/75W90-A.yaml" "$tmp/oil-before.yaml"
+check "user catalogue unchanged (every command)" cmp -s "$tmp/cat/own.yaml" "$tmp/cat-before.yaml"
+check "no sidecar beside the inputs" test ! -e "$tmp/oils/75W90-A.yaml.meta.json" -a ! -e "$tmp/cat/own.yaml.meta.json"
 
 # 10. Every shard of a job with a bad variant fails, not only the shard holding it (a job of up
 # to 1 000 variants is checked whole by each shard); a sweep variant's plausibility warning

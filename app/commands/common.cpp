@@ -11,6 +11,7 @@
 #include "gearloss/io/case_plausibility.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/interrupt.hpp"
+#include "gearloss/map/fingerprint.hpp"
 #include "gearloss/map/map_runner.hpp"
 
 namespace gearloss::app {
@@ -109,6 +110,19 @@ void write_csv_sidecar(const std::string& csv, const io::Case& k, std::string_vi
     r.command_line = argv;
     r.columns = map::header_columns(header_line);
     map::write_sidecar(csv, map::output_metadata(k, r));
+}
+
+NamedPaths case_inputs(const std::string& config, const NamedPaths& more) {
+    NamedPaths inputs{{"config", config}};
+    try {
+        for (const auto& [key, file] : map::named_files({.config = config}))
+            inputs.emplace_back("named by the case at '" + key + "'", file);
+    } catch (...) {
+        // A case that cannot be read or parsed: loading it reports the error with its line;
+        // until then the case file itself is the input to protect.
+    }
+    inputs.insert(inputs.end(), more.begin(), more.end());
+    return inputs;
 }
 
 void write_csv_file(const std::string& csv, const std::string& text, const io::Case& k, map::MetadataRequest r) {

@@ -68,6 +68,13 @@ void write_csv_file(const std::string& csv, const std::string& text, const io::C
 // io::require_distinct_outputs and io::require_outputs_not_inputs (path empty: none).
 std::pair<std::string, std::string> sidecar_output(const std::string& option, const std::string& csv);
 
+// The files a command reads for the case `config`: the case itself and every file it names as
+// the loader resolves them (its oil file, a user bearing catalogue, sweep values:
+// map::named_files), then `more`; for io::require_outputs_not_inputs, so that no output lands
+// on any of them.
+using NamedPaths = std::vector<std::pair<std::string, std::string>>;
+NamedPaths case_inputs(const std::string& config, const NamedPaths& more = {});
+
 // `text` into `file` (atomically; "-" = stdout).
 void write_file(const std::string& file, const std::string& text);
 // The same when a file was named (an optional --json FILE).

@@ -33,7 +33,7 @@ public:
     }
 
     int run() override {
-        std::vector<std::pair<std::string, std::string>> inputs = {{"config", common_.config}};
+        NamedPaths inputs = case_inputs(common_.config);
         for (const auto& f : oils_) inputs.emplace_back("--oil", f);
         const std::vector<std::pair<std::string, std::string>> outputs = {
             {"--output", out_}, sidecar_output("--output", out_), {"--json", json_}};

@@ -45,7 +45,7 @@ public:
             {"--output", out_}, sidecar_output("--output", out_), {"--json", json_}};
         io::require_distinct_outputs(outputs);
         io::require_outputs_not_inputs(outputs,
-                                       {{"config", config_}, {"--oil", oil_}, {"--cycle", cycle_}});
+                                       case_inputs(config_, {{"--oil", oil_}, {"--cycle", cycle_}}));
         io::Case k = io::load_case(config_);
         map::CaseOverrides no_grid;  // a cycle has no operating grid
         no_grid.grid = false;
@@ -76,7 +76,8 @@ public:
             write_csv_file(out_, io::cycle_trace_csv(pt, study), described,
                            {.thermal = {{"mode", "transient"}, {"oil_temperature_C", nullptr},
                                         {"start_temperature_C", so.start_temperature - 273.15},
-                                        {"ambient_C", so.ambient - 273.15}}});
+                                        {"ambient_C", so.ambient - 273.15}},
+                            .ratios = described.model.ratio_names()});
         }
         return kOk;
     }

@@ -64,6 +64,13 @@ int run_table_format(const TableRequest& q) {
     std::vector<std::string> ratios;
     if (!q.common.ratio.empty()) ratios.push_back(k.model.ratio);
     const map::LossTableAxes axes = map::loss_table_axes(k, ratios, temperature_axis(q, k));
+    // As --oil-temp does (case plausibility): a temperature above the oil's permissible one is
+    // computed, but said.
+    for (double T : axes.oil_temperatures)
+        if (q.oil_temps_given && T > k.model.oil.max_temperature)
+            std::fprintf(stderr, "warning: --oil-temps: %g degC is above the permissible oil temperature %g degC of oil '%s' "
+                                 "(its 'max_temperature'); the table's rows there are extrapolated\n",
+                         T - 273.15, k.model.oil.max_temperature - 273.15, k.model.oil.name.c_str());
     map::MapOptions opt;
     opt.threads = q.threads;
     ProgressMeter meter;

@@ -25,7 +25,7 @@ public:
 
     int run() override {
         io::require_outputs_not_inputs({{"--output", out_}, sidecar_output("--output", out_)},
-                                       {{"config", common_.config}, {"--oil", common_.oil}});
+                                       case_inputs(common_.config, {{"--oil", common_.oil}}));
         io::Case k = load_with_options(common_);
         const double w = point_speed(speed_, "1600rpm");
         const double T = point_torque(torque_, "720Nm");

@@ -36,7 +36,7 @@ public:
     }
 
     int run() override {
-        std::vector<std::pair<std::string, std::string>> inputs = {{"config", common_.config}};
+        NamedPaths inputs = case_inputs(common_.config);
         for (const auto& f : oils_) inputs.emplace_back("--oil", f);
         io::require_outputs_not_inputs({{"--output", out_}}, inputs);
         const bool axes_given = spread_axes_option_ && spread_axes_option_->count() > 0;

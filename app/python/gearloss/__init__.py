@@ -20,7 +20,14 @@ from :class:`Error`. Ctrl-C stops a long solve with ``KeyboardInterrupt``. The p
 warnings the command line prints on stderr are issued as :class:`CaseWarning`.
 """
 import math
+import os as _os
 import warnings as _warnings
+
+from . import _data_dir
+
+# The shipped data (drive cycles, the bearing catalogue) of the build this module comes from,
+# unless GEARLOSS_DATA_DIR names another folder.
+_os.environ.setdefault("GEARLOSS_DATA_DIR", _data_dir.DATA_DIR)
 
 from . import _gearloss
 

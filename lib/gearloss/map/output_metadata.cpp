@@ -137,8 +137,13 @@ ordered_json output_metadata(const io::Case& c, const MetadataRequest& r) {
     if (!r.thermal.is_null()) j["thermal"] = r.thermal;
     // i = n_in / n_out, signed (negative: the output turns the other way).
     const double speed_ratio = m.layout.ratio;
-    j["ratio"] = {{"name", text_or_null(m.ratio)},
-                  {"value", speed_ratio != 0 ? number(1.0 / speed_ratio) : ordered_json(nullptr)}};
+    if (r.ratios.size() > 1) {
+        // An output over several ratios (a loss table, a drive cycle): each row names its own.
+        j["ratio"] = {{"name", nullptr}, {"value", nullptr}, {"names", r.ratios}};
+    } else {
+        j["ratio"] = {{"name", text_or_null(m.ratio)},
+                      {"value", speed_ratio != 0 ? number(1.0 / speed_ratio) : ordered_json(nullptr)}};
+    }
     ordered_json forms = ordered_json::object();
     for (size_t i = 0; i < m.mechanisms.size(); ++i) {
         const auto& mech = m.mechanisms[i];

@@ -32,7 +32,8 @@ struct MetadataRequest {
     std::vector<std::pair<std::string, std::string>> units;
     // Replaces the "thermal" object when not null (a drive cycle: "mode": "transient").
     nlohmann::ordered_json thermal;
-    // Every ratio the output covers when it is more than the case's one (a loss table), for the title.
+    // Every ratio the output covers when it is more than the case's one (a loss table, a drive
+    // cycle): the title lists them and "ratio" gives their names instead of one ratio.
     std::vector<std::string> ratios;
 };
 
