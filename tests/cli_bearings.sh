@@ -53,6 +53,8 @@ for b in j["bearings"]:
     assert b["type"] == s["type"], (b["type"], s["type"])
     names = set()
     for v in b["resolved"]:
+        if v["name"] == "seals":  # from the designation's suffix, checked below
+            continue
         names.add(v["name"])
         assert v["source"] == "catalogue " + loc, v
         key = "T" if v["name"].startswith("B (= T") else v["name"]
@@ -99,6 +101,25 @@ for d in "6307 2Z" "6307 2RS1" "6307 Z"; do
     check "'$d': the 6307 row" compare_json "$tmp/dg.json" "$d" "QJ 308 N2MA" "NJ 406" "QJ 308 N2MA"
     check "'$d': catalogue entry 6307" "$py" -c "import json,sys; assert json.load(open(sys.argv[1]))['bearings'][0]['catalogue_entry'] == '6307'" "$tmp/dg.json"
 done
+# The suffix's seals: 2RS1 two contact seals, RS1 one, 2Z shields (no contact), read from the
+# designation where the block has no 'seals' key; 6307/2Z is 6307 with the suffix 2Z.
+for d in "6307 2RS1|RS1 (both sides)" "6307-RS1|RS1 (one side)" "6307/2Z|no contact (2Z)" "6307 Z|no contact (Z)"; do
+    with_bearing "$tmp/dg.yaml" "{name: pinion_NJ406, designation: ${d%%|*}, shaft: pinion, position: -50 mm}"
+    "$bin" check "$tmp/dg.yaml" --json > "$tmp/dg.json" 2> "$tmp/dg.err"
+    check "'${d%%|*}': seals '${d#*|}' from the suffix, row 6307" "$py" - "$tmp/dg.json" "${d#*|}" <<'PY'
+import json, sys
+b = json.load(open(sys.argv[1]))["bearings"][0]
+seals = [v for v in b["resolved"] if v["name"] == "seals"]
+assert b["catalogue_entry"] == "6307", b
+assert len(seals) == 1 and seals[0]["value"] == sys.argv[2] and "designation suffix" in seals[0]["source"], seals
+PY
+done
+# A contact-angle suffix on a deep groove ball bearing names no bearing: refused at the key.
+with_bearing "$tmp/dg.yaml" "{name: pinion_NJ406, designation: 6307 BE, shaft: pinion, position: -50 mm}"
+line=$(grep -n 'designation: 6307 BE' "$tmp/dg.yaml" | cut -d: -f1)
+"$bin" check "$tmp/dg.yaml" > /dev/null 2> "$tmp/dg.err"
+check "'6307 BE': exit 2 (got $?)" test $? -eq 2
+check "'6307 BE': file:line, the contradiction named" grep -qE "dg.yaml:$line:[0-9]+: .*designation: 'BE' is a contact-angle suffix.*7307 BE" "$tmp/dg.err"
 
 # 3. Unknown designation: exit 2, file:line:col, the key, suggestions.
 with_bearing "$tmp/bad.yaml" "{name: pinion_NJ406, designation: 6397, shaft: pinion, position: -50 mm}"
@@ -136,6 +157,35 @@ assert v["B"]["source"] == "catalogue own/mine.yaml:8", v["B"]
 PY
 "$bin" check "$tmp/own.yaml" > "$tmp/own.txt"
 check "user catalogue: text names own/mine.yaml:8" grep -q "^    B = 22 mm \[catalogue own/mine.yaml:8\]" "$tmp/own.txt"
+# A designation found in neither file: the message counts the rows and names both files.
+sed -i 's/designation: 6307 2Z/designation: 6397/' "$tmp/own.yaml"
+"$bin" check "$tmp/own.yaml" > /dev/null 2> "$tmp/own.err"
+check "user catalogue, unknown row: both files named" grep -qE "no bearing '6397' .*rows from <gearloss data>/bearings/catalogue.yaml and own/mine.yaml\)" "$tmp/own.err"
+# The same bearing twice in one user file: which row is meant? Refused at the second row.
+printf '      - ["6307 Y", 35, 80, 23, 36, 20]\n' >> "$tmp/own/mine.yaml"
+"$bin" check "$tmp/own.yaml" > /dev/null 2> "$tmp/own.err"
+check "duplicate row in a user catalogue: exit 2 (got $?)" test $? -eq 2
+check "duplicate row in a user catalogue: own/mine.yaml:9, first at line 8" grep -qE "own/mine.yaml:9:[0-9]+: .*'6307 Y' is listed twice in this file \(first at line 8" "$tmp/own.err"
+
+# 5. The shipped catalogue is an input of a case that takes rows from it: its sidecar names the
+#    rows, and the case hash changes when the data folder's catalogue does (same case file).
+hash_with_data() {  # hash_with_data DATA_DIR OUT_DIR
+    mkdir -p "$2"
+    (cd "$2" && GEARLOSS_DATA_DIR="$1" "$bin" map "$tmp/fzg.yaml" --speed 1000rpm --torque 100Nm -o m.csv) &&
+        "$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['case']['hash'])" "$2/m.csv.meta.json"
+}
+cp -r "$src/configs" "$tmp/data"
+h1=$(hash_with_data "$tmp/data" "$tmp/run1")
+echo "# a comment: same rows, other file" >> "$tmp/data/bearings/catalogue.yaml"
+h2=$(hash_with_data "$tmp/data" "$tmp/run2")
+check "shipped catalogue edited: case hash changes ($h1 -> $h2)" test -n "$h1" -a -n "$h2" -a "$h1" != "$h2"
+check "shipped catalogue edited: same numbers" cmp -s "$tmp/run1/m.csv" "$tmp/run2/m.csv"
+check "sidecar: rows and their locations" "$py" - "$tmp/run1/m.csv.meta.json" <<'PY'
+import json, sys
+rows = json.load(open(sys.argv[1]))["bearing_catalogue_rows"]
+assert [r["designation"] for r in rows] == ["NJ 406", "QJ 308 N2MA", "NJ 406", "QJ 308 N2MA"], rows
+assert all(r["location"].startswith("<gearloss data>/bearings/catalogue.yaml:") for r in rows), rows
+PY
 
 echo "cli_bearings: $pass passed, $fail failed"
 test $fail -eq 0

@@ -153,6 +153,11 @@ sys.exit(0 if ok else 1)
 PY
 "$bin" point "$box" --speed 800rpm --torque 250Nm --json - > point-stdout.json 2> /dev/null
 check "point --json -: JSON alone on stdout" json point-stdout.json "d['status']=='ok' and d['metadata']['command']=='point'"
+# 700 rpm goes to rad/s and back: printed as 700, not 700.0000000000001 (15 significant digits);
+# the embedded metadata describes no CSV, so it has no 'columns'.
+"$bin" point "$box" --speed 700rpm --torque 250Nm --json - > point-700.json 2> /dev/null
+check "point --json: 700 rpm prints as 700" grep -qE '"speed_rpm": 700(\.0)?,' point-700.json
+check "point --json: no empty metadata.columns" json point-700.json "'columns' not in d['metadata']"
 
 # compare: two oils keep today's columns; three oils: oils 1-2 equal the two-oil run, and
 # dP = P_k - P_A recomputed here; --detail: the mechanisms add up to each oil's total.

@@ -129,8 +129,13 @@ done
 expect "co2mpas --json" 2 "--json" "$bin" map "$case" --format co2mpas --json "$tmp/bad.json" -o "$tmp/bad.csv"
 cp "$case" "$tmp/cfg/sweep.yaml"
 printf '\nsweep:\n  - {parameter: housing.oil_level, values: [-30 mm, -10 mm]}\n' >> "$tmp/cfg/sweep.yaml"
-expect "table of a sweep case" 2 "sweep" "$bin" map "$tmp/cfg/sweep.yaml" --format table -o "$tmp/bad.csv"
-expect "co2mpas of a sweep case" 2 "sweep" "$bin" map "$tmp/cfg/sweep.yaml" --format co2mpas -o "$tmp/bad.csv"
+# The location is the section's content: the line of the key or one of the two after it.
+near() { echo "($1|$(($1 + 1))|$(($1 + 2)))"; }
+line=$(near "$(grep -n '^sweep:' "$tmp/cfg/sweep.yaml" | cut -d: -f1)")
+expect "table of a sweep case" 2 "sweep.yaml:$line:[0-9]+: sweep: --format table" "$bin" map "$tmp/cfg/sweep.yaml" --format table -o "$tmp/bad.csv"
+expect "co2mpas of a sweep case" 2 "sweep.yaml:$line:[0-9]+: sweep: --format co2mpas" "$bin" map "$tmp/cfg/sweep.yaml" --format co2mpas -o "$tmp/bad.csv"
+line=$(near "$(grep -n '^operating:' "$tmp/cfg/wind-turbine-2.5MW.yaml" | cut -d: -f1)")
+expect "table of a point-list case" 2 "wind-turbine-2.5MW.yaml:$line:[0-9]+: operating: .*grid" "$bin" map "$tmp/cfg/wind-turbine-2.5MW.yaml" --format table -o "$tmp/bad.csv"
 check "hostile inputs: nothing written" test ! -e "$tmp/bad.csv" -a ! -e "$tmp/bad.json"
 cp "$case" "$tmp/keep.yaml"
 expect "table onto its case" 2 "config" "$bin" map "$case" --format table -o "$case"

@@ -296,3 +296,64 @@ TEST_CASE("designation in a case: explicit override, user catalogue, errors", "[
                                        "t.yaml", dir.path.string()),
                     InputError);
 }
+
+TEST_CASE("designation suffixes: seals read from them, contradictions refused, '/' after a full number", "[bearing_catalogue]") {
+    const auto k = [](const char* d) { return bearings::designation_key(d).value(); };
+    // '/' after a full basic number starts a suffix; after a 2- or 3-digit series code it gives the bore.
+    CHECK(k("6307/2Z").key == "6307");
+    CHECK(k("6307/2Z").suffix == "2Z");
+    CHECK(k("62/28").key == "62/28");
+    CHECK(k("6307-2RS1").suffix == "2RS1");
+    CHECK(k("32306 J2/Q").suffix == "J2/Q");
+    // Contact-angle codes after a deep groove ball bearing name no bearing; other suffixes do not contradict.
+    for (const char* bad : {"6307 BE", "6307 B", "6307 AC", "6307-A", "16010 B"}) {
+        INFO(bad);
+        CHECK(bearings::suffix_contradiction(k(bad)));
+    }
+    for (const char* good : {"6307 N", "6307 NR", "6307-2RS1", "6307 C3", "7308 BE", "NJ 309 ECP", "32306 B"}) {
+        INFO(good);
+        CHECK_FALSE(bearings::suffix_contradiction(k(good)));
+    }
+    using S = bearings::SuffixSeal;
+    CHECK(bearings::suffix_seal("2RS1").kind == S::contact);
+    CHECK(bearings::suffix_seal("2RSL").kind == S::shield);  // SKF low-friction seal: non-contact
+    CHECK(bearings::suffix_seal("2Z/C3").kind == S::shield);
+    CHECK(bearings::suffix_seal("LLU").kind == S::contact);
+    CHECK(bearings::suffix_seal("ECP").kind == S::none);
+    CHECK(bearings::suffix_seal("N2MA").kind == S::none);
+
+    // In a case: SKF (2004) seal constants for a deep groove ball bearing with RS1 seals,
+    // 62 mm < D <= 80 mm (6307, D = 80): beta = 2.25, K_S1 = 0.018, K_S2 = 20, for a bearing sealed
+    // on both sides; one seal gives half the moment (SKF 2004), so K_S1 = 0.009, K_S2 = 10.
+    test_support::TempDir dir;
+    const auto spec = [&](const std::string& line) {
+        return io::load_case_text(case_text(line), "t.yaml", dir.path.string()).model.gearbox.bearings.at(0).spec;
+    };
+    auto s = spec("  - {name: b1, designation: 6307-2RS1, shaft: pinion, position: 10 mm}\n");
+    CHECK(s.seal_beta == 2.25);
+    CHECK(s.seal_KS1 == Approx(0.018));
+    CHECK(s.seal_KS2 == Approx(20));
+    s = spec("  - {name: b1, designation: 6307 RS1, shaft: pinion, position: 10 mm}\n");
+    CHECK(s.seal_KS1 == Approx(0.009));
+    CHECK(s.seal_KS2 == Approx(10));
+    for (const char* line : {"  - {name: b1, designation: 6307/2Z, shaft: pinion, position: 10 mm}\n",
+                             "  - {name: b1, designation: 6307 2RS1, seals: none, shaft: pinion, position: 10 mm}\n",
+                             "  - {name: b1, designation: 6307, shaft: pinion, position: 10 mm}\n"}) {
+        INFO(line);
+        s = spec(line);
+        CHECK(s.seal_KS1 == 0);
+        CHECK(s.seal_KS2 == 0);
+    }
+    // An explicit `seals: RS1` keeps the both-sides constants whatever the suffix says.
+    s = spec("  - {name: b1, designation: 6307 RS1, seals: RS1, shaft: pinion, position: 10 mm}\n");
+    CHECK(s.seal_KS1 == Approx(0.018));
+    // A contact seal without SKF constants for the type (a tapered bearing) is an assumed value, not silence.
+    const auto c = io::load_case_text(case_text("  - {name: b1, designation: 32306-2RS, shaft: pinion, position: 10 mm}\n"),
+                                      "t.yaml", dir.path.string());
+    bool said = false;
+    for (const auto& a : c.assumed) said = said || (a.key == "bearings.b1.seals" && a.reason.find("2RS") != std::string::npos);
+    CHECK(said);
+    // A contradiction is an InputError at the designation's line.
+    CHECK_THROWS_WITH(spec("  - {name: b1, designation: 6307 BE, shaft: pinion, position: 10 mm}\n"),
+                      Contains("t.yaml:18:") && Contains("contact-angle suffix"));
+}

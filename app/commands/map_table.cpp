@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "gearloss/core/errors.hpp"
+#include "gearloss/core/source_index.hpp"
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/io/output_paths.hpp"
@@ -48,9 +49,12 @@ int run_table_format(const TableRequest& q) {
     if (co2mpas && !q.json.empty())
         throw InputError("", 0, 0, "--json", "--format co2mpas writes its JSON to -o; --json is the table's (--format table)");
     io::Case k = load_with_options(q.common);
-    if (!k.sweep.empty())
-        throw InputError(k.file, 0, 0, "--format " + q.format,
-                         "the case has a sweep: a table per variant is not written (set the variant's values in the case)");
+    if (!k.sweep.empty()) {
+        const SourceLocation at = k.model.source ? k.model.source->find("sweep", "", "") : SourceLocation{};
+        throw InputError(at.file.empty() ? k.file : at.file, at.line, at.column, "sweep",
+                         "--format " + q.format +
+                             ": the case has a sweep; a table per variant is not written (set the variant's values in the case)");
+    }
     {
         std::vector<std::pair<std::string, std::string>> inputs;
         for (const auto& [key, file] : map::named_files({.config = q.common.config}))

@@ -9,6 +9,11 @@ namespace gearloss::bearings {
 namespace {
 bool digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
 bool alpha(char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; }
+
+std::string suffix_text(std::string s) {
+    while (!s.empty() && (s.front() == '-' || s.front() == '.' || s.front() == '/')) s.erase(s.begin());
+    return s;
+}
 }  // namespace
 
 std::optional<DesignationKey> designation_key(const std::string& text) {
@@ -46,13 +51,16 @@ std::optional<DesignationKey> designation_key(const std::string& text) {
         k.number = s.substr(i, j - i);
         std::replace(k.number.begin(), k.number.end(), ',', '.');
         k.key = k.prefix + k.number;
+        k.suffix = suffix_text(s.substr(j));
         return k;
     }
     const size_t end = std::min(s.size(), number_end);
     size_t j = i;
     while (j < end && digit(s[j])) ++j;
     k.number = s.substr(i, j - i);
-    if (j < end && s[j] == '/' && j + 1 < end && digit(s[j + 1])) {  // 62/28: bore in mm after '/'
+    // 62/28, 320/28: the bore in mm after '/' follows a series code of two or three digits; after
+    // a full basic number ("6307/2Z") the '/' starts a suffix.
+    if (j < end && s[j] == '/' && j - i <= 3 && j + 1 < end && digit(s[j + 1])) {
         size_t e = j + 1;
         while (e < end && digit(s[e])) ++e;
         k.number = s.substr(i, e - i);
@@ -60,6 +68,7 @@ std::optional<DesignationKey> designation_key(const std::string& text) {
     }
     k.key = k.prefix + k.number;
     const std::string suffix = s.substr(j);
+    k.suffix = suffix_text(suffix);
     // Angular contact ball bearings 72.., 73..: the contact angle letters are part of the size.
     if (k.prefix.empty() && k.number.size() == 4 && k.number[0] == '7' && (k.number[1] == '2' || k.number[1] == '3')) {
         if (suffix.rfind("AC", 0) == 0) k.key += "AC";
@@ -71,6 +80,50 @@ std::optional<DesignationKey> designation_key(const std::string& text) {
         suffix.rfind("B", 0) == 0)
         k.key += "B";
     return k;
+}
+
+std::optional<std::string> suffix_contradiction(const DesignationKey& k) {
+    const std::string& n = k.number;
+    const bool deep_groove = k.prefix.empty() && ((n.size() == 4 && n[0] == '6') || (n.size() == 5 && n.rfind("160", 0) == 0));
+    if (!deep_groove) return std::nullopt;
+    size_t letters = 0;
+    while (letters < k.suffix.size() && alpha(k.suffix[letters])) ++letters;
+    const std::string code = k.suffix.substr(0, letters);
+    // SKF (2018) designation system: A, AC, B (BE, BEP, BECBM...) and CD give the contact angle of
+    // 72../73.. angular contact ball bearings; no deep groove ball bearing carries them.
+    const bool angle_code = code == "A" || code == "CD" || code.rfind("AC", 0) == 0 || code.rfind("B", 0) == 0;
+    if (!angle_code) return std::nullopt;
+    const std::string example = n.size() == 4 ? " (e.g. 73" + n.substr(2) + " " + code + ")" : "";
+    return "'" + k.suffix + "' is a contact-angle suffix of angular contact ball bearings (72.., 73..), but " + k.number +
+           " is a deep groove ball bearing: no such bearing; write the angular contact designation" + example +
+           " or the deep groove one without it";
+}
+
+SuffixSeal suffix_seal(const std::string& suffix) {
+    // Maker codes, most specific first (2RSL, a low-friction non-contact lip, before RS).
+    // SKF (2018): Z/2Z shields, RZ/2RZ and RSL/2RSL non-contact, RS1/RSH/2RS1/2RSH contact;
+    // Schaeffler (2005): 2RSR contact, 2Z; NTN (2002): LLU contact, LLB non-contact, ZZ; LS/2LS
+    // contact seals of cylindrical roller bearings.
+    static const std::vector<std::pair<std::string, SuffixSeal>> codes = {
+        {"2RSL", {SuffixSeal::shield, "", ""}},  {"RSL", {SuffixSeal::shield, "", ""}},
+        {"2RZ", {SuffixSeal::shield, "", ""}},   {"RZ", {SuffixSeal::shield, "", ""}},
+        {"2RS1", {SuffixSeal::contact, "", "RS1"}}, {"2RSH", {SuffixSeal::contact, "", "RS1"}},
+        {"2RSR", {SuffixSeal::contact, "", "RS1"}}, {"RS1", {SuffixSeal::contact, "", "RS1"}},
+        {"RSH", {SuffixSeal::contact, "", "RS1"}},  {"2RS", {SuffixSeal::contact, "", "RS1"}},
+        {"RS", {SuffixSeal::contact, "", "RS1"}},   {"LLU", {SuffixSeal::contact, "", "RS1"}},
+        {"DDU", {SuffixSeal::contact, "", "RS1"}},  {"2LS", {SuffixSeal::contact, "", "LS"}},
+        {"LLB", {SuffixSeal::shield, "", ""}},   {"2Z", {SuffixSeal::shield, "", ""}},
+        {"ZZ", {SuffixSeal::shield, "", ""}},
+    };
+    for (const auto& [token, kind] : codes)
+        if (suffix.find(token) != std::string::npos) {
+            SuffixSeal r = kind;
+            r.token = token;
+            return r;
+        }
+    // A lone Z (one shield) only as the whole suffix or its start: "ZNR", not the Z of "ECP-Z..." guesses.
+    if (suffix == "Z" || suffix.rfind("Z", 0) == 0) return {SuffixSeal::shield, "Z", ""};
+    return {};
 }
 
 std::optional<std::string> skf_series_of_designation(const std::string& text) {

@@ -58,6 +58,7 @@ void read_row(const YamlNode& row, const std::vector<std::string>& cols, Catalog
 void BearingCatalogue::load_file(const std::string& path, const std::string& shown) {
     const std::string name = shown.empty() ? path : shown;
     const YamlNode root = YamlNode::load_file(path);
+    std::map<std::string, std::string> in_this_file;  // key -> "line N" of its row here
     root.allow_keys({"format", "sources", "series"});
     if (root.at("format").as_string() != "gearloss-bearing-catalogue/1")
         root.at("format").fail("expected 'gearloss-bearing-catalogue/1'");
@@ -102,10 +103,22 @@ void BearingCatalogue::load_file(const std::string& path, const std::string& sho
             e.verified = verified;
             const auto loc = row.location();
             e.location = fmt::format("{}:{}", name, loc.line);
+            // A later file replaces a row on purpose; twice in one file is a slip (which row is meant?).
+            if (const auto [it, fresh] = in_this_file.emplace(e.key, fmt::format("line {}", loc.line)); !fresh)
+                row.fail(fmt::format("bearing '{}' is listed twice in this file (first at {}; key {})", e.designation,
+                                     it->second, e.key));
             by_key_[e.key] = e;
         }
     }
     files_.push_back(name);
+    paths_.push_back(path);
+}
+
+std::string BearingCatalogue::summary() const {
+    std::string from;
+    for (size_t i = 0; i < files_.size(); ++i)
+        from += (i == 0 ? "" : i + 1 == files_.size() ? " and " : ", ") + files_[i];
+    return fmt::format("{} rows from {}", by_key_.size(), from.empty() ? "no file" : from);
 }
 
 const CatalogueEntry* BearingCatalogue::find(const std::string& key) const {
@@ -130,7 +143,7 @@ const BearingCatalogue& shipped_bearing_catalogue(const std::string& key) {
         const auto dir = data_dir(key, "bearing designations are looked up in the shipped catalogue bearings/catalogue.yaml");
         BearingCatalogue c;
         // Shown relative to the data folder: the build or install path differs between machines.
-        c.load_file((dir / "bearings" / "catalogue.yaml").string(), "<gearloss data>/bearings/catalogue.yaml");
+        c.load_file((dir / "bearings" / "catalogue.yaml").string(), kShippedCatalogueName);
         cat = std::move(c);
     }
     return *cat;

@@ -30,7 +30,8 @@ struct CatalogueEntry {
 
 class BearingCatalogue {
 public:
-    // Adds the rows of a catalogue file; a row replaces an earlier one of the same key.
+    // Adds the rows of a catalogue file; a row replaces an earlier file's row of the same key, and
+    // the same key twice in one file is an error.
     // InputError naming file:line:col and key for anything malformed. `shown` names the file in
     // the rows' locations and in files() (what `check` prints; machine independent), default path.
     void load_file(const std::string& path, const std::string& shown = "");
@@ -39,11 +40,18 @@ public:
     std::vector<std::string> closest(const std::string& key, size_t n) const;
     size_t size() const { return by_key_.size(); }
     const std::vector<std::string>& files() const { return files_; }
+    // The same files as paths to read (for the case hash): files() shows them machine-independently.
+    const std::vector<std::string>& paths() const { return paths_; }
+    // "875 rows from <gearloss data>/bearings/catalogue.yaml and own.yaml" (for messages).
+    std::string summary() const;
 
 private:
     std::map<std::string, CatalogueEntry> by_key_;
-    std::vector<std::string> files_;
+    std::vector<std::string> files_, paths_;
 };
+
+// How the shipped catalogue is named in row locations, whatever folder it was found in.
+inline constexpr const char* kShippedCatalogueName = "<gearloss data>/bearings/catalogue.yaml";
 
 // The shipped catalogue (bearings/catalogue.yaml of the data folder), read once per process.
 // `key` names the case key that needed it, for the error when the data folder is not found.
@@ -59,6 +67,7 @@ struct ResolvedValue {
 struct BearingResolution {
     std::string bearing;      // the bearing's name
     std::string designation;  // as written in the case ("" when none)
+    std::string suffix;       // its suffix ("2RS1"): seals, cage, clearance, tolerance; not in the row
     std::string entry;        // the catalogue row's printed designation
     std::string entry_location, verified, ratings;
     std::string type, type_source;

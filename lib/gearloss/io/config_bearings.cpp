@@ -72,15 +72,16 @@ void Loader::load_bearings() {
             res.designation = dn->as_string();
             const auto key = bearings::designation_key(res.designation);
             if (!key) dn->fail("'" + excerpt(res.designation) + "' is not a bearing designation (e.g. 6307, NJ 309 E, 32306, 7308 BE, QJ 308, K 38x43x27)");
+            if (const auto why = bearings::suffix_contradiction(*key)) dn->fail(*why);
+            res.suffix = key->suffix;
             const BearingCatalogue& catalogue = case_catalogue(root, base_dir, *dn, own_catalogue);
             cat = catalogue.find(key->key);
             if (!cat) {
                 std::string near;
                 for (const auto& c : catalogue.closest(key->key, 5)) near += (near.empty() ? "" : ", ") + c;
-                dn->fail(fmt::format("no bearing '{}' in the catalogue (key {}; {} rows from {}); closest: {}. Give type, d, D, B "
+                dn->fail(fmt::format("no bearing '{}' in the catalogue (key {}; {}); closest: {}. Give type, d, D, B "
                                      "(and C0, series) explicitly, or add a catalogue file with 'bearing_catalogue'",
-                                     excerpt(res.designation), key->key, catalogue.size(),
-                                     catalogue.files().empty() ? "?" : catalogue.files().back(), near));
+                                     excerpt(res.designation), key->key, catalogue.summary(), near));
             }
             res.entry = cat->designation;
             res.entry_location = cat->location;
@@ -198,8 +199,33 @@ void Loader::load_bearings() {
             s.K_rs = l->as_enum<double>({{"splash", 3e-8}, {"oil_bath_low", 3e-8}, {"oil_jet", 3e-8},
                                         {"oil_bath", 0.0}, {"grease", 6e-8}, {"oil_air", 6e-8}});
         set_bearing_friction(s, model.oil);
-        if (auto se = n.get("seals")) {
-            const std::string st = se->as_string();
+        // Integral seals: the `seals` key, else what the designation's suffix says (6307-2RS1).
+        const auto se = n.get("seals");
+        std::string st = se ? se->as_string() : "none";
+        double seal_sides = 2;
+        if (!se && !res.suffix.empty()) {
+            using BT = bearings::BearingType;
+            const auto seal = bearings::suffix_seal(res.suffix);
+            const bool known = (seal.code == "RS1" && (s.type == BT::deep_groove_ball || s.type == BT::angular_contact_ball ||
+                                                       s.type == BT::self_aligning_ball)) ||
+                               (seal.code == "LS" && (s.type == BT::cylindrical_roller || s.type == BT::cylindrical_roller_full));
+            // One contact seal (RS1, RSH, RS: no leading 2, not NTN/NSK LL../DD.. pairs) rubs on one side.
+            const bool one_side = seal.token == "RS1" || seal.token == "RSH" || seal.token == "RS";
+            const std::string from = fmt::format("designation suffix '{}' ({})", seal.token, located_at(n.at("designation")));
+            if (seal.kind == bearings::SuffixSeal::contact && known) {
+                st = seal.code;
+                seal_sides = one_side ? 1 : 2;
+                res.values.push_back({"seals", fmt::format("{} ({})", st, one_side ? "one side" : "both sides"), 0.0, from});
+            } else if (seal.kind == bearings::SuffixSeal::contact) {
+                assume(assumed, n, key + "seals", "none",
+                       fmt::format("the contact seals '{}' of the designation have no SKF (2004) seal constants for a {} "
+                                   "bearing: their friction is not counted (give 'seals' and 'constants' to count it)",
+                                   seal.token, bearings::to_string(s.type)));
+            } else if (seal.kind == bearings::SuffixSeal::shield) {
+                res.values.push_back({"seals", "no contact (" + seal.token + ")", 0.0, from});
+            }
+        }
+        {
             if (st != "none") {
                 // M_seal = K_S1 d_s^beta + K_S2 (SKF 2004 seal moment, both sides sealed).
                 using BT = bearings::BearingType;
@@ -219,10 +245,13 @@ void Loader::load_bearings() {
                 } else if (st == "Z" || st == "RZ" || st == "2Z") {
                     // shields: no contact friction
                 } else {
-                    se->fail(fmt::format("no seal constants for '{}' on a {} bearing (known: DGBB RS1, ACBB/SABB RS1, "
+                    se.value_or(n).fail(fmt::format("no seal constants for '{}' on a {} bearing (known: DGBB RS1, ACBB/SABB RS1, "
                                          "CRB LS, SRB CS/CS2/CS5, shields Z/RZ)",
                                          st, bearings::to_string(s.type)));
                 }
+                // SKF (2004): M_seal is for a bearing sealed on both sides; one seal gives half of it.
+                s.seal_KS1 *= seal_sides / 2;
+                s.seal_KS2 *= seal_sides / 2;
                 // Unset: the inner-ring shoulder estimate d + 0.2 (D - d) (gearloss/bearings/skf_model.hpp).
                 if (n.has("seal_counterface"))
                     s.seal_ds = n.positive_quantity("seal_counterface", dim::length, "30 mm");

@@ -129,6 +129,12 @@ std::string check_report(const Case& c) {
             if (!r.designation.empty())
                 s += fmt::format("    designation '{}' = catalogue row '{}' ({}); ratings: {}; verified: {}\n", r.designation,
                                  r.entry, r.entry_location, r.ratings, r.verified);
+            std::string row = r.entry;
+            std::erase(row, ' ');
+            if (!r.suffix.empty() && row.find(r.suffix) == std::string::npos)
+                s += fmt::format("    suffix '{}': sizes and ratings are the row's (seals, shields, cage, clearance and "
+                                 "tolerance do not change them)\n",
+                                 r.suffix);
             for (const auto& v : r.values) s += fmt::format("    {} = {} [{}]\n", v.name, v.text, v.source);
         }
     }
@@ -230,11 +236,12 @@ nlohmann::ordered_json check_json_object(const Case& c) {
             b["designation"] = r.designation;
             b["catalogue_entry"] = r.entry;
             b["catalogue_location"] = r.entry_location;
+            b["designation_suffix"] = r.suffix;
             b["type_source"] = r.type_source;
             ordered_json resolved = ordered_json::array();
             for (const auto& v : r.values) {
                 ordered_json e{{"name", v.name}, {"text", v.text}};
-                if (v.name == "series") e["value"] = v.text;
+                if (v.name == "series" || v.name == "seals") e["value"] = v.text;
                 else e["value_si"] = v.si;
                 e["source"] = v.source;
                 resolved.push_back(std::move(e));

@@ -1,4 +1,5 @@
 // `gearloss compare` with N oils, --detail and --json (docs/outputs.md).
+#include "gearloss/io/json_text.hpp"
 #include "gearloss/map/compare_oils.hpp"
 
 #include <cmath>
@@ -17,7 +18,7 @@ namespace {
 
 constexpr double kRpm = 30.0 / std::numbers::pi;
 std::string num(double v) { return io::csv_number(v); }
-ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
+ordered_json number(double v) { return io::json_number(v); }
 
 // "P_mesh_W" -> "P_mesh" (the mechanism's column without its unit).
 std::string stem(std::string_view column) {

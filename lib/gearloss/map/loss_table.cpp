@@ -8,7 +8,9 @@
 #include <numbers>
 
 #include "gearloss/core/errors.hpp"
+#include "gearloss/core/source_index.hpp"
 #include "gearloss/io/csv_format.hpp"
+#include "gearloss/io/json_text.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/map/vecto.hpp"
 #include "gearloss/model/validate.hpp"
@@ -80,8 +82,11 @@ std::vector<double> default_table_temperatures(const solver::Model& m) {
 }
 
 LossTableAxes loss_table_axes(const io::Case& k, std::vector<std::string> ratios, std::vector<double> oil_temperatures) {
-    if (!k.grid.is_grid)
-        throw InputError(k.file, 0, 0, "operating", "a loss table needs a speeds x torques grid (or --speed and --torque)");
+    if (!k.grid.is_grid) {
+        const SourceLocation at = k.model.source ? k.model.source->find("operating", "", "") : SourceLocation{};
+        throw InputError(at.file.empty() ? k.file : at.file, at.line, at.column, "operating",
+                         "a loss table needs a speeds x torques grid (or --speed and --torque), not a list of points");
+    }
     LossTableAxes a;
     if (ratios.empty()) {
         if (k.model.gearbox.ratios.empty()) ratios.push_back(k.model.ratio);
@@ -207,7 +212,7 @@ nlohmann::ordered_json nested(const LossTable& t, const Value& value) {
                 nlohmann::ordered_json by_T = nlohmann::ordered_json::array();
                 for (size_t T = 0; T < a.oil_temperatures.size(); ++T) {
                     const double v = value(t.index(r, s, q, T), s);
-                    by_T.push_back(std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr));
+                    by_T.push_back(io::json_number(v));
                 }
                 by_torque.push_back(std::move(by_T));
             }

@@ -1,4 +1,5 @@
 // The sidecar FILE.meta.json of a CSV output (docs/outputs.md).
+#include "gearloss/io/json_text.hpp"
 #include "gearloss/map/output_metadata.hpp"
 
 #include <algorithm>
@@ -20,7 +21,7 @@ using nlohmann::ordered_json;
 namespace {
 
 // A number, or null when it is not finite (JSON has no NaN or infinity).
-ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
+ordered_json number(double v) { return io::json_number(v); }
 
 ordered_json text_or_null(const std::string& s) { return s.empty() ? ordered_json(nullptr) : ordered_json(s); }
 
@@ -109,6 +110,12 @@ std::string case_hash(const io::Case& c) {
         h.add(path).add(io::read_regular_file(file, io::kMaxCsvFileBytes));
         files.push_back(fs::weakly_canonical(file).string());
     }
+    // Rows taken from the shipped bearing catalogue are inputs too: the data folder is found at
+    // run time (GEARLOSS_DATA_DIR) and its file may differ from the one this program shipped with.
+    if (std::ranges::any_of(c.bearings_resolved,
+                            [](const io::BearingResolution& b) { return b.entry_location.starts_with(io::kShippedCatalogueName); }))
+        for (const auto& path : io::shipped_bearing_catalogue("bearings[].designation").paths())
+            h.add(io::kShippedCatalogueName).add(io::read_regular_file(path, io::kMaxCsvFileBytes));
     // An oil file that replaced the case's own (--oil) is part of what was computed.
     if (!c.oil_file.empty() &&
         std::find(files.begin(), files.end(), fs::weakly_canonical(c.oil_file).string()) == files.end())
@@ -158,9 +165,17 @@ ordered_json output_metadata(const io::Case& c, const MetadataRequest& r) {
     for (const auto& a : c.assumed)
         j["assumed"].push_back(
             {{"key", a.key}, {"value", a.value}, {"reason", a.reason}, {"location", text_or_null(a.location)}});
+    // Bearings taken from a catalogue by designation: which row of which file (absent otherwise).
+    ordered_json rows = ordered_json::array();
+    for (const auto& b : c.bearings_resolved)
+        if (!b.designation.empty())
+            rows.push_back(ordered_json{{"bearing", b.bearing}, {"designation", b.designation}, {"row", b.entry},
+                            {"location", b.entry_location}});
+    if (!rows.empty()) j["bearing_catalogue_rows"] = std::move(rows);
     j["sweep"] = ordered_json::array();
     for (const auto& s : c.sweep) j["sweep"].push_back({{"label", s.label}, {"values", s.values}});
-    j["columns"] = ordered_json::array();
+    // A CSV's columns; the metadata inside a JSON document (point --json) describes no CSV.
+    if (!r.columns.empty()) j["columns"] = ordered_json::array();
     for (const auto& name : r.columns) {
         std::optional<std::string> unit = column_unit(name);
         const bool text = std::ranges::find(r.text_columns, name) != r.text_columns.end() ||

@@ -1,4 +1,5 @@
 // `gearloss point --json` (docs/outputs.md).
+#include "gearloss/io/json_text.hpp"
 #include "gearloss/map/point_json.hpp"
 
 #include <cmath>
@@ -16,7 +17,7 @@ using nlohmann::ordered_json;
 
 namespace {
 constexpr double kRpm = 30.0 / std::numbers::pi;
-ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
+ordered_json number(double v) { return io::json_number(v); }
 }  // namespace
 
 ordered_json row_object(const std::string& header, const std::string& row) {

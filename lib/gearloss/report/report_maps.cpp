@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <limits>
 
+#include "gearloss/io/json_text.hpp"
 #include "gearloss/report/html.hpp"
 #include <numbers>
 
@@ -233,7 +234,7 @@ nlohmann::ordered_json map_columns(const OilMap& m) {
         ordered_json a = ordered_json::array();
         for (const auto& r : rs) {
             const double v = get(r);
-            a.push_back(std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr));
+            a.push_back(io::json_number(v));
         }
         return a;
     };
