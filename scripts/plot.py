@@ -155,6 +155,11 @@ def main(argv=None):
         fail(str(e))
     except KeyboardInterrupt:
         fail("interrupted", 130)
+    except BrokenPipeError:
+        # --describe into `head`: the reader left; the picture is written. Quiet, as a shell
+        # tool killed by SIGPIPE (128 + 13), and no second error when Python flushes stdout.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(141)
     except Exception as e:  # a bug here, not the user's: still one line, the traceback on request
         if os.environ.get("PLOT_DEBUG"):
             raise

@@ -353,6 +353,10 @@ TEST_CASE("designation suffixes: seals read from them, contradictions refused, '
     bool said = false;
     for (const auto& a : c.assumed) said = said || (a.key == "bearings.b1.seals" && a.reason.find("2RS") != std::string::npos);
     CHECK(said);
+    // An explicit Y on a ball bearing would be shown by check and change nothing: refused.
+    CHECK_THROWS_WITH(spec("  - {name: b1, designation: 6307, Y: 1.5, shaft: pinion, position: 10 mm}\n"),
+                      Contains("t.yaml:18:") && Contains("tapered roller bearings only"));
+    CHECK(spec("  - {name: b1, designation: 32306, Y: 1.5, shaft: pinion, position: 10 mm}\n").Y == 1.5);
     // A contradiction is an InputError at the designation's line.
     CHECK_THROWS_WITH(spec("  - {name: b1, designation: 6307 BE, shaft: pinion, position: 10 mm}\n"),
                       Contains("t.yaml:18:") && Contains("contact-angle suffix"));

@@ -57,7 +57,7 @@ def plot_compare(fig, table, meta, opts):
         opts.title, f"{labels.case_text(meta, table.path)}: oils compared with {ref}",
         labels.join(f"differences oil - {ref}; red: worse than {ref}, blue: better",
                     labels.thermal_text(meta, temps), labels.ratio_text(meta)))
-    fig.suptitle(title, fontsize=11)
+    labels.set_title(fig, title)
     info["title"] = title
     row_handles = []
     for c, (name, col2, coln, factor, unit, worse_positive) in enumerate(quantities):

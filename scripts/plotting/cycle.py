@@ -81,6 +81,6 @@ def plot_cycle(fig, table, meta, opts, warn):
     title = labels.figure_title(
         opts.title, f"{labels.case_text(meta, table.path)}: drive cycle" + (f" {cycle}" if cycle else ""),
         labels.join(f"oil {oil}" if oil else "", "; ".join(names)))
-    fig.suptitle(title, fontsize=11)
+    labels.set_title(fig, title)
     return {"title": title, "panels": names}
 

@@ -132,7 +132,28 @@ def read_table(path, kind):
                 else f": `plot.py {kind}` draws the CSV of `{writer}`")
         raise PlotError(f"{path}: column{'s' if len(missing) > 1 else ''} "
                         f"{', '.join(repr(c) for c in missing)} missing{hint}")
+    for col in table.columns:
+        if col == "status" or col.startswith("status_"):
+            check_status(table, col)
     return table
+
+
+def known_status(s):
+    """Whether s is a status cell gearloss writes (solver/operating_point.hpp): ok,
+    above_oil_limit, no_equilibrium (with or without a cause), out_of_range: CAUSE; empty where a
+    comparison has no point."""
+    return s in ("", "ok", "above_oil_limit") or s.startswith("no_equilibrium") or s.startswith("out_of_range: ")
+
+
+def check_status(table, col):
+    """A status cell gearloss does not write is an error at its line: drawn anyway, it would be
+    an unlabelled failure region."""
+    s = table.text(col)
+    bad = ~s.map(known_status).to_numpy(dtype=bool)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise PlotError(f"{table.path}:{table.line_of(i)}: column '{col}': '{s.iloc[i]}' is not a status gearloss "
+                        "writes (ok, above_oil_limit, no_equilibrium, out_of_range: CAUSE)")
 
 
 def read_sidecar(csv_path, warn):

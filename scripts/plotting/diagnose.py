@@ -47,5 +47,5 @@ def plot_diagnose(fig, table, meta, opts):
     title = labels.figure_title(opts.title, f"{labels.case_text(meta, table.path)}: diagnosis residuals, "
                                             "before and after the fit",
                                 labels.join(f"oil {oil}" if oil else "", f"{len(table)} recorded points"))
-    fig.suptitle(title, fontsize=11)
+    labels.set_title(fig, title)
     return {"title": title, "panels": []}

@@ -3,6 +3,7 @@ oil, thermal mode, ratio. Without a sidecar only what the CSV itself shows is sa
 name for the case, and the thermal mode only when the oil-temperature column proves it (one
 value over every solved point: fixed; different values: each point's own, stabilised)."""
 import os
+import textwrap
 
 import numpy as np
 
@@ -100,3 +101,14 @@ def figure_title(user_title, head, details):
     if user_title:
         return user_title
     return head + ("\n" + details if details else "")
+
+
+def set_title(fig, title, fontsize=11):
+    """The figure's title, each line wrapped at the figure's width: a long case name, oil and
+    ratio list would otherwise run past both edges and be cut off in the saved picture. About
+    72 / (0.55 x font size) characters fit per inch of width (a character is ~0.55 em wide)."""
+    width = max(20, int(fig.get_figwidth() * 72 / (0.55 * fontsize)))
+    lines = []
+    for line in title.split("\n"):
+        lines += textwrap.wrap(line, width, break_long_words=True, break_on_hyphens=False) or [""]
+    fig.suptitle("\n".join(lines), fontsize=fontsize)

@@ -102,7 +102,7 @@ def plot_map(fig, table, meta, opts):
         opts.title, f"{labels.case_text(meta, table.path)}: {what}",
         labels.join(f"oil {oil}" if oil else "", thermal, labels.ratio_text(meta),
                     ", ".join(opts.select), f"{n} sweep variants" if n > 1 else (groups[0][0] if axes else "")))
-    fig.suptitle(title, fontsize=11)
+    labels.set_title(fig, title)
     info["title"] = title
     if kind == "breakdown":
         draw_breakdowns(fig, ax[:n], groups, thermal_swept)

@@ -317,6 +317,8 @@ class Errors(unittest.TestCase):
             (["map", path("sweep.csv"), out, "--select", "speed=1"], "not a sweep axis"),
             (["cycle", path("trace.csv"), out, "--levels", "5"], "--levels applies to"),
             (["map", path("map.csv"), os.path.join(TMP, "no-folder", "x.png")], "cannot write"),
+            (["map", self.write("status.csv", header + first.replace(",ok", ",fine")), out],
+             "status.csv:2: column 'status': 'fine' is not a status gearloss writes"),
         ]
         for args, message in cases:
             with self.subTest(args=args[:2]):
@@ -327,6 +329,34 @@ class Errors(unittest.TestCase):
         os.makedirs(os.path.join(fake, "matplotlib"), exist_ok=True)
         self.write("fake/matplotlib/__init__.py", "raise ImportError('hidden by the test')\n")
         self.refused(["map", path("map.csv"), path("never.png")], "python3-matplotlib", env={"PYTHONPATH": fake})
+
+    def test_describe_into_a_closed_pipe_is_quiet(self):
+        # `plot.py ... --describe | head -1`: the reader leaves; no traceback, no 'internal error'.
+        e = dict(os.environ, MPLCONFIGDIR=path("mpl"))
+        e.pop("PLOT_DEBUG", None)
+        # A pipe whose reader is already closed: the first write fails with EPIPE, every time.
+        read_end, write_end = os.pipe()
+        os.close(read_end)
+        try:
+            r = subprocess.run(["/usr/bin/python3", PLOT, "map", path("map.csv"), path("pipe.png"), "--describe"],
+                               stdout=write_end, stderr=subprocess.PIPE, text=True, env=e)
+        finally:
+            os.close(write_end)
+        self.assertEqual(r.stderr, "")
+        self.assertEqual(r.returncode, 141)  # 128 + SIGPIPE, as a shell tool ends
+        self.assertTrue(os.path.exists(path("pipe.png")))
+
+    def test_long_title_stays_inside_the_picture(self):
+        from plotting import labels
+        fig = plt.figure(figsize=(6.4, 4.8))
+        title = "case " + "very-long-case-name-" * 8 + "\n" + " \u00b7 ".join(f"ratio g{i} 3.{i}" for i in range(12))
+        labels.set_title(fig, title)
+        fig.canvas.draw()
+        box = fig._suptitle.get_window_extent(fig.canvas.get_renderer())
+        self.assertGreaterEqual(box.x0, 0)
+        self.assertLessEqual(box.x1, fig.bbox.width)
+        self.assertEqual(fig._suptitle.get_text().replace("\n", "").replace(" ", ""), title.replace("\n", "").replace(" ", ""))
+        plt.close(fig)
 
     def test_broken_sidecar_is_ignored_with_a_warning(self):
         shutil.copy(path("fixed.csv"), path("side.csv"))

@@ -145,6 +145,12 @@ void Loader::load_bearings() {
         if (cat && cat->C) res.values.push_back({"C", fmt::format("{:g} kN", *cat->C / 1e3), *cat->C, from_cat});
         if (auto v = pick("C0", dim::force, "18.3 kN", cat ? cat->C0 : std::nullopt, 1e3, "kN")) s.C0 = *v;
         if (n.has("Y")) {
+            // SKF (2004) uses Y in the rolling and sliding terms of tapered roller bearings only:
+            // on any other type it would be shown by `check` and change nothing.
+            if (s.type != bearings::BearingType::tapered_roller)
+                n.at("Y").fail(fmt::format("the axial load factor Y enters the SKF (2004) friction model of tapered roller "
+                                           "bearings only; a {} bearing takes its axial load through its series constants",
+                                           bearings::to_string(s.type)));
             s.Y = n.at("Y").as_number();
             if (!(s.Y > 0 && s.Y < 5)) n.at("Y").fail("axial load factor Y outside (0, 5)");
             res.values.push_back({"Y", fmt::format("{:g}", s.Y), s.Y, "explicit " + located_at(n.at("Y"))});
