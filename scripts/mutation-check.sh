@@ -89,6 +89,8 @@ mut M9 mesh lib/gearloss/mesh/ehl_contact.cpp "3-pressure Hertz shortcut: outer 
     '2 * Gauss5::weights()[2]' 'Gauss5::weights()[2]'
 mut M10 mesh lib/gearloss/mesh/friction.cpp "boundary share (1 - Lambda/2)^2 -> (1 - Lambda/2.2)^2 (mixed film ends at 2.2)" \
     'const double s = 1.0 - 0.5 * std::max(lambda, 0.0);' 'const double s = 1.0 - std::max(lambda, 0.0) / 2.2;'
+mut M11 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "the oil's mixed-film mu_ehl ignored (the mechanism's value used)" \
+    'return given(kMuEhl) || !m.oil.gear_mu_ehl ? param(kMuEhl) : *m.oil.gear_mu_ehl;' 'return param(kMuEhl);'
 mut S6 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "mixed friction rise read at a 10 % larger Lambda" \
     'mixed = 1.0 + mixed_rise * boundary_share_doleschel(lambda);' 'mixed = 1.0 + mixed_rise * boundary_share_doleschel(1.1 * lambda);'
 mut S1 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "mean roughness (Ra1+Ra2)/2 -> sum Ra1+Ra2 (issue 12)" \

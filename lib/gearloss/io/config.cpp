@@ -269,6 +269,7 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
     if (auto o = root.get("options")) detail::load_options(*o, m);
     if (auto mech = root.get("mechanisms")) load_mechanism_settings(*mech, m);
     if (auto cal = root.get("calibration")) load_calibration(*cal, m);
+    detail::note_mechanism_settings(root, c);
 
     const YamlNode op = root.at("operating");
     op.allow_keys({"speeds", "torques", "points"});

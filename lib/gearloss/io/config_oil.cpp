@@ -217,6 +217,13 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
               t.mu_boundary > 0 && t.mu_boundary < 1 && t.mixed_B > 0 && t.mixed_m > 0))
             tr->fail("traction properties out of range (Eyring stress > 0, 0 <= slope < 1, 0 < boundary friction < 1)");
     }
+    // The mixed-film pair of the mesh (Fernandes et al. 2015), measured per oil.
+    if (auto gf = n.get("gear_friction")) {
+        const auto pair = parse_pair(*gf);
+        if (gf->has("mu_bl")) oil.gear_mu_bl = pair.mu_bl;
+        oil.gear_mu_ehl = pair.mu_ehl;
+        if (oil.gear_mu_bl && oil.gear_mu_ehl && !(*oil.gear_mu_ehl < *oil.gear_mu_bl)) gf->fail("need 0 <= mu_ehl < mu_bl < 1");
+    }
     const auto bf = n.get("bearing_friction");
     if (bf) {
         bf->allow_keys({"ball", "roller"});

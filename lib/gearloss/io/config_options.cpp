@@ -2,6 +2,8 @@
 #include "gearloss/io/config_internal.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 
+#include <fmt/format.h>
+
 namespace gearloss::io::detail {
 
 void load_options(const YamlNode& n, solver::Model& m) {
@@ -33,13 +35,14 @@ void load_options(const YamlNode& n, solver::Model& m) {
                                                                 {"composite_Rq", mesh::LambdaRoughness::composite_Rq}});
     if (auto gf = n.get("gear_friction")) {
         gf->allow_keys({"mu_bl", "mu_ehl"});
+        // Only the values written become the case's (the other stays the oil's or the default).
         auto& mesh = m.mechanisms.at("mesh");
-        double mu_bl = mesh.parameter("mu_bl"), mu_ehl = mesh.parameter("mu_ehl");
-        if (auto v = gf->get("mu_bl")) mu_bl = v->as_number();
-        if (auto v = gf->get("mu_ehl")) mu_ehl = v->as_number();
-        if (!mesh::mixed_friction_pair_valid(mu_bl, mu_ehl)) gf->fail("need 0 <= mu_ehl < mu_bl < 1");
-        mesh.set_parameter("mu_bl", mu_bl);
-        mesh.set_parameter("mu_ehl", mu_ehl);
+        if (auto v = gf->get("mu_bl")) mesh.set_parameter("mu_bl", v->as_number());
+        if (auto v = gf->get("mu_ehl")) mesh.set_parameter("mu_ehl", v->as_number());
+        if (!mesh::mixed_friction_pair_valid(mesh.value_in(m, "mu_bl"), mesh.value_in(m, "mu_ehl")))
+            gf->fail(fmt::format("need 0 <= mu_ehl < mu_bl < 1 (mu_bl {:g} from the {}, mu_ehl {:g} from the {})",
+                                 mesh.value_in(m, "mu_bl"), mesh.value_source(m, "mu_bl"), mesh.value_in(m, "mu_ehl"),
+                                 mesh.value_source(m, "mu_ehl")));
     }
 }
 
@@ -126,6 +129,32 @@ void load_thermal(const YamlNode& n, solver::ThermalSettings& t, std::vector<Ass
                 if (hs.air_speed < 0) s.at("air_speed").fail("air speed cannot be negative");
             }
             t.rejection.model = hs;
+        }
+    }
+}
+
+// A setting that only one form reads (Parameter::used_by) matters once that form is selected:
+// left at its nominal value there, by neither the case nor the oil, it is an assumption.
+void note_mechanism_settings(const YamlNode& root, Case& c) {
+    const auto& m = c.model;
+    const auto block = root.get("mechanisms");
+    for (size_t i = 0; i < m.mechanisms.size(); ++i) {
+        const auto& mech = m.mechanisms[i];
+        if (!mech.enabled()) continue;
+        const auto own = block ? block->get(std::string(mech.name())) : std::nullopt;
+        const YamlNode& parent = own ? *own : block ? *block : root;
+        for (const auto& p : mech.parameters()) {
+            if (p.calibration || p.used_by.empty()) continue;
+            std::string axis_of_form;
+            for (const auto& a : mech.forms(m))
+                if (mech.form(m, a.axis) == p.used_by) axis_of_form = a.axis;
+            if (axis_of_form.empty() || std::string_view(mech.value_source(m, p.name)) != "default") continue;
+            const auto blank = p.example.find(' ');
+            const std::string unit = p.dimension && blank != std::string::npos ? p.example.substr(blank) : "";
+            assume(&c.assumed, parent, fmt::format("mechanisms.{}.{}", mech.name(), p.name),
+                   number_text(mech.parameter(p.name)) + unit,
+                   fmt::format("{}: the default value, read by the selected form {}.{}: {}", p.description, mech.name(),
+                               axis_of_form, p.used_by));
         }
     }
 }

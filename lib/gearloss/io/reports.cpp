@@ -150,8 +150,10 @@ std::string check_report(const Case& c) {
         }
         const auto params = mech.parameters();
         for (size_t k = 0; k < params.size(); ++k)
-            s += fmt::format("    {} = {:.6g}{} ({})\n", params[k].name, mech.parameter(params[k].name),
-                             params[k].calibration ? " [calibration]" : "", params[k].description);
+            s += fmt::format("    {} = {:.6g}{}{} ({})\n", params[k].name, mech.value_in(m, params[k].name),
+                             params[k].calibration ? " [calibration]" : "",
+                             std::string_view(mech.value_source(m, params[k].name)) == "oil" ? " [from the oil]" : "",
+                             params[k].description);
     }
     const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
     s += fmt::format("\noil {} ({}): nu40 = {:.3f} cSt, nu100 = {:.3f} cSt, rho15 = {:.1f} kg/m^3, X_L = {:.3f}\n", m.oil.name,
@@ -269,7 +271,12 @@ nlohmann::ordered_json check_json_object(const Case& c) {
         for (const auto& a : mech.forms(m))
             o["forms"].push_back({{"axis", a.axis}, {"selected", mech.form(m, a.axis)}, {"forms", a.forms}});
         o["parameters"] = ordered_json::object();
-        for (const auto& p : mech.parameters()) o["parameters"][p.name] = mech.parameter(p.name);
+        std::vector<std::string> from_oil;  // the values in force that the oil gives
+        for (const auto& p : mech.parameters()) {
+            o["parameters"][p.name] = mech.value_in(m, p.name);
+            if (std::string_view(mech.value_source(m, p.name)) == "oil") from_oil.push_back(p.name);
+        }
+        if (!from_oil.empty()) o["parameters_from_oil"] = from_oil;
         j["mechanisms"].push_back(std::move(o));
     }
     j["operating_points"] = c.grid.size();

@@ -9,6 +9,15 @@
 
 namespace gearloss::losses {
 
+namespace {
+size_t parameter_index(const LossMechanism& mech, std::string_view name) {
+    const auto ps = mech.parameters();
+    for (size_t i = 0; i < ps.size(); ++i)
+        if (ps[i].name == name) return i;
+    throw InputError(fmt::format("mechanism '{}' has no parameter '{}'", mech.name(), name));
+}
+}  // namespace
+
 void MechanismDetail::reset(size_t components, size_t q) {
     quantities = q;
     values.assign(components * q, 0.0);
@@ -17,23 +26,28 @@ void MechanismDetail::reset(size_t components, size_t q) {
 void LossMechanism::reset_parameters() {
     values_.clear();
     for (const auto& p : parameters()) values_.push_back(p.nominal);
+    given_.assign(values_.size(), false);
 }
 
-double LossMechanism::parameter(std::string_view name) const {
-    const auto ps = parameters();
-    for (size_t i = 0; i < ps.size(); ++i)
-        if (ps[i].name == name) return values_[i];
-    throw InputError(fmt::format("mechanism '{}' has no parameter '{}'", this->name(), name));
-}
+double LossMechanism::parameter(std::string_view name) const { return values_[parameter_index(*this, name)]; }
 
 void LossMechanism::set_parameter(std::string_view name, double value) {
-    const auto ps = parameters();
-    for (size_t i = 0; i < ps.size(); ++i)
-        if (ps[i].name == name) {
-            values_[i] = value;
-            return;
-        }
-    throw InputError(fmt::format("mechanism '{}' has no parameter '{}'", this->name(), name));
+    const size_t i = parameter_index(*this, name);
+    values_[i] = value;
+    given_[i] = true;
+}
+
+bool LossMechanism::parameter_given(std::string_view name) const { return given_[parameter_index(*this, name)]; }
+
+double LossMechanism::value_in(const solver::Model& m, std::string_view name) const {
+    const size_t i = parameter_index(*this, name);
+    if (given_[i]) return values_[i];
+    return oil_value(m, name).value_or(values_[i]);
+}
+
+const char* LossMechanism::value_source(const solver::Model& m, std::string_view name) const {
+    if (given_[parameter_index(*this, name)]) return "case";
+    return oil_value(m, name) ? "oil" : "default";
 }
 
 bool LossMechanism::parameters_nominal() const {

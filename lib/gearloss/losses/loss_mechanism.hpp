@@ -12,6 +12,7 @@
 // mechanisms and takes its columns from them; the diagnosis reads their parameters and
 // alternative forms without a hand-written list.
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -98,6 +99,9 @@ struct Parameter {
     std::string left_out;        // "air/oil-mist drag of the rotating gears, ..."
     // Whether the term may differ from oil to oil (a multi-oil campaign fits it per oil).
     bool oil_dependent = false;
+    // The form that reads this setting ("fernandes_mixed"); empty: every form. A setting its
+    // form reads and the case leaves at the nominal value is listed as assumed.
+    std::string used_by = {};
 };
 
 // A choice between published forms of the same physics ("friction": schlenk, iso_6336_20, ...).
@@ -153,6 +157,18 @@ public:
     double parameter(std::string_view name) const;
     void set_parameter(std::string_view name, double value);  // InputError for an unknown name
     bool parameters_nominal() const;
+    // Whether set_parameter gave the parameter a value (the case wrote it), as opposed to
+    // its nominal value.
+    bool parameter_given(std::string_view name) const;
+    // A value the oil gives for a setting of this mechanism (a measured lubricant property,
+    // e.g. the boundary friction of the mesh); nullopt: the oil gives none.
+    virtual std::optional<double> oil_value(const solver::Model&, std::string_view /*name*/) const {
+        return std::nullopt;
+    }
+    // The value in force, and where it comes from: the case's setting ("case"), else the
+    // oil's ("oil"), else the nominal value ("default").
+    double value_in(const solver::Model& m, std::string_view name) const;
+    const char* value_source(const solver::Model& m, std::string_view name) const;
     // Alternative forms, selectable by name. Each mechanism keeps its own choice (a model
     // copy carries it with the mechanism set).
     virtual std::vector<FormAxis> forms(const solver::Model&) const { return {}; }
@@ -172,6 +188,7 @@ public:
 protected:
     // Value of parameter i of parameters() (the hot path reads these).
     double param(size_t i) const { return values_[i]; }
+    bool given(size_t i) const { return given_[i]; }
 
 public:
     // Every parameter at its nominal value (the registry calls this on creation).
@@ -179,6 +196,7 @@ public:
 
 private:
     std::vector<double> values_;  // per parameters(), in its order
+    std::vector<bool> given_;     // per parameters(): set by set_parameter
     bool enabled_ = true;
 };
 

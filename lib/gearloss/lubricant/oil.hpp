@@ -64,6 +64,9 @@ public:
     double X_L = 1.0;               // lubricant factor of the mean gear friction
     double max_temperature = 368.15;  // K, permissible bulk (sump) temperature; from the datasheet or per base oil
     BearingFrictionPair bearing_ball, bearing_roller;
+    // Boundary and full-film friction of the mixed-film mesh model (Fernandes et al. 2015),
+    // measured per oil; unset: the mesh mechanism's settings.
+    std::optional<double> gear_mu_bl, gear_mu_ehl;
     TractionProperties traction;
 
     OilState state(double T_K) const;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <initializer_list>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "gearloss/core/source_index.hpp"
@@ -71,8 +72,10 @@ public:
         return {{"friction_factor", "scales mu_mZ (an error of X_L)", nullptr, "1.1", 1.0, 0.05, 20.0, true, "mesh_friction",
                  "load-dependent mesh friction level differs (lubricant factor X_L, surface finish)",
                  /*oil_dependent=*/true},
-                {"mu_bl", "boundary friction of fernandes_mixed", nullptr, "0.10", 0.10, 0.0, 1.0, false},
-                {"mu_ehl", "full-film friction of fernandes_mixed", nullptr, "0.02", 0.02, 0.0, 1.0, false},
+                {"mu_bl", "boundary friction of fernandes_mixed", nullptr, "0.10", 0.10, 0.0, 1.0, false, "", "", false,
+                 "fernandes_mixed"},
+                {"mu_ehl", "full-film friction of fernandes_mixed", nullptr, "0.02", 0.02, 0.0, 1.0, false, "", "", false,
+                 "fernandes_mixed"},
                 // Friction that follows the film: mu x (1 + k xi(Lambda)), xi the boundary share
                 // of Doleschel (2003), 0 above Lambda = 2. The published laws give mu a fixed
                 // power of load, speed and viscosity; asperity contact makes it rise where the
@@ -81,6 +84,20 @@ public:
                  0.0, -0.9, 20.0, true, "mesh_friction_mixed",
                  "mesh friction rises where the film is thin (mixed lubrication: asperity contact below Lambda = 2)",
                  /*oil_dependent=*/true}};
+    }
+    // The pair is a property of the lubricant (Fernandes et al. 2015 measure it per oil):
+    // an oil's `gear_friction` gives it where the case does not.
+    std::optional<double> oil_value(const solver::Model& m, std::string_view name) const override {
+        if (name == "mu_bl") return m.oil.gear_mu_bl;
+        if (name == "mu_ehl") return m.oil.gear_mu_ehl;
+        return std::nullopt;
+    }
+    // The pair in force (hot path: no lookup by name).
+    double mixed_mu_bl(const solver::Model& m) const {
+        return given(kMuBl) || !m.oil.gear_mu_bl ? param(kMuBl) : *m.oil.gear_mu_bl;
+    }
+    double mixed_mu_ehl(const solver::Model& m) const {
+        return given(kMuEhl) || !m.oil.gear_mu_ehl ? param(kMuEhl) : *m.oil.gear_mu_ehl;
     }
     std::vector<losses::FormAxis> forms(const solver::Model&) const override {
         return {{"friction", names(kFriction)}, {"loss_factor", names(kLossFactor)}, {"film_correction", names(kFilm)}};
@@ -120,15 +137,24 @@ solver::Issue setting_issue(const solver::Model& m, std::initializer_list<const 
     for (const char* k : mechanism_keys)
         if (m.source && m.source->has(std::string("mechanisms.mesh.") + k))
             return {"mechanisms", "", std::string("mesh.") + k, std::move(message)};
+    // A value of the oil in force (the case's options key absent).
+    if (m.source && !m.source->has(std::string("options.") + options_key))
+        for (const char* k : mechanism_keys)
+            if (m.source->has(std::string("oil.") + options_key + "." + k))
+                return {"oil", "", std::string(options_key) + "." + k, std::move(message)};
     return {"options", "", options_key, std::move(message)};
 }
 
 void MeshFriction::validate(const solver::Model& m, std::vector<solver::Issue>& out) const {
     LossMechanism::validate(m, out);  // each parameter within its bounds
-    // The order of the mixed-film pair (a value outside its bounds is reported above, once).
-    const double bl = param(kMuBl), ehl = param(kMuEhl);
+    // The order of the mixed-film pair in force (a value outside its bounds is reported
+    // above, once), naming where each value came from: the pair may mix an oil's value
+    // with the case's or the default.
+    const double bl = mixed_mu_bl(m), ehl = mixed_mu_ehl(m);
     if (bl >= 0 && bl <= 1 && ehl >= 0 && ehl <= 1 && !mixed_friction_pair_valid(bl, ehl))
-        out.push_back(setting_issue(m, {"mu_bl", "mu_ehl"}, "gear_friction", "need 0 <= mu_ehl < mu_bl < 1"));
+        out.push_back(setting_issue(m, {"mu_bl", "mu_ehl"}, "gear_friction",
+                                    fmt::format("need 0 <= mu_ehl < mu_bl < 1 (mu_bl {:g} from the {}, mu_ehl {:g} from the {})",
+                                                bl, value_source(m, "mu_bl"), ehl, value_source(m, "mu_ehl"))));
     // Ohlendorf's (1958) closed form and the single-pair average (Buckingham) assume
     // 1 <= eps_alpha < 2: one or two pairs in contact, alternating. Wimmer's (2006) sweep of the
     // contact lines holds for any contact ratio. The layout exists once the model is finalised.
@@ -241,7 +267,7 @@ double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint&
             const double lambda = f.h_c / ms.sigma;
             if (opt.friction == FrictionModel::fernandes_mixed) {
                 const double xi = boundary_share_doleschel(lambda);
-                mu = (xi * param(kMuBl) + (1.0 - xi) * param(kMuEhl)) * factor;
+                mu = (xi * mixed_mu_bl(m) + (1.0 - xi) * mixed_mu_ehl(m)) * factor;
             }
             if (mixed_rise != 0.0) mixed = 1.0 + mixed_rise * boundary_share_doleschel(lambda);
             mu *= mixed;

@@ -59,9 +59,9 @@ public:
     std::vector<losses::Parameter> parameters() const override {
         return {{"factor", "scales every gear's windage", nullptr, "1.5", 1.0, 0.0, 100.0, true},
                 {"mist_viscosity", "viscosity of the air/oil mist (anderson_loewenthal)", &units::dim::dynamic_viscosity,
-                 "1.8e-5 Pa*s", 1.8e-5, 0.0, 1.0, false},
+                 "1.8e-5 Pa*s", 1.8e-5, 0.0, 1.0, false, "", "", false, "anderson_loewenthal"},
                 {"pressure", "gas pressure in the housing (free_disk)", &units::dim::pressure, "101325 Pa", 101325.0, 1e3,
-                 1e7, false},
+                 1e7, false, "", "", false, "free_disk"},
                 {"empirical_W_at_1000rpm", "empirical drag of the whole box at 1000 rpm input speed (n^2.9)",
                  &units::dim::power, "12 W", 0.0, 0.0, 1e9, true, "windage",
                  "air/oil-mist drag of the rotating gears, P = C (n/1000 rpm)^2.9, independent of oil viscosity and load"}};
