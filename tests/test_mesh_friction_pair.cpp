@@ -128,11 +128,27 @@ TEST_CASE("mesh friction pair: settings a selected form reads and nobody gives a
     CHECK(!assumed(c, "mechanisms.mesh.mu_ehl"));
     REQUIRE(assumed(c, "mechanisms.windage.pressure"));
     CHECK(!assumed(c, "mechanisms.windage.mist_viscosity"));  // read by anderson_loewenthal only
+    const std::string text = transfer_box() + "mechanisms:\n  mesh: {mu_ehl: 0.01}\n  windage: {form: free_disk}\n";
     for (const auto& a : c.assumed)
         if (a.key == "mechanisms.windage.pressure") {
             CHECK(a.value == "101325 Pa");
+            // At the windage block (file:line:col).
+            CHECK_THAT(a.location, Catch::Contains(":" + std::to_string(test_support::line_of(text, "  windage: {form: free_disk}")) + ":"));
             CHECK_THAT(a.reason, Catch::Contains("free_disk"));
         }
+    // An oil replaced by --oil that gives the pair: the pair is no longer assumed, and is used.
+    c = load_text(transfer_box());
+    {
+        test_support::TempConfig oil(test_support::read_file(test_support::source_path("configs/oils/75W90-A.yaml")) +
+                                     "gear_friction: {mu_bl: 0.12, mu_ehl: 0.03}\n");
+        io::replace_oil_file(c, oil.path);
+    }
+    CHECK(!assumed(c, "mechanisms.mesh.mu_bl"));
+    CHECK(!assumed(c, "mechanisms.mesh.mu_ehl"));
+    c.model.thermal.mode = solver::ThermalMode::fixed;
+    c.model.thermal.oil_temperature = 353.15;
+    CHECK(solver::solve_point(c.model, 1500 * kRpm, 200).losses.power[losses::MechanismSet{}.index("mesh")] ==
+          mesh_loss(transfer_box() + "mechanisms:\n  mesh: {mu_bl: 0.12, mu_ehl: 0.03}\n"));
     // The published default form reads neither: nothing assumed.
     c = io::load_case(test_support::source_path("configs/transfer-box.yaml"));
     for (const auto& a : c.assumed) CHECK(!a.key.starts_with("mechanisms."));

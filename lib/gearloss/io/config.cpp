@@ -135,6 +135,7 @@ void replace_oil(Case& c, const lubricant::Oil& oil, const std::vector<AssumedVa
     std::erase_if(c.assumed, [](const AssumedValue& a) { return a.key.starts_with("oil."); });
     c.assumed.insert(c.assumed.end(), assumed_by_oil.begin(), assumed_by_oil.end());
     detail::note_bearing_friction(c);
+    detail::note_mechanism_settings(c);
 }
 
 void replace_oil_file(Case& c, const std::string& file) {
@@ -269,7 +270,6 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
     if (auto o = root.get("options")) detail::load_options(*o, m);
     if (auto mech = root.get("mechanisms")) load_mechanism_settings(*mech, m);
     if (auto cal = root.get("calibration")) load_calibration(*cal, m);
-    detail::note_mechanism_settings(root, c);
 
     const YamlNode op = root.at("operating");
     op.allow_keys({"speeds", "torques", "points"});
@@ -297,6 +297,7 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
 
     m.source = std::move(source);
     detail::note_bearing_friction(c);
+    detail::note_mechanism_settings(c);
     // Errors found once the model is assembled point at the item they come from. Every
     // ratio is checked here, so a ratio selected at run time (Model::select_ratio, for a
     // drive cycle or a loss table per gear) needs no check that could fail without a line.

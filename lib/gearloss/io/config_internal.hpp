@@ -26,8 +26,9 @@ std::string number_text(double v);
 void note_bearing_friction(Case& c);
 
 // The settings of the selected forms the case and the oil leave at their defaults
-// ("mechanisms.windage.pressure" of free_disk): one assumed value each.
-void note_mechanism_settings(const YamlNode& root, Case& c);
+// ("mechanisms.windage.pressure" of free_disk): one assumed value each, replacing earlier ones
+// (an oil replaced by --oil may give the mesh's friction pair).
+void note_mechanism_settings(Case& c);
 
 // SKF sliding friction pair of a bearing from the oil (or the SKF defaults by type and base oil).
 void set_bearing_friction(bearings::BearingSpec& s, const lubricant::Oil& oil);

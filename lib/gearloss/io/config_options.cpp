@@ -1,5 +1,6 @@
 // Case loader: the `options:` block (the loss mechanisms' choices) and the `thermal:` block (heat path, docs/config.md).
 #include "gearloss/io/config_internal.hpp"
+#include "gearloss/core/source_index.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 
 #include <fmt/format.h>
@@ -135,14 +136,12 @@ void load_thermal(const YamlNode& n, solver::ThermalSettings& t, std::vector<Ass
 
 // A setting that only one form reads (Parameter::used_by) matters once that form is selected:
 // left at its nominal value there, by neither the case nor the oil, it is an assumption.
-void note_mechanism_settings(const YamlNode& root, Case& c) {
+void note_mechanism_settings(Case& c) {
+    std::erase_if(c.assumed, [](const AssumedValue& a) { return a.key.starts_with("mechanisms."); });
     const auto& m = c.model;
-    const auto block = root.get("mechanisms");
     for (size_t i = 0; i < m.mechanisms.size(); ++i) {
         const auto& mech = m.mechanisms[i];
         if (!mech.enabled()) continue;
-        const auto own = block ? block->get(std::string(mech.name())) : std::nullopt;
-        const YamlNode& parent = own ? *own : block ? *block : root;
         for (const auto& p : mech.parameters()) {
             if (p.calibration || p.used_by.empty()) continue;
             std::string axis_of_form;
@@ -151,10 +150,19 @@ void note_mechanism_settings(const YamlNode& root, Case& c) {
             if (axis_of_form.empty() || std::string_view(mech.value_source(m, p.name)) != "default") continue;
             const auto blank = p.example.find(' ');
             const std::string unit = p.dimension && blank != std::string::npos ? p.example.substr(blank) : "";
-            assume(&c.assumed, parent, fmt::format("mechanisms.{}.{}", mech.name(), p.name),
-                   number_text(mech.parameter(p.name)) + unit,
-                   fmt::format("{}: the default value, read by the selected form {}.{}: {}", p.description, mech.name(),
-                               axis_of_form, p.used_by));
+            // At the mechanism's block when the case has one, else the mechanisms block, else the
+            // options block (the earlier spelling of the forms), else the file's first line.
+            SourceLocation at;
+            if (m.source) {
+                at = m.source->find("mechanisms", "", std::string(mech.name()));
+                if (!at.known()) at = m.source->find("options", "", "");
+                if (!at.known()) at = {m.source->file(), 1, 1};
+            }
+            c.assumed.push_back({fmt::format("mechanisms.{}.{}", mech.name(), p.name),
+                                 number_text(mech.parameter(p.name)) + unit,
+                                 fmt::format("{}: the default value, read by the selected form {}.{}: {}", p.description,
+                                             mech.name(), axis_of_form, p.used_by),
+                                 located_at(at)});
         }
     }
 }
