@@ -312,9 +312,16 @@ TEST_CASE("mechanisms: the mesh's mixed-film friction pair, in the options and t
     // Set in code: validate() names the pair.
     io::Case c = load("transfer-box.yaml");
     c.model.mechanisms.at("mesh").set_parameter("mu_ehl", 0.2);
+    // With schlenk the pair is not read, and half of it (the other half the default) is no issue.
+    CHECK(solver::validate(c.model).empty());
+    c.model.mechanisms.at("mesh").set_form(c.model, "friction", "fernandes_mixed");
     const auto issues = solver::validate(c.model);
     REQUIRE(issues.size() == 1);
     CHECK(issues[0].path() == "options.gear_friction");
+    // A whole pair out of order is an issue whatever the form.
+    c.model.mechanisms.at("mesh").set_form(c.model, "friction", "schlenk");
+    c.model.mechanisms.at("mesh").set_parameter("mu_bl", 0.1);
+    CHECK(solver::validate(c.model).size() == 1);
 }
 
 TEST_CASE("mechanisms: mesh friction that follows the film rises by k (1 - Lambda/2)^2 below Lambda = 2", "[mechanisms]") {

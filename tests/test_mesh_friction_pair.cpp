@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 #include "gearloss/losses/registry.hpp"
+#include "gearloss/map/map_runner.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 
@@ -115,6 +116,33 @@ TEST_CASE("mesh friction pair: out of order or out of range in the oil is an err
     CHECK_THAT(e.message, Catch::Contains("mu_bl 0.04 from the oil, mu_ehl 0.05 from the case"));
 }
 
+TEST_CASE("mesh friction pair: an --oil whose pair is out of order is an error in that oil file, only where it is read",
+          "[mechanisms]") {
+    const std::string oil_text = test_support::read_file(test_support::source_path("configs/oils/75W90-A.yaml")) +
+                                 "gear_friction: {mu_bl: 0.015}\n";  // below the default mu_ehl 0.02
+    test_support::TempConfig oil(oil_text);
+    // fernandes_mixed reads the pair: the error is at the oil's key, in the --oil file.
+    auto c = load_text(transfer_box());
+    io::replace_oil_file(c, oil.path);
+    try {
+        map::validate_case(c, {.oil = oil.path, .grid = false});
+        FAIL("no error");
+    } catch (const InputError& e) {
+        CHECK(e.file == oil.path);
+        CHECK(e.line == test_support::line_of(oil_text, "gear_friction: {mu_bl: 0.015}"));
+        CHECK_THAT(e.message, Catch::Contains("mu_bl 0.015 from the oil, mu_ehl 0.02 from the default"));
+    }
+    // schlenk does not read it: the same oil is usable (a measured mu_ehl of 0.1 must not stop it).
+    c = io::load_case(test_support::source_path("configs/transfer-box.yaml"));
+    io::replace_oil_file(c, oil.path);
+    CHECK_NOTHROW(map::validate_case(c, {.oil = oil.path, .grid = false}));
+    const std::string text = io::check_report(c);
+    CHECK_THAT(text, Catch::Contains("mu_bl = 0.015 [from the oil] [not read: fernandes_mixed is not selected]"));
+    // An oil's own pair out of order names both values.
+    CHECK_THAT(load_error(transfer_box("gear_friction: {mu_bl: 0.02, mu_ehl: 0.05}\n")).message,
+               Catch::Contains("mu_bl 0.02, mu_ehl 0.05, both from the oil"));
+}
+
 TEST_CASE("mesh friction pair: settings a selected form reads and nobody gives are assumed values", "[mechanisms]") {
     auto c = load_text(transfer_box());
     CHECK(assumed(c, "mechanisms.mesh.mu_bl"));
@@ -149,6 +177,13 @@ TEST_CASE("mesh friction pair: settings a selected form reads and nobody gives a
     c.model.thermal.oil_temperature = 353.15;
     CHECK(solver::solve_point(c.model, 1500 * kRpm, 200).losses.power[losses::MechanismSet{}.index("mesh")] ==
           mesh_loss(transfer_box() + "mechanisms:\n  mesh: {mu_bl: 0.12, mu_ehl: 0.03}\n"));
+    // check lists the assumed values, in text and JSON.
+    c = load_text(transfer_box());
+    CHECK_THAT(io::check_report(c), Catch::Contains("  mechanisms.mesh.mu_bl = 0.1 (boundary friction of fernandes_mixed"));
+    bool listed = false;
+    const auto j = io::check_json_object(c);
+    for (const auto& a : j["assumed"]) listed = listed || a["key"] == "mechanisms.mesh.mu_ehl";
+    CHECK(listed);
     // The published default form reads neither: nothing assumed.
     c = io::load_case(test_support::source_path("configs/transfer-box.yaml"));
     for (const auto& a : c.assumed) CHECK(!a.key.starts_with("mechanisms."));

@@ -32,13 +32,16 @@ nlohmann::ordered_json oil_state_json(const io::Case& k) {
 }
 
 // check_report with the oil line inserted after the oil block (before "operating points: N",
-// the last line ahead of the plausibility warnings).
+// the last line ahead of the assumed values and the plausibility warnings).
 std::string report_with_oil_state(io::Case& k) {
     const std::string full = io::check_report(k);
     auto warnings = std::move(k.warnings);
+    auto assumed = std::move(k.assumed);
     k.warnings.clear();
-    const std::string head = io::check_report(k);  // the report up to its plausibility section
+    k.assumed.clear();
+    const std::string head = io::check_report(k);  // the report up to its assumed values
     k.warnings = std::move(warnings);
+    k.assumed = std::move(assumed);
     if (head.empty() || head.back() != '\n' || full.compare(0, head.size(), head) != 0)
         throw std::logic_error("check report: unexpected layout");
     const size_t last_line = head.rfind('\n', head.size() - 2) + 1;  // npos + 1 = 0

@@ -222,7 +222,9 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
         const auto pair = parse_pair(*gf);
         if (gf->has("mu_bl")) oil.gear_mu_bl = pair.mu_bl;
         oil.gear_mu_ehl = pair.mu_ehl;
-        if (oil.gear_mu_bl && oil.gear_mu_ehl && !(*oil.gear_mu_ehl < *oil.gear_mu_bl)) gf->fail("need 0 <= mu_ehl < mu_bl < 1");
+        if (oil.gear_mu_bl && oil.gear_mu_ehl && !(*oil.gear_mu_ehl < *oil.gear_mu_bl))
+            gf->fail(fmt::format("need 0 <= mu_ehl < mu_bl < 1 (mu_bl {:g}, mu_ehl {:g}, both from the oil)", *oil.gear_mu_bl,
+                                 *oil.gear_mu_ehl));
     }
     const auto bf = n.get("bearing_friction");
     if (bf) {

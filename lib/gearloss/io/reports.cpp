@@ -148,12 +148,14 @@ std::string check_report(const Case& c) {
             for (const auto& f : a.forms) list += fmt::format(" {}", f == chosen ? "[" + f + "]" : f);
             s += fmt::format("    {}.{}:{}\n", mech.name(), a.axis, list);
         }
-        const auto params = mech.parameters();
-        for (size_t k = 0; k < params.size(); ++k)
-            s += fmt::format("    {} = {:.6g}{}{} ({})\n", params[k].name, mech.value_in(m, params[k].name),
-                             params[k].calibration ? " [calibration]" : "",
-                             std::string_view(mech.value_source(m, params[k].name)) == "oil" ? " [from the oil]" : "",
-                             params[k].description);
+        for (const auto& p : mech.parameters()) {
+            // A setting of a form that is not selected is shown, and said to be unread.
+            bool unread = !p.used_by.empty();
+            for (const auto& a : mech.forms(m)) unread = unread && mech.form(m, a.axis) != p.used_by;
+            s += fmt::format("    {} = {:.6g}{}{}{} ({})\n", p.name, mech.value_in(m, p.name), p.calibration ? " [calibration]" : "",
+                             std::string_view(mech.value_source(m, p.name)) == "oil" ? " [from the oil]" : "",
+                             unread ? " [not read: " + p.used_by + " is not selected]" : "", p.description);
+        }
     }
     const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
     s += fmt::format("\noil {} ({}): nu40 = {:.3f} cSt, nu100 = {:.3f} cSt, rho15 = {:.1f} kg/m^3, X_L = {:.3f}\n", m.oil.name,
@@ -163,6 +165,11 @@ std::string check_report(const Case& c) {
     s += fmt::format("    permissible oil temperature {:.1f} degC (above it a stabilised point is 'above_oil_limit')\n",
                      m.oil.max_temperature - 273.15);
     s += fmt::format("operating points: {}\n", c.grid.size());
+    if (!c.assumed.empty()) {
+        s += fmt::format("\nassumed values ({}; the case and its oil do not give them):\n", c.assumed.size());
+        for (const auto& a : c.assumed)
+            s += fmt::format("  {} = {} ({}){}\n", a.key, a.value, a.reason, a.location.empty() ? "" : " at " + a.location);
+    }
     if (!c.warnings.empty()) {
         s += fmt::format("\nplausibility ({}):\n", c.warnings.size());
         for (const auto& w : c.warnings) s += "  " + w + "\n";
@@ -280,11 +287,22 @@ nlohmann::ordered_json check_json_object(const Case& c) {
         j["mechanisms"].push_back(std::move(o));
     }
     j["operating_points"] = c.grid.size();
+    j["assumed"] = assumed_json(c.assumed);
     j["warnings"] = c.warnings;
     return j;
 }
 
 std::string check_json(const Case& c) { return json_line(check_json_object(c)); }
+
+nlohmann::ordered_json assumed_json(const std::vector<AssumedValue>& assumed) {
+    auto out = nlohmann::ordered_json::array();
+    for (const auto& a : assumed)
+        out.push_back({{"key", a.key},
+                       {"value", a.value},
+                       {"reason", a.reason},
+                       {"location", a.location.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(a.location)}});
+    return out;
+}
 
 std::string mesh_profile_csv(const Case& c, const std::string& mesh_name, double omega_in, double torque_in,
                              double oil_temperature, int positions) {

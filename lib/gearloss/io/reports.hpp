@@ -13,6 +13,9 @@ std::string check_report(const Case& c);
 // check --json: the derived data as a JSON object (members in a fixed order), and as text.
 nlohmann::ordered_json check_json_object(const Case& c);
 std::string check_json(const Case& c);
+// The assumed values as a JSON array of {key, value, reason, location (null when unknown)}:
+// the same in check --json, the sidecars and the report.
+nlohmann::ordered_json assumed_json(const std::vector<AssumedValue>& assumed);
 // Local thermal-EHL state along the path of contact of mesh `mesh_name` at the
 // point's oil temperature (CSV). Throws InputError for an unknown or idle mesh.
 std::string mesh_profile_csv(const Case& c, const std::string& mesh_name, double omega_in, double torque_in,

@@ -10,6 +10,7 @@
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/output_paths.hpp"
+#include "gearloss/io/reports.hpp"
 #include "gearloss/losses/loss_mechanism.hpp"
 #include "gearloss/map/fingerprint.hpp"
 
@@ -161,10 +162,7 @@ ordered_json output_metadata(const io::Case& c, const MetadataRequest& r) {
     for (size_t i = 0; i < m.mechanisms.size(); ++i)
         mechanisms[std::string(m.mechanisms[i].name())] = m.mechanisms[i].enabled();
     j["mechanisms_enabled"] = mechanisms;
-    j["assumed"] = ordered_json::array();
-    for (const auto& a : c.assumed)
-        j["assumed"].push_back(
-            {{"key", a.key}, {"value", a.value}, {"reason", a.reason}, {"location", text_or_null(a.location)}});
+    j["assumed"] = io::assumed_json(c.assumed);
     // Bearings taken from a catalogue by designation: which row of which file (absent otherwise).
     ordered_json rows = ordered_json::array();
     for (const auto& b : c.bearings_resolved)

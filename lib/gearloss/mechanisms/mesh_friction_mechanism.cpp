@@ -137,24 +137,34 @@ solver::Issue setting_issue(const solver::Model& m, std::initializer_list<const 
     for (const char* k : mechanism_keys)
         if (m.source && m.source->has(std::string("mechanisms.mesh.") + k))
             return {"mechanisms", "", std::string("mesh.") + k, std::move(message)};
-    // A value of the oil in force (the case's options key absent).
-    if (m.source && !m.source->has(std::string("options.") + options_key))
-        for (const char* k : mechanism_keys)
-            if (m.source->has(std::string("oil.") + options_key + "." + k))
-                return {"oil", "", std::string(options_key) + "." + k, std::move(message)};
     return {"options", "", options_key, std::move(message)};
+}
+
+// The issue of the mixed-film pair: at the case's key when the case wrote one, else at the
+// oil's (the case's own oil or one given by --oil, which the error then names).
+solver::Issue pair_issue(const solver::Model& m, const losses::LossMechanism& mech, std::string message) {
+    const bool case_wrote = std::string_view(mech.value_source(m, "mu_bl")) == "case" ||
+                            std::string_view(mech.value_source(m, "mu_ehl")) == "case";
+    if (!case_wrote)
+        for (const char* k : {"mu_bl", "mu_ehl"})
+            if (std::string_view(mech.value_source(m, k)) == "oil")
+                return {"oil", "", std::string("gear_friction.") + k, std::move(message)};
+    return setting_issue(m, {"mu_bl", "mu_ehl"}, "gear_friction", std::move(message));
 }
 
 void MeshFriction::validate(const solver::Model& m, std::vector<solver::Issue>& out) const {
     LossMechanism::validate(m, out);  // each parameter within its bounds
-    // The order of the mixed-film pair in force (a value outside its bounds is reported
-    // above, once), naming where each value came from: the pair may mix an oil's value
-    // with the case's or the default.
+    // The order of the mixed-film pair (a value outside its bounds is reported above, once),
+    // naming where each value came from. A pair the case writes whole is checked whatever the
+    // form (the oil's is, where it is read). A pair assembled from several places (an oil's
+    // mu_ehl with the default mu_bl) matters only where fernandes_mixed reads it: an oil that
+    // gives a measured full-film friction of 0.1 must not stop a schlenk case.
     const double bl = mixed_mu_bl(m), ehl = mixed_mu_ehl(m);
-    if (bl >= 0 && bl <= 1 && ehl >= 0 && ehl <= 1 && !mixed_friction_pair_valid(bl, ehl))
-        out.push_back(setting_issue(m, {"mu_bl", "mu_ehl"}, "gear_friction",
-                                    fmt::format("need 0 <= mu_ehl < mu_bl < 1 (mu_bl {:g} from the {}, mu_ehl {:g} from the {})",
-                                                bl, value_source(m, "mu_bl"), ehl, value_source(m, "mu_ehl"))));
+    const bool read = forms_.friction == FrictionModel::fernandes_mixed || (given(kMuBl) && given(kMuEhl));
+    if (read && bl >= 0 && bl <= 1 && ehl >= 0 && ehl <= 1 && !mixed_friction_pair_valid(bl, ehl))
+        out.push_back(pair_issue(m, *this,
+                                 fmt::format("need 0 <= mu_ehl < mu_bl < 1 (mu_bl {:g} from the {}, mu_ehl {:g} from the {})",
+                                             bl, value_source(m, "mu_bl"), ehl, value_source(m, "mu_ehl"))));
     // Ohlendorf's (1958) closed form and the single-pair average (Buckingham) assume
     // 1 <= eps_alpha < 2: one or two pairs in contact, alternating. Wimmer's (2006) sweep of the
     // contact lines holds for any contact ratio. The layout exists once the model is finalised.

@@ -195,11 +195,7 @@ ordered_json page_data(const ReportData& d, size_t map_count) {
     add(d.reference_map, "reference");
     for (const auto& k : d.comparisons) add(k, "comparison");
     j["oils"] = std::move(oils);
-    ordered_json assumed = ordered_json::array();
-    for (const auto& a : d.assumed)
-        assumed.push_back({{"key", a.key}, {"value", a.value}, {"reason", a.reason},
-                           {"location", a.location.empty() ? ordered_json(nullptr) : ordered_json(a.location)}});
-    j["assumed"] = std::move(assumed);
+    j["assumed"] = io::assumed_json(d.assumed);
     j["check"] = ordered_json::parse(io::check_json(d.reference));
     return j;
 }
