@@ -4,7 +4,6 @@
 #include <cstdio>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/core/source_index.hpp"
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/io/output_paths.hpp"
@@ -50,8 +49,8 @@ int run_table_format(const TableRequest& q) {
         throw InputError("", 0, 0, "--json", "--format co2mpas writes its JSON to -o; --json is the table's (--format table)");
     io::Case k = load_with_options(q.common);
     if (!k.sweep.empty()) {
-        const SourceLocation at = k.model.source ? k.model.source->find("sweep", "", "") : SourceLocation{};
-        throw InputError(at.file.empty() ? k.file : at.file, at.line, at.column, "sweep",
+        const SourceLocation at = io::case_location(k, "sweep");
+        throw InputError(at.file, at.line, at.column, "sweep",
                          "--format " + q.format +
                              ": the case has a sweep; a table per variant is not written (set the variant's values in the case)");
     }

@@ -236,4 +236,19 @@ double default_mu_ehl(BearingType t, bool synthetic, bool transmission_fluid) {
     return synthetic ? 0.04 : 0.05;
 }
 
+std::optional<SealConstants> skf_seal_constants(BearingType t, const std::string& code, double D_mm) {
+    using BT = BearingType;
+    if (t == BT::deep_groove_ball && code == "RS1") {  // by the outside diameter
+        if (D_mm <= 62) return SealConstants{2.25, 0.023, 2};
+        if (D_mm <= 80) return SealConstants{2.25, 0.018, 20};
+        if (D_mm <= 100) return SealConstants{2.25, 0.018, 15};
+        return SealConstants{2.25, 0.018, 0};
+    }
+    if ((t == BT::angular_contact_ball || t == BT::self_aligning_ball) && code == "RS1") return SealConstants{2, 0.014, 10};
+    if ((t == BT::cylindrical_roller || t == BT::cylindrical_roller_full) && code == "LS") return SealConstants{2, 0.032, 50};
+    if (t == BT::spherical_roller && (code == "CS" || code == "CS2" || code == "CS5")) return SealConstants{2, 0.057, 50};
+    if (code == "Z" || code == "RZ" || code == "2Z") return SealConstants{};  // shields: no contact friction
+    return std::nullopt;
+}
+
 }  // namespace gearloss::bearings

@@ -40,6 +40,14 @@ struct SkfConstants {
 std::optional<SkfConstants> skf_constants(BearingType t, const std::string& series);
 std::vector<std::string> series_names(BearingType t);
 
+// Seal constants of the SKF (2004) seal moment M_seal = K_S1 d_s^beta + K_S2 (N*mm, d_s in mm),
+// stated for a bearing sealed on both sides, for a seal code ("RS1", "LS", "CS"...) on a type;
+// D in mm selects the deep groove row. Shields (Z, RZ, 2Z) give zeros; nullopt: no constants.
+struct SealConstants {
+    double beta = 2.0, K_S1 = 0, K_S2 = 0;
+};
+std::optional<SealConstants> skf_seal_constants(BearingType t, const std::string& code, double D_mm);
+
 // SKF mu_EHL default by bearing type and base oil (mineral / synthetic / transmission fluid).
 double default_mu_ehl(BearingType t, bool synthetic, bool transmission_fluid);
 

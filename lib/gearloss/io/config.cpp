@@ -118,7 +118,7 @@ void note_bearing_friction(Case& c) {
     for (const auto& b : c.model.gearbox.bearings) {
         const bool roller = bearings::is_roller(b.spec.type);
         if ((roller ? oil.bearing_roller : oil.bearing_ball).mu_ehl) continue;
-        const SourceLocation at = c.model.source ? c.model.source->find("bearings", b.name, "") : SourceLocation{};
+        const SourceLocation at = case_location(c, "bearings", b.name);
         c.assumed.push_back({"bearings." + b.name + ".mu_ehl", number_text(b.spec.mu_ehl),
                              fmt::format("SKF (2004) full-film default for a {} bearing with {} oil (the oil gives no "
                                          "bearing_friction.{}.mu_ehl)",
@@ -129,6 +129,12 @@ void note_bearing_friction(Case& c) {
 }
 
 }  // namespace detail
+
+SourceLocation case_location(const Case& c, const std::string& section, const std::string& item, const std::string& key) {
+    SourceLocation at = c.model.source ? c.model.source->find(section, item, key) : SourceLocation{};
+    if (at.file.empty()) at.file = c.file;
+    return at;
+}
 
 void replace_oil(Case& c, const lubricant::Oil& oil, const std::vector<AssumedValue>& assumed_by_oil) {
     replace_oil(c.model, oil);

@@ -80,6 +80,11 @@ Case load_case_node(const YamlNode& root, const std::string& name, const std::st
 // appended to `assumed` (keys "oil.X_L", ...) when given.
 lubricant::Oil load_oil(const YamlNode& node, std::vector<AssumedValue>* assumed = nullptr);
 lubricant::Oil load_oil_file(const std::string& file, std::vector<AssumedValue>* assumed = nullptr);
+// Where the case wrote `section` (its `item`, `key`): the deepest recorded place, else the case
+// file alone (line 0), for an error or a note found after loading.
+SourceLocation case_location(const Case& c, const std::string& section, const std::string& item = "",
+                             const std::string& key = "");
+
 // Replaces the oil of a loaded case (bearing friction pairs follow the new oil); the
 // assumed values of the old oil ("oil.*", bearings' mu_ehl) give way to `assumed_by_oil`.
 void replace_oil(Case& c, const lubricant::Oil& oil, const std::vector<AssumedValue>& assumed_by_oil = {});

@@ -210,11 +210,8 @@ void Loader::load_bearings() {
         std::string st = se ? se->as_string() : "none";
         double seal_sides = 2;
         if (!se && !res.suffix.empty()) {
-            using BT = bearings::BearingType;
             const auto seal = bearings::suffix_seal(res.suffix);
-            const bool known = (seal.code == "RS1" && (s.type == BT::deep_groove_ball || s.type == BT::angular_contact_ball ||
-                                                       s.type == BT::self_aligning_ball)) ||
-                               (seal.code == "LS" && (s.type == BT::cylindrical_roller || s.type == BT::cylindrical_roller_full));
+            const bool known = !seal.code.empty() && bearings::skf_seal_constants(s.type, seal.code, s.D * 1e3);
             // One contact seal (RS1, RSH, RS: no leading 2, not NTN/NSK LL../DD.. pairs) rubs on one side.
             const bool one_side = seal.token == "RS1" || seal.token == "RSH" || seal.token == "RS";
             const std::string from = fmt::format("designation suffix '{}' ({})", seal.token, located_at(n.at("designation")));
@@ -231,37 +228,22 @@ void Loader::load_bearings() {
                 res.values.push_back({"seals", "no contact (" + seal.token + ")", 0.0, from});
             }
         }
-        {
-            if (st != "none") {
-                // M_seal = K_S1 d_s^beta + K_S2 (SKF 2004 seal moment, both sides sealed).
-                using BT = bearings::BearingType;
-                if (s.type == BT::deep_groove_ball && st == "RS1") {
-                    const double D_mm = s.D * 1e3;  // the catalogue's table is by D in mm
-                    s.seal_beta = 2.25;
-                    if (D_mm <= 62) { s.seal_KS1 = 0.023; s.seal_KS2 = 2; }
-                    else if (D_mm <= 80) { s.seal_KS1 = 0.018; s.seal_KS2 = 20; }
-                    else if (D_mm <= 100) { s.seal_KS1 = 0.018; s.seal_KS2 = 15; }
-                    else { s.seal_KS1 = 0.018; s.seal_KS2 = 0; }
-                } else if ((s.type == BT::angular_contact_ball || s.type == BT::self_aligning_ball) && st == "RS1") {
-                    s.seal_beta = 2; s.seal_KS1 = 0.014; s.seal_KS2 = 10;
-                } else if ((s.type == BT::cylindrical_roller || s.type == BT::cylindrical_roller_full) && st == "LS") {
-                    s.seal_beta = 2; s.seal_KS1 = 0.032; s.seal_KS2 = 50;
-                } else if (s.type == BT::spherical_roller && (st == "CS" || st == "CS2" || st == "CS5")) {
-                    s.seal_beta = 2; s.seal_KS1 = 0.057; s.seal_KS2 = 50;
-                } else if (st == "Z" || st == "RZ" || st == "2Z") {
-                    // shields: no contact friction
-                } else {
-                    se.value_or(n).fail(fmt::format("no seal constants for '{}' on a {} bearing (known: DGBB RS1, ACBB/SABB RS1, "
-                                         "CRB LS, SRB CS/CS2/CS5, shields Z/RZ)",
-                                         st, bearings::to_string(s.type)));
-                }
-                // SKF (2004): M_seal is for a bearing sealed on both sides; one seal gives half of it.
-                s.seal_KS1 *= seal_sides / 2;
-                s.seal_KS2 *= seal_sides / 2;
-                // Unset: the inner-ring shoulder estimate d + 0.2 (D - d) (gearloss/bearings/skf_model.hpp).
-                if (n.has("seal_counterface"))
-                    s.seal_ds = n.positive_quantity("seal_counterface", dim::length, "30 mm");
-            }
+        if (st != "none") {
+            // M_seal = K_S1 d_s^beta + K_S2 (SKF 2004 seal moment, both sides sealed).
+            const auto sc = bearings::skf_seal_constants(s.type, st, s.D * 1e3);  // the table is by D in mm
+            if (!sc)
+                se.value_or(n).fail(fmt::format("no seal constants for '{}' on a {} bearing (known: DGBB RS1, ACBB/SABB RS1, "
+                                                "CRB LS, SRB CS/CS2/CS5, shields Z/RZ)",
+                                                st, bearings::to_string(s.type)));
+            s.seal_beta = sc->beta;
+            s.seal_KS1 = sc->K_S1;
+            s.seal_KS2 = sc->K_S2;
+            // SKF (2004): M_seal is for a bearing sealed on both sides; one seal gives half of it.
+            s.seal_KS1 *= seal_sides / 2;
+            s.seal_KS2 *= seal_sides / 2;
+            // Unset: the inner-ring shoulder estimate d + 0.2 (D - d) (gearloss/bearings/skf_model.hpp).
+            if (n.has("seal_counterface"))
+                s.seal_ds = n.positive_quantity("seal_counterface", dim::length, "30 mm");
         }
         if (auto ob = n.get("oil_bath")) {
             ob->allow_keys({"level", "V_M"});

@@ -1,6 +1,5 @@
 // Case loader: the `options:` block (the loss mechanisms' choices) and the `thermal:` block (heat path, docs/config.md).
 #include "gearloss/io/config_internal.hpp"
-#include "gearloss/core/source_index.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 
 #include <fmt/format.h>
@@ -147,25 +146,20 @@ void note_mechanism_settings(Case& c) {
         const auto& mech = m.mechanisms[i];
         if (!mech.enabled()) continue;
         for (const auto& p : mech.parameters()) {
-            if (p.calibration || p.used_by.empty()) continue;
-            std::string axis_of_form;
-            for (const auto& a : mech.forms(m))
-                if (mech.form(m, a.axis) == p.used_by) axis_of_form = a.axis;
-            if (axis_of_form.empty() || std::string_view(mech.value_source(m, p.name)) != "default") continue;
+            if (p.calibration || p.used_by.empty() || !mech.reads(m, p) ||
+                mech.value_source(m, p.name) != losses::LossMechanism::Source::nominal)
+                continue;
             const auto blank = p.example.find(' ');
             const std::string unit = p.dimension && blank != std::string::npos ? p.example.substr(blank) : "";
             // At the mechanism's block when the case has one, else the mechanisms block, else the
             // options block (the earlier spelling of the forms), else the file's first line.
-            SourceLocation at;
-            if (m.source) {
-                at = m.source->find("mechanisms", "", std::string(mech.name()));
-                if (!at.known()) at = m.source->find("options", "", "");
-                if (!at.known()) at = {m.source->file(), 1, 1};
-            }
+            SourceLocation at = case_location(c, "mechanisms", "", std::string(mech.name()));
+            if (!at.known()) at = case_location(c, "options");
+            if (!at.known()) at = {c.file, 1, 1};
             c.assumed.push_back({fmt::format("mechanisms.{}.{}", mech.name(), p.name),
                                  number_text(mech.parameter(p.name)) + unit,
-                                 fmt::format("{}: the default value, read by the selected form {}.{}: {}", p.description,
-                                             mech.name(), axis_of_form, p.used_by),
+                                 fmt::format("{}: the default value, read by the selected {} form {}", p.description,
+                                             mech.name(), p.used_by),
                                  located_at(at)});
         }
     }

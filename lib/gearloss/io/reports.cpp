@@ -148,14 +148,10 @@ std::string check_report(const Case& c) {
             for (const auto& f : a.forms) list += fmt::format(" {}", f == chosen ? "[" + f + "]" : f);
             s += fmt::format("    {}.{}:{}\n", mech.name(), a.axis, list);
         }
-        for (const auto& p : mech.parameters()) {
-            // A setting of a form that is not selected is shown, and said to be unread.
-            bool unread = !p.used_by.empty();
-            for (const auto& a : mech.forms(m)) unread = unread && mech.form(m, a.axis) != p.used_by;
+        for (const auto& p : mech.parameters())  // a setting of a form not selected is shown, and said to be unread
             s += fmt::format("    {} = {:.6g}{}{}{} ({})\n", p.name, mech.value_in(m, p.name), p.calibration ? " [calibration]" : "",
-                             std::string_view(mech.value_source(m, p.name)) == "oil" ? " [from the oil]" : "",
-                             unread ? " [not read: " + p.used_by + " is not selected]" : "", p.description);
-        }
+                             mech.value_source(m, p.name) == losses::LossMechanism::Source::oil ? " [from the oil]" : "",
+                             mech.reads(m, p) ? "" : " [not read: " + p.used_by + " is not selected]", p.description);
     }
     const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
     s += fmt::format("\noil {} ({}): nu40 = {:.3f} cSt, nu100 = {:.3f} cSt, rho15 = {:.1f} kg/m^3, X_L = {:.3f}\n", m.oil.name,
@@ -281,7 +277,7 @@ nlohmann::ordered_json check_json_object(const Case& c) {
         std::vector<std::string> from_oil;  // the values in force that the oil gives
         for (const auto& p : mech.parameters()) {
             o["parameters"][p.name] = mech.value_in(m, p.name);
-            if (std::string_view(mech.value_source(m, p.name)) == "oil") from_oil.push_back(p.name);
+            if (mech.value_source(m, p.name) == losses::LossMechanism::Source::oil) from_oil.push_back(p.name);
         }
         if (!from_oil.empty()) o["parameters_from_oil"] = from_oil;
         j["mechanisms"].push_back(std::move(o));

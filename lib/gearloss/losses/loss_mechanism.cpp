@@ -45,9 +45,25 @@ double LossMechanism::value_in(const solver::Model& m, std::string_view name) co
     return oil_value(m, name).value_or(values_[i]);
 }
 
-const char* LossMechanism::value_source(const solver::Model& m, std::string_view name) const {
-    if (given_[parameter_index(*this, name)]) return "case";
-    return oil_value(m, name) ? "oil" : "default";
+LossMechanism::Source LossMechanism::value_source(const solver::Model& m, std::string_view name) const {
+    if (given_[parameter_index(*this, name)]) return Source::case_setting;
+    return oil_value(m, name) ? Source::oil : Source::nominal;
+}
+
+const char* LossMechanism::source_name(Source s) {
+    switch (s) {
+        case Source::case_setting: return "case";
+        case Source::oil: return "oil";
+        case Source::nominal: break;
+    }
+    return "default";
+}
+
+bool LossMechanism::reads(const solver::Model& m, const Parameter& p) const {
+    if (p.used_by.empty()) return true;
+    for (const auto& a : forms(m))
+        if (form(m, a.axis) == p.used_by) return true;
+    return false;
 }
 
 bool LossMechanism::parameters_nominal() const {

@@ -165,10 +165,14 @@ public:
     virtual std::optional<double> oil_value(const solver::Model&, std::string_view /*name*/) const {
         return std::nullopt;
     }
-    // The value in force, and where it comes from: the case's setting ("case"), else the
-    // oil's ("oil"), else the nominal value ("default").
+    // The value in force, and where it comes from: the case's setting, else the oil's, else
+    // the nominal value.
+    enum class Source { case_setting, oil, nominal };
+    static const char* source_name(Source s);  // "case", "oil", "default" (for messages)
     double value_in(const solver::Model& m, std::string_view name) const;
-    const char* value_source(const solver::Model& m, std::string_view name) const;
+    Source value_source(const solver::Model& m, std::string_view name) const;
+    // Whether the selected forms read the parameter (Parameter::used_by empty or selected on an axis).
+    bool reads(const solver::Model& m, const Parameter& p) const;
     // Alternative forms, selectable by name. Each mechanism keeps its own choice (a model
     // copy carries it with the mechanism set).
     virtual std::vector<FormAxis> forms(const solver::Model&) const { return {}; }

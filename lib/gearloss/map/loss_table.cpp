@@ -8,7 +8,6 @@
 #include <numbers>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/core/source_index.hpp"
 #include "gearloss/io/csv_format.hpp"
 #include "gearloss/io/json_text.hpp"
 #include "gearloss/io/interrupt.hpp"
@@ -83,8 +82,8 @@ std::vector<double> default_table_temperatures(const solver::Model& m) {
 
 LossTableAxes loss_table_axes(const io::Case& k, std::vector<std::string> ratios, std::vector<double> oil_temperatures) {
     if (!k.grid.is_grid) {
-        const SourceLocation at = k.model.source ? k.model.source->find("operating", "", "") : SourceLocation{};
-        throw InputError(at.file.empty() ? k.file : at.file, at.line, at.column, "operating",
+        const SourceLocation at = io::case_location(k, "operating");
+        throw InputError(at.file, at.line, at.column, "operating",
                          "a loss table needs a speeds x torques grid (or --speed and --torque), not a list of points");
     }
     LossTableAxes a;

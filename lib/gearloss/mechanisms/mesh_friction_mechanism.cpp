@@ -143,11 +143,12 @@ solver::Issue setting_issue(const solver::Model& m, std::initializer_list<const 
 // The issue of the mixed-film pair: at the case's key when the case wrote one, else at the
 // oil's (the case's own oil or one given by --oil, which the error then names).
 solver::Issue pair_issue(const solver::Model& m, const losses::LossMechanism& mech, std::string message) {
-    const bool case_wrote = std::string_view(mech.value_source(m, "mu_bl")) == "case" ||
-                            std::string_view(mech.value_source(m, "mu_ehl")) == "case";
+    using Source = losses::LossMechanism::Source;
+    const bool case_wrote = mech.value_source(m, "mu_bl") == Source::case_setting ||
+                            mech.value_source(m, "mu_ehl") == Source::case_setting;
     if (!case_wrote)
         for (const char* k : {"mu_bl", "mu_ehl"})
-            if (std::string_view(mech.value_source(m, k)) == "oil")
+            if (mech.value_source(m, k) == Source::oil)
                 return {"oil", "", std::string("gear_friction.") + k, std::move(message)};
     return setting_issue(m, {"mu_bl", "mu_ehl"}, "gear_friction", std::move(message));
 }
@@ -164,7 +165,7 @@ void MeshFriction::validate(const solver::Model& m, std::vector<solver::Issue>& 
     if (read && bl >= 0 && bl <= 1 && ehl >= 0 && ehl <= 1 && !mixed_friction_pair_valid(bl, ehl))
         out.push_back(pair_issue(m, *this,
                                  fmt::format("need 0 <= mu_ehl < mu_bl < 1 (mu_bl {:g} from the {}, mu_ehl {:g} from the {})",
-                                             bl, value_source(m, "mu_bl"), ehl, value_source(m, "mu_ehl"))));
+                                             bl, source_name(value_source(m, "mu_bl")), ehl, source_name(value_source(m, "mu_ehl")))));
     // Ohlendorf's (1958) closed form and the single-pair average (Buckingham) assume
     // 1 <= eps_alpha < 2: one or two pairs in contact, alternating. Wimmer's (2006) sweep of the
     // contact lines holds for any contact ratio. The layout exists once the model is finalised.

@@ -155,7 +155,7 @@ std::string model_section(const ReportData& d) {
         for (const auto& p : mech.parameters())
             params += fmt::format("<div><code>{}</code> = {}{}{} <span class=\"gl-muted\">({})</span></div>", escape_html(p.name),
                                   display_number(mech.value_in(m, p.name), 6), p.calibration ? " [calibration]" : "",
-                                  std::string_view(mech.value_source(m, p.name)) == "oil" ? " [from the oil]" : "",
+                                  mech.value_source(m, p.name) == losses::LossMechanism::Source::oil ? " [from the oil]" : "",
                                   escape_html(p.description));
         s += fmt::format("<tr><td>{}</td><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td></tr>", escape_html(mech.label()),
                          escape_html(mech.column()), mech.enabled() ? "yes" : "off", forms.empty() ? "&#8211;" : forms,
