@@ -9,8 +9,8 @@
 using namespace gearloss;
 
 TEST_CASE("oil comparison: the 75W140-A / 75W90-A ranking flips with torque (seed 001)", "[compare]") {
-    // Seed 001 (Pereira 2017): 75W140-A loses more at low torque and less than 75W90-A
-    // at 200-250 N m, on the 600-800 rpm x 150-250 N m grid.
+    // Seed 001 (Pereira 2017) §3.7.3, Fig. 3.13: 75W140-A loses more at low torque and less than
+    // 75W90-A at 200-250 N m, on the 600-800 rpm x 150-250 N m grid (§3.4, matrix 3.1).
     auto a = io::load_case(test_support::source_path("configs/transfer-box.yaml"));
     auto b = a;
     io::replace_oil(a, io::load_oil_file(test_support::source_path("configs/oils/75W90-A.yaml")));

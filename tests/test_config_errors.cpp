@@ -67,7 +67,7 @@ TEST_CASE("bad input names file, line and key", "[config]") {
                   "gears[0].module", "has no unit"});
     expect_error({"d: 45 mm, D: 100 mm", "d: 45 mm, D: 40 mm", "B5_NJ309E", "bearings[0].D", "must exceed bore"});
     // yaml-cpp marks a block mapping at its first key: the error points into the housing block.
-    expect_error({"  oil_volume: 2 L            # seed 001\n", "", "oil_level: -30 mm", "housing",
+    expect_error({"  oil_volume: 2 L            # seed 001 §3.6\n", "", "oil_level: -30 mm", "housing",
                   "missing required key 'oil_volume'"});
     expect_error({"ambient: 25 degC", "ambient: 25", "ambient: 25", "thermal.ambient", "not a temperature"});
     expect_error({"face_width: 35 mm,   helix_angle: 20 deg, hand: right, material: 15CrNi6, Ra: 0.5 um}",

@@ -47,7 +47,7 @@ TEST_CASE("drive cycles: duration and distance against the published figures", "
     const auto wltc = io::resolve_cycle("wltc", cycle_dirs());
     CHECK(wltc.duration() == 1800.0);
     CHECK(wltc.distance() / 1e3 == Approx(23.266).margin(0.005));
-    // Seed 003's ARTEMIS (urban + motorway 130): 2061 s and 33 605 m.
+    // Seed 003's ARTEMIS (§4.2: urban + highway, 2061 s and 33 605 m; motorway 130 assumed).
     const auto art = io::resolve_cycle("artemis", cycle_dirs());
     CHECK(art.duration() == 2061.0);
     CHECK(art.distance() == Approx(33605).margin(10));
@@ -164,8 +164,9 @@ TEST_CASE("cycle: a constant-load cycle settles at map's stabilised temperature"
     CHECK(hot.totals.end[0] > r.totals.end[0] + 1.0);
 }
 
-TEST_CASE("pre-warming: seed 003's 886 J/K and 100 W take 886 s from -10 to 90 degC", "[cycle]") {
-    // One node of 886 J/K with no heat path (huge resistance): t = C dT / P exactly.
+TEST_CASE("pre-warming: 886 J/K and 100 W take 886 s from -10 to 90 degC (seed 003 section 4)", "[cycle]") {
+    // One node of 886 J/K with no heat path (huge resistance): t = C dT / P exactly. Seed 003 §4
+    // gives 886 s for 100 W from -10 to +90 degC; 886 J/K is the capacity that implies.
     auto c = io::load_case(test_support::source_path("configs/manual-6speed.yaml"));
     auto pt = io::load_powertrain(c, std::nullopt);
     for (auto& m : pt.gears) {
@@ -186,7 +187,7 @@ TEST_CASE("pre-warming: seed 003's 886 J/K and 100 W take 886 s from -10 to 90 d
     CHECK(real.max_oil_temperature < kC + 90);
 }
 
-TEST_CASE("seed 003 trends: pre-warming helps more from -10 than from 23 degC, and more on NEDC than ARTEMIS",
+TEST_CASE("seed 003 trends (sections 4.1, 4.2): pre-warming helps more from -10 than from 23 degC, and more on NEDC than ARTEMIS",
           "[cycle][seed003]") {
     const auto pt = powertrain("configs/automatic-6speed.yaml");
     auto saving = [&](const std::string& name, double start_C) {

@@ -149,7 +149,8 @@ TEST_CASE("Traction defaults by base oil and the roelands_index key", "[ehl][con
     const auto pao = lubricant::default_traction(lubricant::BaseOil::pao);
     const auto tf = lubricant::default_traction(lubricant::BaseOil::traction_fluid);
     CHECK(tf.limiting_shear_slope > pao.limiting_shear_slope);
-    // Oil A of seed 000 gives Z; a higher Z raises the in-contact viscosity and so the traction.
+    // Oil A of seed 000 has a fitted Z (text at its Fig. 3; the value is not in the shipped text,
+    // 0.70 is assumed); a higher Z raises the in-contact viscosity and so the traction.
     auto a = io::load_oil_file(test_support::source_path("configs/oils/75W90-syn-A.yaml"));
     CHECK(a.traction.roelands_Z == Approx(0.70));
     auto in = contact(500, 6, 4);

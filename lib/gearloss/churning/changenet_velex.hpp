@@ -19,7 +19,7 @@ struct DippingGear {
 // Wetted surface S_m of the immersed part (periphery, two side faces, flanks).
 double submerged_surface(const DippingGear& g);
 
-// Critical Reynolds number Re_c = Omega Rp b / nu (seed 000).
+// Critical Reynolds number Re_c = Omega Rp b / nu (seed 000, the symbol list of its eqs. 15-17).
 double critical_reynolds(double omega, double Rp, double b, double nu);
 
 // Dimensionless churning torque C_m: Re_c < 6000 laminar-like formula,

@@ -1,6 +1,6 @@
 #pragma once
 // Drag of an open (disengaged) wet multi-plate clutch or brake: laminar Couette
-// shear in the oil film of each friction interface (seed 003 after Dempsey et al. 2012),
+// shear in the oil film of each friction interface (seed 003 §3.4, after Dempsey et al. 2012),
 // with the Patir & Cheng (1979) shear-stress factor of rough surfaces and a wetted
 // outer radius that shrinks when the supplied oil cannot fill the gap against the
 // centrifugal outflow (after Yuan et al. 2007).

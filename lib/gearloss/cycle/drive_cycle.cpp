@@ -11,7 +11,7 @@ double DriveCycle::distance() const {
 DriveCycle concatenate(const DriveCycle& a, const DriveCycle& b, const std::string& name) {
     DriveCycle c = a;
     c.name = name;
-    // b starts one time step after a ends (the ARTEMIS parts: 993 s + 1 s + 1067 s = seed 003's 2061 s).
+    // b starts one time step after a ends (the ARTEMIS parts: 993 s + 1 s + 1067 s = seed 003 §4.2's 2061 s).
     const double step = a.time.size() > 1 ? a.time[a.time.size() - 1] - a.time[a.time.size() - 2] : 1.0;
     const double shift = a.time.back() + step - b.time.front();
     for (size_t i = 0; i < b.time.size(); ++i) {

@@ -167,7 +167,7 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
         assume(assumed, n, "oil.X_L", number_text(*def),
                fmt::format("ISO/TS 6336-20 lubricant factor for base oil {}", lubricant::to_string(oil.base)));
     } else {
-        n.fail(fmt::format("base oil '{}' has no standard X_L (ISO/TS 6336-20); give 'X_L' (e.g. 0.65, Fernandes 2015)",
+        n.fail(fmt::format("base oil '{}' has no standard X_L (ISO/TS 6336-20); give 'X_L' (e.g. 0.65)",
                            lubricant::to_string(oil.base)));
     }
     if (auto k = n.get("thermal_conductivity")) oil.k_fixed = k->as_quantity(dim::thermal_conductivity, "0.15 W/(m*K)");

@@ -72,7 +72,8 @@ DriveCycle load_cycle_csv(const std::string& file) {
 
 namespace {
 const std::map<std::string, std::vector<std::string>>& named() {
-    // Seed 003's ARTEMIS run (urban + highway, 2061 s, 33.6 km) is urban followed by motorway 130.
+    // Seed 003's ARTEMIS run (§4.2: urban + highway, 2061 s, 33 605 m) is urban followed by motorway 130
+    // (the seed does not name the motorway variant: 130 assumed).
     static const std::map<std::string, std::vector<std::string>> m = {
         {"nedc", {"nedc"}},
         {"wltc", {"wltc-class3b"}},

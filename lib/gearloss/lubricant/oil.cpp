@@ -49,7 +49,7 @@ std::optional<double> default_XL(BaseOil b) {
 }
 
 TractionProperties default_traction(BaseOil b) {
-    TractionProperties t;  // mineral gear oil: tau_E 5 MPa, tau_L = 1 MPa + 0.07 p, mu_bl 0.11 (seed 000)
+    TractionProperties t;  // mineral gear oil: tau_E 5 MPa, tau_L = 1 MPa + 0.07 p (assumed), mu_bl 0.11 (seed 000, before its Table 3)
     switch (b) {
         case BaseOil::mineral:
         case BaseOil::transmission_fluid: break;

@@ -84,7 +84,8 @@ double default_max_temperature(BaseOil b);
 std::optional<double> default_XL(BaseOil b);
 
 // Gold et al. (2001) alpha = s * nu^t (nu in mm^2/s), constants as consolidated
-// in Fernandes (2015), PhD thesis, Table 2.7.
+// in Fernandes (2015), PhD thesis, Table 2.7 (its title in seed 002's list of tables; the
+// values are not in the seed's shipped text).
 std::pair<double, double> gold_constants(BaseOil b);
 
 }  // namespace gearloss::lubricant

@@ -1,6 +1,6 @@
 #pragma once
-// The same map for two oils and their differences per point (seed 001,
-// figs. 3.13-3.15: power loss, stabilised temperature and efficiency).
+// The same map for two oils and their differences per point (seed 001 §3.7.3,
+// figs. 3.13-3.15 and eq. 3.4: power loss, stabilised temperature and efficiency).
 #include <string>
 #include <vector>
 

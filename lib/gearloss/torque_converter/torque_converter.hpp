@@ -1,7 +1,7 @@
 #pragma once
 // Hydrodynamic torque converter from its steady characteristic (speed ratio ->
 // torque ratio and capacity factor) with a lock-up clutch, and the viscous-fluid
-// correction of its efficiency by ANSI/HI 9.6.7 as used for the impeller in seed 003.
+// correction of its efficiency by ANSI/HI 9.6.7 as used for the impeller in seed 003 §3.2.
 #include <vector>
 
 namespace gearloss::torque_converter {
