@@ -127,3 +127,39 @@ def check_oil_ranking(gl, src, shipped, quick, pool, F, case_axes):
                                        f"({a}: {key(got[j], a):.4g} -> {key(got[j + 1], a):.4g} W, "
                                        f"{b}: {key(got[j], b):.4g} -> {key(got[j + 1], b):.4g} W)",
                                        abs(D[j]) + abs(D[j + 1]))
+
+
+def check_thermal(gl, case, label, speeds, torques, F):
+    """The stabilised oil temperature (the case's own thermal solve, no --oil-temp): at least
+    the ambient wherever the box turns (its losses heat it, nothing cools it below the air);
+    not lower at a larger torque >= 0 (every loss is then at least as large at every oil
+    temperature, so the balance P_loss(T) = Q(T) settles no lower); not lower at a higher speed
+    unless the case's heat rejection grows with speed (reference_speed, cooling_per_1000rpm)."""
+    with open(case) as f:
+        text = f.read()
+    rows = gl.map(case, None, speeds, torques)
+    T = {(r["speed_in_rpm"], r["torque_in_Nm"]): r for r in rows}
+    temps = {r["oil_temp_C"] for r in rows if isinstance(r["oil_temp_C"], float)}
+    if len(temps) <= 1:
+        return   # a fixed-temperature case: nothing is solved
+    F.count("thermal")
+    ok = lambda r: r["status"] in ("ok", "above_oil_limit")
+    for (n, M), r in T.items():
+        if n > 0 and ok(r) and not r["oil_temp_C"] >= r["ambient_temp_C"] - 1e-6:
+            F.fail("thermal", label, "oil temperature",
+                   f"{r['oil_temp_C']:.3f} degC below the ambient {r['ambient_temp_C']:.2f} degC at "
+                   f"{n:g} rpm, {M:g} N*m", r["ambient_temp_C"] - r["oil_temp_C"])
+    speed_cooled = "reference_speed" in text or "cooling_per_1000rpm" in text
+    ns = sorted({k[0] for k in T if k[0] > 0})
+    ms = sorted({k[1] for k in T if k[1] >= 0})
+    chains = [[(n, M) for M in ms] for n in ns]
+    if not speed_cooled:
+        chains += [[(n, M) for n in ns] for M in ms]
+    for chain in chains:
+        for a, b in zip(chain, chain[1:]):
+            ra, rb = T[a], T[b]
+            if ok(ra) and ok(rb) and rb["oil_temp_C"] < ra["oil_temp_C"] - 0.01:
+                F.fail("thermal", label, "oil temperature",
+                       f"stabilised oil {ra['oil_temp_C']:.2f} -> {rb['oil_temp_C']:.2f} degC from "
+                       f"({a[0]:g} rpm, {a[1]:g} N*m) to ({b[0]:g} rpm, {b[1]:g} N*m): more load or "
+                       f"speed, cooler oil", ra["oil_temp_C"] - rb["oil_temp_C"])

@@ -37,8 +37,9 @@ class Gearloss:
     def map(self, case, oil_temp_C, speeds, torques, oil=None, ratio=None):
         """Rows of `map --detail` at a fixed oil temperature as dicts of floats (status as str)."""
         out = self._tmp(".csv")
-        args = ["map", case, "--oil-temp", f"{oil_temp_C:g}degC", "--detail", "--threads", "1",
-                "-o", out]
+        args = ["map", case, "--detail", "--threads", "1", "-o", out]
+        if oil_temp_C is not None:   # None: the case's thermal mode (stabilised: solved)
+            args += ["--oil-temp", f"{oil_temp_C:g}degC"]
         if speeds is not None:
             args += ["--speed", ",".join(f"{s:g}" for s in speeds) + "rpm"]
         if torques is not None:

@@ -8,6 +8,7 @@ speed 0..max and torque -max..max through the command line, checked for
   speed         dP/dn >= 0
   load          dP/d|torque| as each mechanism's physics requires
   step          no step between neighbouring grid points without a regime change the tool names
+  thermal       the stabilised oil temperature is above the ambient and rises with load and speed
   cold_start    on every shipped cycle, a cold start costs more than the warm start
   oil_ranking   the loss difference of two shipped oils changes sign only continuously
 Exit 1 when any property fails; the report lists case, mechanism, property and the values.
@@ -31,7 +32,8 @@ from generate_cases import write_cases  # noqa: E402
 from properties import PHYSICS, WARMING_RISE_PER_2K, Findings, find_steps  # noqa: E402
 import envelope_cycles  # noqa: E402
 
-PROPERTIES = ["runs", "turning", "warming", "speed", "load", "step", "cold_start", "oil_ranking"]
+PROPERTIES = ["runs", "turning", "warming", "speed", "load", "step", "thermal", "cold_start",
+              "oil_ranking"]
 
 
 def case_axes(gl, case):
@@ -63,6 +65,10 @@ def check_case(gl, case, label, quick, pool, F, props):
     torques = [round(t_max * f, 6) for f in fr]
     temps = list(range(-30, 151, 6 if quick else 3))
     mechs = gl.mechanisms(case)
+    if "thermal" in props:
+        envelope_cycles.check_thermal(gl, case, label, speeds, torques, F)
+    if not props - {"thermal"}:
+        return n_max, t_max
     data, errors = sweep(gl, case, temps, speeds, torques, pool)
     F.count("runs", len(temps))
     for T, e in errors:
@@ -261,9 +267,9 @@ def main():
     F = Findings()
     t0 = time.time()
     with cf.ThreadPoolExecutor(max_workers=a.jobs) as pool:
-        grid_props = props & {"runs", "turning", "warming", "speed", "load", "step"}
+        grid_props = props & {"runs", "turning", "warming", "speed", "load", "step", "thermal"}
         if grid_props:
-            for case in (shipped if not a.quick else shipped) + generated:
+            for case in shipped + generated:
                 label = os.path.relpath(case, src) if case.startswith(src) else os.path.basename(case)
                 try:
                     check_case(gl, case, label, a.quick, pool, F, grid_props)
