@@ -6,10 +6,10 @@ import os
 from gearloss_cli import ToolFailure
 from properties import find_steps
 
-# Soaked starts (the whole transmission and the ambient at the start temperature) and one tepid
-# start in a 25 degC ambient: every one is colder than the 90 degC warm-start reference, so its
+# Soaked starts (the whole transmission and the ambient at the start temperature) and two tepid
+# starts in a 25 degC ambient: every one is colder than the 90 degC warm-start reference, so its
 # oil is thicker during the whole cycle and its drag losses larger.
-COLD_STARTS = [(-30, None), (-10, None), (10, None), (50, 25)]
+COLD_STARTS = [(-30, None), (-10, None), (10, None), (50, 25), (70, 25)]
 QUICK_STARTS = [(-10, None), (50, 25)]
 
 

@@ -189,6 +189,11 @@ def generate(rng, index, source):
               "", "operating:",
               f"  speeds: [{n_max / 4:g} rpm, {n_max / 2:g} rpm, {n_max:g} rpm]",
               f"  torques: [{T_in / 4:g} N*m, {T_in / 2:g} N*m, {T_in:g} N*m]", ""]
+    # Windage is off unless a form is chosen (docs/config.md): half the cases choose one, so
+    # that its physics is swept too.
+    form = rng.choice([None, "anderson_loewenthal", "free_disk"])
+    if form:
+        lines += ["mechanisms:", f"  windage: {{form: {form}}}", ""]
     return "\n".join(lines)
 
 
