@@ -1,6 +1,9 @@
 """Properties over whole runs: cold against warm start on the shipped drive cycles, and the
 ranking of two shipped oils along oil-temperature sweeps."""
+import csv
 import glob
+import io
+import math
 import os
 
 from gearloss_cli import ToolFailure
@@ -64,33 +67,25 @@ def check_cold_start(gl, src, shipped, quick, pool, F):
 
 
 def check_oil_ranking(gl, src, shipped, quick, pool, F, case_axes):
-    """Along an oil-temperature sweep, the difference of two oils' total loss may change sign,
-    but only where both curves are smooth: a sign change at an interval where either oil's
-    curve steps is a ranking flipped by a regime artefact. Every pair of shipped oils, on every
-    shipped case (half and full of the case's largest torque, at a quarter and all of its speed)."""
+    """Along an oil-temperature sweep (ln P over T) and a speed sweep (ln P over ln n), the
+    difference of two oils' total loss may change sign, but only where both curves are smooth:
+    a sign change at an interval where either oil's curve steps is a ranking flipped by a regime
+    artefact. Every pair of shipped oils, on every shipped case: the temperature sweep at half
+    and all of the case's largest torque, at a quarter and all of its largest speed; the speed
+    sweep (a tenth to all of the largest speed) at -10, 20, 60 and 100 degC."""
     oils = sorted(glob.glob(os.path.join(src, "configs", "oils", "*.yaml")))
     names = [os.path.splitext(os.path.basename(o))[0] for o in oils]
     temps = list(range(-30, 151, 6 if quick else 3))
-    cases = list(shipped)
-    if quick:
-        cases = cases[:2]
+    cases = list(shipped)[:2] if quick else list(shipped)
     for case in cases:
         label = os.path.relpath(case, src)
         n_max, t_max = case_axes(gl, case)
-        speeds, torques = [n_max / 4, n_max], [t_max / 2, t_max]
-        args = ["compare", case]
-        for o in oils:
-            args += ["--oil", o]
-        args += ["--speed", ",".join(f"{s:g}" for s in speeds) + "rpm",
-                 "--torque", ",".join(f"{t:g}" for t in torques) + "Nm", "--threads", "1", "--detail"]
-
-        def run(T):
-            import io, csv
-            out = gl.run(args + ["--oil-temp", f"{T}degC", "-o", "-"]).stdout
-            return list(csv.DictReader(io.StringIO(out)))
-        futures = {T: pool.submit(run, T) for T in temps}
+        torques = [t_max / 2, t_max]
+        runs = [(T, [n_max / 4, n_max]) for T in temps]
+        runs += [(T, [n_max * k / 10 for k in range(1, 11)]) for T in (-10, 20, 60, 100)]
         table = {}
-        for T, f in futures.items():
+        futures = [(T, pool.submit(_compare, gl, case, oils, T, sp, torques)) for T, sp in runs]
+        for T, f in futures:
             try:
                 for r in f.result():
                     for col, v in r.items():
@@ -101,32 +96,63 @@ def check_oil_ranking(gl, src, shipped, quick, pool, F, case_axes):
                                     float(v) if v not in ("", None) else float("nan"))
             except ToolFailure as e:
                 F.fail("oil_ranking", label, "-", f"compare at {T} degC did not run: {e}", 1.0)
-        got = sorted({k[0] for k in table})
-        for n in speeds:
-            for M in torques:
-                def key(T, nm, part="P_total"):
-                    return table.get((T, float(f"{n:g}"), float(f"{M:g}"), nm, part), float("nan"))
+        for M in torques:
+            for n in runs[0][1]:
+                pts = [(T, n, M) for T in temps if (T, n, M, names[0], "P_total") in table]
+                _flips(F, label, table, names, pts, [p[0] for p in pts], "degC")
+            for T in (-10, 20, 60, 100):
+                pts = sorted(k[:3] for k in table if k[0] == T and k[2] == M and k[3] == names[0]
+                             and k[4] == "P_total" and k[1] > 0)
+                _flips(F, label, table, names, pts, [math.log(p[1]) for p in pts], "rpm")
 
-                def stepping(nm, j):
-                    """The mechanism of oil nm whose change over interval j is largest."""
-                    parts = sorted({k[4] for k in table if k[3] == nm and k[4] != "P_total"})
-                    return max(parts, key=lambda c: abs(key(got[j + 1], nm, c) - key(got[j], nm, c)))
-                steps = {nm: {i for i, _ in find_steps(got, [key(T, nm) for T in got], tol=0.05)}
-                         for nm in names}
-                F.count("oil_ranking", len(names) * (len(names) - 1) // 2)
-                for i, a in enumerate(names):
-                    for b in names[i + 1:]:
-                        D = [key(T, a) - key(T, b) for T in got]
-                        for j in range(len(got) - 1):
-                            if D[j] * D[j + 1] < 0 and (j in steps[a] or j in steps[b]):
-                                F.fail("oil_ranking", label, f"{a} vs {b}",
-                                       f"ranking flips between {got[j]} and {got[j + 1]} degC at "
-                                       f"{n:g} rpm, {M:g} N*m where "
-                                       f"{a if j in steps[a] else b} steps (most in "
-                                       f"{stepping(a if j in steps[a] else b, j)}) "
-                                       f"({a}: {key(got[j], a):.4g} -> {key(got[j + 1], a):.4g} W, "
-                                       f"{b}: {key(got[j], b):.4g} -> {key(got[j + 1], b):.4g} W)",
-                                       abs(D[j]) + abs(D[j + 1]))
+
+def _compare(gl, case, oils, T, speeds, torques):
+    args = ["compare", case]
+    for o in oils:
+        args += ["--oil", o]
+    args += ["--speed", ",".join(f"{s:g}" for s in speeds) + "rpm",
+             "--torque", ",".join(f"{t:g}" for t in torques) + "Nm", "--threads", "1", "--detail",
+             "--oil-temp", f"{T}degC", "-o", "-"]
+    return list(csv.DictReader(io.StringIO(gl.run(args).stdout)))
+
+
+def _flips(F, label, table, names, pts, xs, unit):
+    """Sign changes of P_a - P_b between neighbouring points where a or b steps (5 %)."""
+    def P(p, nm, part="P_total"):
+        return table.get((p[0], p[1], p[2], nm, part), float("nan"))
+
+    def stepping(nm, j):
+        """The mechanism of oil nm that steps most at interval j (else: changes most there)."""
+        parts = sorted({k[4] for k in table if k[3] == nm and k[4] != "P_total"})
+        excess = {c: dict(find_steps(xs, [P(p, nm, c) for p in pts], tol=0.05)).get(j, 0.0)
+                  for c in parts}
+        best = max(parts, key=lambda c: excess[c])
+        if excess[best] > 0:
+            return best
+
+        def off_trend(c):   # |change at j - mean change of its neighbours| [W]
+            v = [P(pts[k], nm, c) for k in range(max(j - 1, 0), min(j + 3, len(pts)))]
+            d = [b - a for a, b in zip(v, v[1:])]
+            mid = 1 if j > 0 else 0
+            others = [x for k, x in enumerate(d) if k != mid] or [0.0]
+            return abs(d[mid] - sum(others) / len(others)) if len(d) > mid else 0.0
+        return max(parts, key=off_trend)
+
+    def where(p):
+        return f"({p[1]:g} rpm, {p[2]:g} N*m, {p[0]} degC)"
+    steps = {nm: {i for i, _ in find_steps(xs, [P(p, nm) for p in pts], tol=0.05)} for nm in names}
+    F.count("oil_ranking", len(names) * (len(names) - 1) // 2)
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            D = [P(p, a) - P(p, b) for p in pts]
+            for j in range(len(pts) - 1):
+                if D[j] * D[j + 1] < 0 and (j in steps[a] or j in steps[b]):
+                    s = a if j in steps[a] else b
+                    F.fail("oil_ranking", label, f"{a} vs {b}",
+                           f"ranking flips between {where(pts[j])} and {where(pts[j + 1])} where "
+                           f"{s} steps (most in {stepping(s, j)}) ({a}: {P(pts[j], a):.4g} -> "
+                           f"{P(pts[j + 1], a):.4g} W, {b}: {P(pts[j], b):.4g} -> "
+                           f"{P(pts[j + 1], b):.4g} W)", abs(D[j]) + abs(D[j + 1]))
 
 
 def check_thermal(gl, case, label, speeds, torques, F):
