@@ -6,6 +6,7 @@ import json
 import os
 import subprocess
 import tempfile
+import threading
 
 
 class ToolFailure(Exception):
@@ -21,11 +22,14 @@ class Gearloss:
         self.binary = binary
         self.workdir = workdir or tempfile.mkdtemp(prefix="gearloss-envelope-")
         self._n = 0
+        self._lock = threading.Lock()   # maps run from a thread pool: one name per file
         self._regimes = {}
 
     def _tmp(self, suffix):
-        self._n += 1
-        return os.path.join(self.workdir, f"f{os.getpid()}_{self._n}{suffix}")
+        with self._lock:
+            self._n += 1
+            n = self._n
+        return os.path.join(self.workdir, f"f{os.getpid()}_{n}{suffix}")
 
     def run(self, args, check=True):
         argv = [self.binary] + [str(a) for a in args]

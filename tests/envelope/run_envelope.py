@@ -196,7 +196,7 @@ def check_load(F, label, name, col, kind, temps, speeds, torques, val):
                                drop)
 
 
-def check_steps(gl, F, case, label, name, col, temps, speeds, torques, val, max_queries=20):
+def check_steps(gl, F, case, label, name, col, temps, speeds, torques, val, max_queries=40):
     """Steps along oil temperature (ln P over T), speed (ln P over ln n) and positive torque
     (ln P over ln M). A step is excused when `point` names a different regime (or status) of
     this mechanism at its two ends."""
