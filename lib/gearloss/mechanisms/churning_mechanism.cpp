@@ -1,5 +1,7 @@
 // Churning of dip-lubricated gears as a loss mechanism: Changenet & Velex (2007, 2008)
-// per immersed gear (gearloss/churning/changenet_velex.hpp), with a calibration factor. (The drag of
+// per immersed gear (gearloss/churning/changenet_velex.hpp), with a calibration factor. The
+// torque is the running minimum over Re_c of the published curve (regime 'capped' beyond
+// its minimum), precomputed per gear in prepare(): the hot path adds one comparison. (The drag of
 // the air/oil mist is the windage mechanism's, gearloss/windage/gear_windage.cpp.)
 #include <cmath>
 #include <fmt/format.h>
