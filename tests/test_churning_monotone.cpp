@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gearloss/churning/changenet_velex.hpp"
+#include "gearloss/io/reports.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "loss_parts.hpp"
 #include "test_support.hpp"
@@ -164,4 +165,17 @@ TEST_CASE("churning: the running minimum over Re_c by hand (cap at the low-Re va
     CHECK(churning::churning_torque(g, 100, 850, 0.5e-6, 2.0, &r) ==
           Approx(churning::published_torque(g, 100, 850, 0.5e-6, 2.0)).epsilon(1e-12));
     CHECK(r == churning::Regime::high_reynolds);
+}
+
+TEST_CASE("churning: the point report names the capped gears and the factor at the transition", "[churning]") {
+    // Transfer box, 800 rpm, oil fixed at 113 degC: both dipping wheels are past the minimum of
+    // the published curve (their high-Re form is several times the low-Re one at Re_c = 6000).
+    auto c = test_support::load_shipped("configs/transfer-box.yaml");
+    c.model.thermal.mode = solver::ThermalMode::fixed;
+    c.model.thermal.oil_temperature = degC + 113;
+    const auto r = solver::solve_point(c.model, 800 * rpm, 250, true);
+    const std::string text = io::point_report(c, r);
+    CHECK_THAT(text, Catch::Contains("capped 'w4': the high-Re form is"));
+    CHECK_THAT(text, Catch::Contains("capped 'w5': the high-Re form is"));
+    CHECK_THAT(text, Catch::Contains("minimum of the published curve over Re_c"));
 }
