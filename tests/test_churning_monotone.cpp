@@ -179,3 +179,18 @@ TEST_CASE("churning: the point report names the capped gears and the factor at t
     CHECK_THAT(text, Catch::Contains("capped 'w5': the high-Re form is"));
     CHECK_THAT(text, Catch::Contains("minimum of the published curve over Re_c"));
 }
+
+TEST_CASE("churning: check lists the speed below which each dipping gear is capped", "[churning]") {
+    // The speed from the power law of the ratio (high-Re / low-Re at Re_c = 6000 ~ Omega^-0.56)
+    // against the direct test at 1 % either side: capped somewhere along Re_c below it, not above.
+    const auto c = test_support::load_shipped("configs/transfer-box.yaml");
+    const std::string text = io::check_report(c);
+    CHECK_THAT(text, Catch::Contains("w4: capped below"));
+    const churning::DippingGear dg{0.05, 0.02, 20, 6.75e-3, 20 * std::numbers::pi / 180, 0.02};
+    const auto cap = churning::transition_cap(dg, 2e-3, 100.0);
+    REQUIRE(cap.below_omega > 0);
+    CHECK(churning::ChurningAtSpeed::make(dg, 0.99 * cap.below_omega, 2e-3).capped_somewhere());
+    CHECK_FALSE(churning::ChurningAtSpeed::make(dg, 1.01 * cap.below_omega, 2e-3).capped_somewhere());
+    // At 100 rad/s the ratio is 2.188 (test above, by hand).
+    CHECK(cap.excess_at_reference == Approx(5.989811e-2 / 2.737414e-2).epsilon(1e-4));
+}

@@ -119,6 +119,16 @@ double ChurningAtSpeed::transition_excess() const {
     return coef_high / (coef_low * std::pow(ReC_times_nu / Re_low, 0.21));
 }
 
+TransitionCap transition_cap(const DippingGear& g, double V0, double omega_reference) {
+    const double e0 = ChurningAtSpeed::make(g, omega_reference, V0).transition_excess();
+    const double e1 = ChurningAtSpeed::make(g, 2.0 * omega_reference, V0).transition_excess();
+    if (!(e0 > 0 && e1 > 0)) return {};
+    const double k = std::log(e1 / e0) / std::log(2.0);  // excess ~ Omega^k
+    const double threshold = std::pow(Re_low / Re_high, 0.21);
+    if (!(k < 0)) return {e0 > threshold ? std::numeric_limits<double>::infinity() : 0.0, e0};
+    return {omega_reference * std::pow(threshold / e0, 1.0 / k), e0};
+}
+
 double dimensionless_torque(const DippingGear& g, double omega, double nu, double V0, Regime* regime) {
     const ChurningAtSpeed c = ChurningAtSpeed::make(g, omega, V0);
     const double Sm = submerged_surface(g);

@@ -74,4 +74,14 @@ struct ChurningAtSpeed {
     double transition_excess() const;
 };
 
+// Where the running minimum departs from the published curve, for one gear: both forms
+// are power laws of Omega, so is the ratio of the high-Re to the low-Re torque at Re_c = 6000
+// (~ Omega^-0.56); the torque is capped somewhere along Re_c at the speeds where that ratio
+// exceeds (6000/9000)^0.21, i.e. below `below_omega` [rad/s] (0: at no speed).
+struct TransitionCap {
+    double below_omega = 0;
+    double excess_at_reference = 0;  // the ratio at omega_reference
+};
+TransitionCap transition_cap(const DippingGear& g, double V0, double omega_reference);
+
 }  // namespace gearloss::churning
