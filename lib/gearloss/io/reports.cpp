@@ -175,6 +175,16 @@ std::string check_report(const Case& c) {
                              mech.value_source(m, p.name) == losses::LossMechanism::Source::oil ? " [from the oil]" : "",
                              mech.reads(m, p) ? "" : " [not read: " + p.used_by + " is not selected]", p.description);
     }
+    if (const auto caps = churning_caps(m); !caps.empty()) {
+        s += "\nchurning across the Reynolds transition (Changenet & Velex 2007; held at the minimum of the published curve "
+             "over Re_c where its high-Re form exceeds the low-Re one):\n";
+        for (const auto& g : caps)
+            s += g.below_rpm > 0 ? fmt::format("  {}: capped below {:.0f} rpm of the gear (high-Re / low-Re torque at Re_c = "
+                                               "6000 and 1000 rpm: {:.2f})\n",
+                                               g.gear, g.below_rpm, g.excess_at_1000rpm)
+                                 : fmt::format("  {}: never capped (high-Re / low-Re torque at Re_c = 6000 and 1000 rpm: {:.2f})\n",
+                                               g.gear, g.excess_at_1000rpm);
+    }
     const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
     s += fmt::format("\noil {} ({}): nu40 = {:.3f} cSt, nu100 = {:.3f} cSt, rho15 = {:.1f} kg/m^3, X_L = {:.3f}\n", m.oil.name,
                      lubricant::to_string(m.oil.base), s40.nu_cSt, s100.nu_cSt, m.oil.rho15, m.oil.X_L);
@@ -187,16 +197,6 @@ std::string check_report(const Case& c) {
         s += fmt::format("\nassumed values ({}; the case and its oil do not give them):\n", c.assumed.size());
         for (const auto& a : c.assumed)
             s += fmt::format("  {} = {} ({}){}\n", a.key, a.value, a.reason, a.location.empty() ? "" : " at " + a.location);
-    }
-    if (const auto caps = churning_caps(m); !caps.empty()) {
-        s += "\nchurning across the Reynolds transition (Changenet & Velex 2007; held at the minimum of the published curve "
-             "over Re_c where its high-Re form exceeds the low-Re one):\n";
-        for (const auto& g : caps)
-            s += g.below_rpm > 0 ? fmt::format("  {}: capped below {:.0f} rpm of the gear (high-Re / low-Re torque at Re_c = "
-                                               "6000 and 1000 rpm: {:.2f})\n",
-                                               g.gear, g.below_rpm, g.excess_at_1000rpm)
-                                 : fmt::format("  {}: never capped (high-Re / low-Re torque at Re_c = 6000 and 1000 rpm: {:.2f})\n",
-                                               g.gear, g.excess_at_1000rpm);
     }
     if (!c.warnings.empty()) {
         s += fmt::format("\nplausibility ({}):\n", c.warnings.size());
