@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "gearloss/bearings/skf_constants.hpp"
+#include "gearloss/churning/changenet_velex.hpp"
 #include "gearloss/core/errors.hpp"
 #include "gearloss/core/message_text.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
@@ -65,6 +66,27 @@ std::string point_report(const Case& c, const solver::PointResult& r) {
 }
 
 namespace {
+// Per dipping gear, the speed below which its churning is held at the minimum of the
+// published Changenet & Velex (2007) curve over Re_c (gearloss/churning/changenet_velex.hpp).
+struct ChurningCapRow {
+    std::string gear;
+    double below_rpm = 0, excess_at_1000rpm = 0;
+};
+std::vector<ChurningCapRow> churning_caps(const solver::Model& m) {
+    std::vector<ChurningCapRow> out;
+    const auto& gb = m.gearbox;
+    if (!m.mechanisms.at("churning").enabled()) return out;
+    for (size_t g = 0; g < gb.gears.size(); ++g) {
+        const double h = g < m.layout.gear_immersion.size() ? m.layout.gear_immersion[g] : 0.0;
+        if (!(h > 0)) continue;
+        const auto& spec = gb.gears[g].spec;
+        const churning::DippingGear dg{0.5 * spec.d(), spec.b, spec.z, spec.mn * (spec.ha_star + spec.hf_star), spec.alpha_t(), h};
+        const auto cap = churning::transition_cap(dg, gb.oil_volume, 1000.0 * std::numbers::pi / 30.0);
+        out.push_back({spec.name, cap.below_omega * 30.0 / std::numbers::pi, cap.excess_at_reference});
+    }
+    return out;
+}
+
 struct MeshRow {
     std::string name;
     const geometry::PairGeometry* g;
@@ -152,6 +174,16 @@ std::string check_report(const Case& c) {
             s += fmt::format("    {} = {:.6g}{}{}{} ({})\n", p.name, mech.value_in(m, p.name), p.calibration ? " [calibration]" : "",
                              mech.value_source(m, p.name) == losses::LossMechanism::Source::oil ? " [from the oil]" : "",
                              mech.reads(m, p) ? "" : " [not read: " + p.used_by + " is not selected]", p.description);
+    }
+    if (const auto caps = churning_caps(m); !caps.empty()) {
+        s += "\nchurning across the Reynolds transition (Changenet & Velex 2007; held at the minimum of the published curve "
+             "over Re_c where its high-Re form exceeds the low-Re one):\n";
+        for (const auto& g : caps)
+            s += g.below_rpm > 0 ? fmt::format("  {}: capped below {:.0f} rpm of the gear (high-Re / low-Re torque at Re_c = "
+                                               "6000 and 1000 rpm: {:.2f})\n",
+                                               g.gear, g.below_rpm, g.excess_at_1000rpm)
+                                 : fmt::format("  {}: never capped (high-Re / low-Re torque at Re_c = 6000 and 1000 rpm: {:.2f})\n",
+                                               g.gear, g.excess_at_1000rpm);
     }
     const auto s40 = m.oil.state(313.15), s100 = m.oil.state(373.15);
     s += fmt::format("\noil {} ({}): nu40 = {:.3f} cSt, nu100 = {:.3f} cSt, rho15 = {:.1f} kg/m^3, X_L = {:.3f}\n", m.oil.name,
@@ -283,6 +315,12 @@ nlohmann::ordered_json check_json_object(const Case& c) {
         j["mechanisms"].push_back(std::move(o));
     }
     j["operating_points"] = c.grid.size();
+    j["churning_transition"] = ordered_json::array();
+    for (const auto& g : churning_caps(m))
+        j["churning_transition"].push_back(
+            {{"gear", g.gear},
+             {"capped_below_rpm", std::isfinite(g.below_rpm) ? ordered_json(g.below_rpm) : ordered_json(nullptr)},
+             {"high_over_low_at_1000rpm", g.excess_at_1000rpm}});
     j["assumed"] = assumed_json(c.assumed);
     j["warnings"] = c.warnings;
     return j;

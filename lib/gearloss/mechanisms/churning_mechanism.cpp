@@ -1,5 +1,7 @@
 // Churning of dip-lubricated gears as a loss mechanism: Changenet & Velex (2007, 2008)
-// per immersed gear (gearloss/churning/changenet_velex.hpp), with a calibration factor. (The drag of
+// per immersed gear (gearloss/churning/changenet_velex.hpp), with a calibration factor. The
+// torque is the running minimum over Re_c of the published curve (regime 'capped' beyond
+// its minimum), precomputed per gear in prepare(): the hot path adds one comparison. (The drag of
 // the air/oil mist is the windage mechanism's, gearloss/windage/gear_windage.cpp.)
 #include <cmath>
 #include <fmt/format.h>
@@ -102,16 +104,24 @@ public:
         return {};
     }
 
-    std::string report(const solver::Model& m, const losses::PointInput& in, const losses::MechanismPoint&,
+    std::string report(const solver::Model& m, const losses::PointInput& in, const losses::MechanismPoint& pt,
                        const losses::MechanismDetail& d) const override {
         const auto& gb = m.gearbox;
         const auto& L = m.layout;
+        const auto& p = static_cast<const ChurningPoint&>(pt);
         std::string s = "churning              immersion [mm]  speed [rpm]  P [W]     regime\n";
-        for (size_t g = 0; g < gb.gears.size(); ++g)
+        std::string capped;
+        for (size_t g = 0; g < gb.gears.size(); ++g) {
+            const auto regime = Regime(int(d.at(g, kRegime)));
             s += fmt::format("  {:<18} {:14.2f} {:12.1f} {:9.2f}  {}\n", gb.gears[g].spec.name, L.gear_immersion[g] * 1e3,
                              std::abs(L.body_speed_ratio[L.body_of_gear[g]] * in.omega_in) * rad_s_to_rpm,
-                             d.at(g, kPower), to_string(Regime(int(d.at(g, kRegime)))));
-        return s;
+                             d.at(g, kPower), to_string(regime));
+            if (regime == Regime::capped && g < p.gears.size())
+                capped += fmt::format("  capped '{}': the high-Re form is {:.2f} x the low-Re one at Re_c = 6000; held at the "
+                                      "minimum of the published curve over Re_c (reached at Re_c = {:.0f})\n",
+                                      gb.gears[g].spec.name, p.gears[g].transition_excess(), p.gears[g].ReC_cap);
+        }
+        return s + capped;
     }
 };
 
