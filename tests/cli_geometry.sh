@@ -59,7 +59,16 @@ check "planet-ring at 48.80 mm: exit 2" test $? -eq 2
 check "planet-ring at 48.80 mm: at pr.yaml:20, overlap" \
     bash -c "grep -q 'pr.yaml:20:[0-9]*: meshes\[1\]\.centre_distance' '$tmp/pr.err' && grep -q 'overlap' '$tmp/pr.err'"
 
-# 4. Every shipped case passes with no centre-distance warning; check reports every mesh's fit.
+# 4. A given tip diameter against its shift: FZG C40 wheel, d = 108 mm, x = 0.1715, full-depth tip
+#    d + 2 m (1 + x) = 118.5435 mm; 119.5 mm is 0.956 mm longer (IT11 of 119.5 mm: 0.22 mm): a warning
+#    at the tip_diameter key (line 12).
+sed 's/profile_shift: 0.1715,/profile_shift: 0.1715, tip_diameter: 119.5 mm,/' "$src/configs/fzg-c40-paor.yaml" > "$tmp/tip.yaml"
+"$bin" check "$tmp/tip.yaml" > "$tmp/tip.txt" 2> /dev/null
+check "tip 119.5 mm: exit 0" test $? -eq 0
+check "tip 119.5 mm: warning at tip.yaml:12 naming both diameters" \
+    bash -c "grep 'tip.yaml:12:[0-9]*: gears\[1\]\.tip_diameter: warning' '$tmp/tip.txt' | grep '119.500 mm' | grep -q '118.54'"
+
+# 5. Every shipped case passes with no centre-distance warning; check reports every mesh's fit.
 for f in "$src"/configs/*.yaml; do
     name=$(basename "$f")
     "$bin" check "$f" > "$tmp/ship.txt" 2> "$tmp/ship.err"
