@@ -377,7 +377,7 @@ Layout analyse(const Gearbox& gb) {
             md.L_min = sweep.L_min;
             md.L_mean = sweep.L_mean;
         } catch (const geometry::GeometryError& e) {
-            throw TopologyError(fmt::format("mesh '{}': {}", mesh.name, e.message), "meshes", mesh.name, "");
+            throw TopologyError(fmt::format("mesh '{}': {}", mesh.name, e.message), "meshes", mesh.name, e.key);
         }
     }
     // Planetary sets: every planet's meshes share one planet centre distance, and

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
+#include <stdexcept>
 
 namespace gearloss::geometry {
 
@@ -36,6 +37,75 @@ double inverse_involute(double inv) {
     return boost::math::tools::newton_raphson_iterate(f, std::min(guess, 1.4), 0.0, 1.5, 52, it);
 }
 
+double iso286_tolerance(double size, int grade) {
+    // ISO 286-1:2010, clause 5 and Annex A: IT5..IT11 = 7, 10, 16, 25, 40, 64, 100 times the
+    // standard tolerance factor i = 0.45 D^(1/3) + 0.001 D [um, D in mm] (D <= 500 mm), or
+    // I = 0.004 D + 2.1 above 500 mm.
+    static constexpr double kMultiplier[] = {7, 10, 16, 25, 40, 64, 100};
+    if (grade < 5 || grade > 11) throw std::invalid_argument("ISO 286-1 grade outside IT5..IT11");
+    const double D = std::abs(size) * 1e3;
+    const double i_um = D <= 500.0 ? 0.45 * std::cbrt(D) + 0.001 * D : 0.004 * D + 2.1;
+    return kMultiplier[grade - 5] * i_um * 1e-6;
+}
+
+// js7 (DIN 3964: centre-distance allowances of gearbox housings): +/- IT7 / 2.
+double centre_distance_tolerance(double a_w) { return 0.5 * iso286_tolerance(a_w, 7); }
+
+CentreDistanceFit centre_distance_fit(const GearSpec& g1, const GearSpec& g2, std::optional<double> a_w_given) {
+    using std::cos, std::tan;
+    // ISO 21771 signed convention: an internal gear's z, d and a are negative, so that one
+    // set of formulas serves external and internal pairs.
+    const double sg = g2.internal ? -1.0 : 1.0;
+    const double z_sum = g1.z + sg * g2.z;
+    const double an = g1.alpha_n, at = g1.alpha_t();
+    const double beta_b = std::asin(std::sin(g1.beta) * cos(an));
+    CentreDistanceFit f;
+    f.given = a_w_given.has_value();
+    f.sum_x = g1.x + g2.x;
+    // ISO 21771:2007 (gear pair): a = m_n (z1 + z2) / (2 cos beta) = m_t (z1 + z2) / 2;
+    // inv alpha_wt = inv alpha_t + 2 (x1 + x2) tan alpha_n / (z1 + z2); a_w = a cos alpha_t / cos alpha_wt.
+    const double a = 0.5 * (g1.d() + sg * g2.d());
+    f.alpha_wt_shifts = inverse_involute(involute(at) + 2.0 * tan(an) * (g1.x + g2.x) / z_sum);
+    const double aw_shifts = a * cos(at) / cos(f.alpha_wt_shifts);
+    double aw = aw_shifts;
+    f.alpha_wt = f.alpha_wt_shifts;
+    if (a_w_given) {
+        aw = sg * *a_w_given;
+        const double c = a * cos(at) / aw;
+        if (!(c > 0 && c < 1))
+            throw GeometryError("centre_distance", fmt::format("centre distance {:.3f} mm is incompatible with the gear sizes "
+                                                               "(a = {:.3f} mm, base circles {:.3f} mm apart)",
+                                                               *a_w_given * 1e3, std::abs(a) * 1e3,
+                                                               std::abs(a * cos(at)) * 1e3));
+        f.alpha_wt = std::acos(c);
+    }
+    // The same relation solved for the sum of the shifts that meshes without backlash at a_w.
+    f.sum_x_implied = (involute(f.alpha_wt) - involute(at)) * z_sum / (2.0 * tan(an));
+    // Backlash on the working pitch circle, j_wt = p_wt - s_w1 - s_w2 with the tooth thickness
+    // s_w = d_w (s/d + inv alpha_t - inv alpha_wt) and s = m_t (pi/2 + 2 x tan alpha_n)
+    // (ISO 21771:2007, tooth thickness at any diameter), gives with d_w/d = a_w/a:
+    // j_wt = 2 a_w (inv alpha_wt - inv alpha_wt(x1 + x2)); signed a_w, so that moving an internal
+    // pair apart takes backlash away. Its first-order form is DIN 3967 (1978)'s
+    // j_t = 2 delta_a tan alpha_wt. Normal backlash j_bn = j_wt cos alpha_wt cos beta_b (ISO/TR 10064-2:1996, clause 4).
+    f.j_wt = 2.0 * aw * (involute(f.alpha_wt) - involute(f.alpha_wt_shifts));
+    f.j_bn = f.j_wt * cos(f.alpha_wt) * cos(beta_b);
+    f.a = std::abs(a);
+    f.a_w = std::abs(aw);
+    f.a_w_shifts = std::abs(aw_shifts);
+    f.tolerance = centre_distance_tolerance(aw);
+    return f;
+}
+
+std::string describe_fit(const CentreDistanceFit& f) {
+    const double d = f.excess();
+    return fmt::format("centre distance {:.3f} mm is {:.3f} mm {} the {:.3f} mm at which the profile shifts x1 + x2 = {:.4f} "
+                       "mesh without backlash (ISO 21771); {:.3f} mm implies x1 + x2 = {:.4f}, circumferential backlash "
+                       "j_wt = {:.3f} mm (normal j_bn = {:.3f} mm); a gearbox housing holds its centre distance to "
+                       "+/-{:.3f} mm (ISO 286-1 js7, DIN 3964)",
+                       f.a_w * 1e3, std::abs(d) * 1e3, d < 0 ? "below" : "above", f.a_w_shifts * 1e3, f.sum_x,
+                       f.a_w * 1e3, f.sum_x_implied, f.j_wt * 1e3, f.j_bn * 1e3, f.tolerance * 1e3);
+}
+
 PairGeometry pair_geometry(const GearSpec& g1, const GearSpec& g2, std::optional<double> a_w_given) {
     using std::cos, std::sin, std::tan, std::sqrt, std::abs;
     if (abs(g1.mn - g2.mn) > 1e-9 * g1.mn)
@@ -64,17 +134,14 @@ PairGeometry pair_geometry(const GearSpec& g1, const GearSpec& g2, std::optional
     const double d1 = g1.d(), d2 = sg * g2.d();
     const double db1 = g1.db(), db2 = sg * g2.db();
     const double a = 0.5 * (d1 + d2);
-    double a_w;
-    if (a_w_given) {
-        a_w = sg * *a_w_given;
-        const double c = a * cos(p.alpha_t) / a_w;
-        if (!(c > 0 && c < 1)) throw GeometryError("centre distance incompatible with the gear sizes");
-        p.alpha_wt = std::acos(c);
-    } else {
-        const double inv_wt = involute(p.alpha_t) + 2.0 * tan(an) * (g1.x + g2.x) / (z1 + z2);
-        p.alpha_wt = inverse_involute(inv_wt);
-        a_w = a * cos(p.alpha_t) / cos(p.alpha_wt);
-    }
+    p.fit = centre_distance_fit(g1, g2, a_w_given);
+    if (p.fit.overlaps())
+        throw GeometryError("centre_distance", describe_fit(p.fit) + ": the flanks would overlap; give the centre distance "
+                                               "the shifts give, or the shifts the centre distance implies");
+    // With a_w given, the working pressure angle follows from it (a backlash within the
+    // tolerance does not move the line of action).
+    p.alpha_wt = p.fit.alpha_wt;
+    const double a_w = sg * p.fit.a_w;
     const double y = (a_w - a) / mn;
     // ISO 21771: k = y - (x1 + x2) <= 0 keeps the nominal tip clearance (external pairs).
     const double k = internal ? 0.0 : std::min(0.0, y - (g1.x + g2.x));

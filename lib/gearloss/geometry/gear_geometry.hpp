@@ -1,6 +1,7 @@
 #pragma once
 // Involute helical gear pair geometry with profile shift (ISO 21771 / DIN 3960,
 // as in MAAG (1990), the Gear Book). All lengths in metres, angles in rad.
+#include <cmath>
 #include <optional>
 #include <string>
 #include "gearloss/core/errors.hpp"
@@ -54,7 +55,47 @@ double inverse_involute(double inv);
 enum class TipSource { iso_tip_alteration, given_tip_alteration, given_tip_diameter };
 const char* to_string(TipSource s);
 
+// How a mesh's centre distance fits its profile shifts (ISO 21771:2007, gear pair geometry):
+// the shifts give one centre distance at which the flanks mesh without backlash, a_w(x1 + x2);
+// a centre distance given by the case implies its own x1 + x2 and, if larger (smaller for an
+// internal pair), a backlash j_wt; if the given a_w pushes the flanks into each other, j_wt < 0.
+// Lengths are magnitudes (a_w of an internal pair as well); backlash keeps its sign.
+struct CentreDistanceFit {
+    bool given = false;        // the case gives the centre distance
+    double a = 0;              // reference centre distance m_n (z1 + z2) / (2 cos beta)
+    double a_w = 0;            // working centre distance: the given one, else a_w_shifts
+    double a_w_shifts = 0;     // the zero-backlash centre distance of the given shifts
+    double sum_x = 0;          // x1 + x2 as given
+    double sum_x_implied = 0;  // x1 + x2 that meshes without backlash at a_w
+    double alpha_wt = 0;       // working transverse pressure angle at a_w
+    double alpha_wt_shifts = 0;  // the same at a_w_shifts
+    double j_wt = 0;           // circumferential backlash on the working pitch circle the centre distance adds (< 0: overlap)
+    double j_bn = 0;           // the same along the line of action, normal to the flanks
+    double tolerance = 0;      // centre-distance tolerance +/- of a gearbox housing at a_w (centre_distance_tolerance)
+    double excess() const { return a_w - a_w_shifts; }  // magnitudes: > 0 moves an external pair apart
+    bool beyond_tolerance() const { return given && std::abs(excess()) > tolerance; }
+    bool overlaps() const { return beyond_tolerance() && j_wt < 0; }  // flanks would overlap: an error
+    bool slack() const { return beyond_tolerance() && j_wt > 0; }     // backlash beyond the housing tolerance: a warning
+};
+
+// Standard tolerance IT`grade` (5..11) of a size [m], in m: ISO 286-1:2010 (clause 5, Annex A),
+// with the size itself in place of the geometric mean of its size step (a smooth value).
+double iso286_tolerance(double size, int grade);
+// Tolerance +/- of a working centre distance [m]: the ISO 286-1 field js7 (half IT7), the
+// centre-distance allowance DIN 3964 gives gearbox housings of ordinary quality. Within it a
+// centre distance and the shifts agree; the backlash that remains is the tooth-thickness
+// allowances' business (DIN 3967), which a case does not describe.
+double centre_distance_tolerance(double a_w);
+
+// The fit of `a_w` (the given centre distance, else none) to the shifts of g1 and g2 (gear 2
+// internal with ISO 21771's signed convention). Throws GeometryError (key "centre_distance")
+// when no working pressure angle exists at a_w.
+CentreDistanceFit centre_distance_fit(const GearSpec& g1, const GearSpec& g2, std::optional<double> a_w = std::nullopt);
+// "centre distance 88.000 mm is 3.500 mm below ..." naming a_w, a_w of the shifts, both sums x1 + x2 and the backlash.
+std::string describe_fit(const CentreDistanceFit& f);
+
 struct PairGeometry {
+    CentreDistanceFit fit;   // the centre distance against the profile shifts
     bool internal = false;   // gear 1 is an internal gear
     double u = 0;            // z2/z1 (>0)
     double sign = 1;         // +1 external pair, -1 internal pair (u + sign appears in H_V)
@@ -77,15 +118,19 @@ struct PairGeometry {
     double b_eff = 0;        // common face width
 };
 
+// An impossible gear pair. `key` names the mesh's key at fault ("centre_distance") when it is one of
+// the mesh's own keys, else it is empty (the gears' data).
 struct GeometryError : InputError {
     using InputError::InputError;
+    GeometryError(std::string key_, std::string message_) : InputError({}, 0, 0, std::move(key_), std::move(message_)) {}
 };
 
 // Computes the pair geometry (gear 1 external; gear 2 external or internal,
 // internal gears with the ISO 21771 signed convention: z, d and a < 0 inside
 // the formulas, so that one set of formulas serves both). With `a_w` given, the working pressure angle
 // follows from it (the profile shifts stay as given and the tip alteration k
-// absorbs the difference). Throws GeometryError for an impossible pair.
+// absorbs the difference). Throws GeometryError for an impossible pair, and for a given a_w
+// at which the flanks of the given shifts would overlap beyond the housing tolerance (p.fit).
 PairGeometry pair_geometry(const GearSpec& g1, const GearSpec& g2, std::optional<double> a_w = std::nullopt);
 
 }  // namespace gearloss::geometry

@@ -30,6 +30,7 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
     using J = solver::PlausibilityFinding::Subject;
     using S = solver::PlausibilityFinding::Severity;
     const auto gears = root.at("gears").items();
+    const auto meshes = root.at("meshes").items();
     for (const auto& f : solver::check_plausibility(c.model, lubrication, box, housing_height)) {
         // (YamlNode is never assigned: assigning a YAML::Node rebinds the document's data.)
         const auto locate = [&]() -> YamlNode {
@@ -46,6 +47,21 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
                         return g;
                     }
                     return housing;
+                case J::centre_distance:
+                    if (f.mesh >= 0 && static_cast<size_t>(f.mesh) < meshes.size()) {
+                        const YamlNode& me = meshes[static_cast<size_t>(f.mesh)];
+                        if (auto cd = me.get("centre_distance")) return *cd;
+                        return me;
+                    }
+                    return root.at("meshes");
+                case J::tip:
+                    if (f.gear >= 0 && static_cast<size_t>(f.gear) < gears.size()) {
+                        const YamlNode& g = gears[static_cast<size_t>(f.gear)];
+                        if (auto t = g.get("tip_diameter")) return *t;
+                        if (auto t = g.get("tip_alteration_factor")) return *t;
+                        return g;
+                    }
+                    return root.at("gears");
                 case J::lubrication:
                     if (auto n = housing.get("lubrication")) return *n;
                     if (auto lv = housing.get("oil_level")) return *lv;

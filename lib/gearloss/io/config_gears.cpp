@@ -168,7 +168,8 @@ void Loader::load_meshes() {
             (void)geometry::pair_geometry(model.gearbox.gears[m.gear[0]].spec, model.gearbox.gears[m.gear[1]].spec,
                                           m.centre_distance);
         } catch (const geometry::GeometryError& e) {
-            n.fail(e.message);
+            // At the mesh's own key when the error names one (a centre distance the shifts do not give).
+            (!e.key.empty() && n.has(e.key) ? n.at(e.key) : n).fail(e.message);
         }
         model.gearbox.meshes.push_back(m);
     }

@@ -116,6 +116,14 @@ std::string check_report(const Case& c) {
         s += fmt::format("    y = {:.4f}, k = {:.4f}, tip thickness = {:.3f} / {:.3f}, tip clearance = {:.3f} / {:.3f}\n", g.y,
                          g.k, g.tip_thickness[0] * 1e3, g.tip_thickness[1] * 1e3, g.tip_clearance[0] * 1e3,
                          g.tip_clearance[1] * 1e3);
+        const auto& f = g.fit;
+        s += f.given ? fmt::format("    centre distance given: a_w = {:.3f}, shifts give {:.3f} (x1 + x2 = {:.4f}); a_w implies "
+                                   "x1 + x2 = {:.4f}, backlash j_wt = {:.4f} / j_bn = {:.4f}, housing tolerance +/-{:.4f}{}\n",
+                                   f.a_w * 1e3, f.a_w_shifts * 1e3, f.sum_x, f.sum_x_implied, f.j_wt * 1e3, f.j_bn * 1e3,
+                                   f.tolerance * 1e3, f.slack() ? " [beyond the tolerance]" : "")
+                     : fmt::format("    centre distance from the shifts (x1 + x2 = {:.4f}, ISO 21771): a_w = {:.3f}, no backlash "
+                                   "modelled\n",
+                                   f.sum_x, f.a_w * 1e3);
         s += fmt::format("    eps_1 = {:.4f}, eps_2 = {:.4f}, eps_alpha = {:.4f}, eps_beta = {:.4f}, eps_gamma = {:.4f}\n",
                          g.eps1, g.eps2, g.eps_alpha, g.eps_beta, g.eps_gamma);
         s += fmt::format("    tips: {} {} (k = {:.4f}), {} {} (k = {:.4f})\n", g0.name, geometry::to_string(g.tip_source[0]),
@@ -229,7 +237,19 @@ nlohmann::ordered_json check_json_object(const Case& c) {
         o["centre_distance_mm"] = g.a_w * 1e3;
         o["reference_centre_distance_mm"] = g.a * 1e3;
         o["working_pressure_angle_deg"] = g.alpha_wt * deg;
+        o["centre_distance_fit"] = {{"given", g.fit.given},
+                                    {"reference_mm", g.fit.a * 1e3},
+                                    {"working_mm", g.fit.a_w * 1e3},
+                                    {"from_shifts_mm", g.fit.a_w_shifts * 1e3},
+                                    {"sum_x_given", g.fit.sum_x},
+                                    {"sum_x_implied", g.fit.sum_x_implied},
+                                    {"working_pressure_angle_deg", g.fit.alpha_wt * deg},
+                                    {"backlash_circumferential_mm", g.fit.j_wt * 1e3},
+                                    {"backlash_normal_mm", g.fit.j_bn * 1e3},
+                                    {"tolerance_mm", g.fit.tolerance * 1e3},
+                                    {"beyond_tolerance", g.fit.beyond_tolerance()}};
         o["tip_diameters_mm"] = {g.da[0] * 1e3, g.da[1] * 1e3};
+        o["tip_clearances_mm"] = {g.tip_clearance[0] * 1e3, g.tip_clearance[1] * 1e3};
         o["tip_sources"] = {geometry::to_string(g.tip_source[0]), geometry::to_string(g.tip_source[1])};
         o["tip_alteration_factors"] = {g.k_applied[0], g.k_applied[1]};
         o["root_diameters_mm"] = {g.df[0] * 1e3, g.df[1] * 1e3};

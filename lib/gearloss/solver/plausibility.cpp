@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <numbers>
 
+#include "gearloss/geometry/gear_geometry.hpp"
+
 namespace gearloss::solver {
 
 std::optional<HousingBox> housing_box(double area, double height, double length) {
@@ -104,6 +106,50 @@ std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication 
                            fmt::format("oil level {:.1f} mm is {:.1f} mm above the lowest gear tip, more than the "
                                        "housing height {:.0f} mm",
                                        *gb.oil_level * mm, (*gb.oil_level - bottom) * mm, *housing_height * mm)});
+    }
+    const auto geometry = check_mesh_geometry(m);
+    out.insert(out.end(), geometry.begin(), geometry.end());
+    return out;
+}
+
+std::vector<PlausibilityFinding> check_mesh_geometry(const Model& m) {
+    using S = PlausibilityFinding::Severity;
+    using J = PlausibilityFinding::Subject;
+    std::vector<PlausibilityFinding> out;
+    const auto& gb = m.gearbox;
+    if (m.layout.meshes.size() != gb.meshes.size()) return out;  // not finalised
+    std::vector<bool> tip_checked(gb.gears.size(), false);
+    for (size_t k = 0; k < gb.meshes.size(); ++k) {
+        const auto& geom = m.layout.meshes[k].geom;
+        if (geom.fit.slack()) {
+            PlausibilityFinding f{S::warning, J::centre_distance, -1,
+                                  geometry::describe_fit(geom.fit) +
+                                      ": the shifts and the centre distance disagree beyond the housing tolerance "
+                                      "(the losses use alpha_wt at the given centre distance)"};
+            f.mesh = static_cast<int>(k);
+            out.push_back(std::move(f));
+        }
+        // A given tip against its shift: ISO 21771 d_a = d + 2 m_n (h*_a + x + k) with k <= 0; a
+        // tip longer than the full-depth one (k > 0) beyond the tip-diameter tolerance h11
+        // (IT11, ISO 286-1) does not fit the shift (or the shift is missing).
+        for (int s = 0; s < 2; ++s) {
+            const int g = gb.meshes[k].gear[s];
+            if (tip_checked[g] || geom.tip_source[s] == geometry::TipSource::iso_tip_alteration) continue;
+            tip_checked[g] = true;
+            const auto& spec = gb.gears[g].spec;
+            const double longer = 2.0 * spec.mn * geom.k_applied[s];
+            const double tol = geom.tip_source[s] == geometry::TipSource::given_tip_diameter
+                                   ? geometry::iso286_tolerance(geom.da[s], 11) : 1e-9;
+            if (longer > tol)
+                out.push_back({S::warning, J::tip, g,
+                               fmt::format("gear '{}': its {} gives d_a = {:.3f} mm, {:.3f} mm {} than the full-depth tip {:.3f} mm of its "
+                                           "profile shift x = {:.4f} (ISO 21771: d_a = d + 2 m_n (h*_a + x + k), k = "
+                                           "{:.4f} > 0); check the tip or the shift",
+                                           spec.name, geometry::to_string(geom.tip_source[s]), geom.da[s] * 1e3,
+                                           longer * 1e3, spec.internal ? "smaller" : "larger",
+                                           (geom.da[s] + (spec.internal ? longer : -longer)) * 1e3, spec.x,
+                                           geom.k_applied[s])});
+        }
     }
     return out;
 }

@@ -20,12 +20,19 @@ struct HousingBox {
 
 struct PlausibilityFinding {
     enum class Severity { note, warning, error };
-    enum class Subject { oil_level, oil_volume, gear, lubrication };
+    // centre_distance: the mesh's centre_distance key; tip: the gear's tip_diameter or tip_alteration_factor.
+    enum class Subject { oil_level, oil_volume, gear, lubrication, centre_distance, tip };
     Severity severity = Severity::warning;
     Subject subject = Subject::oil_level;
-    int gear = -1;  // index into gearbox.gears for Subject::gear
+    int gear = -1;  // index into gearbox.gears for Subject::gear and Subject::tip
     std::string message;
+    int mesh = -1;  // index into gearbox.meshes for Subject::centre_distance
 };
+
+// The mesh geometry against itself (after finalise()): a given centre distance beyond the
+// housing tolerance above the one the profile shifts give (backlash; the overlap below is an
+// error of geometry::pair_geometry), a given tip longer than the full-depth tip of its shift.
+std::vector<PlausibilityFinding> check_mesh_geometry(const Model& m);
 
 // `box`: the housing's outer envelope when known; `housing_height` [m] when known
 // (the oil level cannot stand higher above the lowest gear tip).
