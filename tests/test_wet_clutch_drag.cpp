@@ -103,7 +103,7 @@ TEST_CASE("wet clutch drag: the heated film equals the isothermal film where hea
     CHECK(d.torque == Approx(clutch::open_pack_drag(pack, 0.02, 850, 200.0).torque).epsilon(1e-9));
 }
 
-TEST_CASE("wet clutch drag: rise, peak and fall over slip speed; flow and temperature trends",
+TEST_CASE("wet clutch drag: rise, peak and fall over slip speed, with the flow and temperature trends",
           "[clutch][clutch_drag]") {
     // The measured curve of an open pack rises with the slip speed, peaks when the supply no longer
     // fills the gap, then falls as the film breaks down (Pointner-Gabriel, Voelkel & Stahl 2025,
@@ -193,4 +193,33 @@ TEST_CASE("wet clutch drag: the shipped six-speed automatic in cold oil drags a 
     INFO("clutch drag at -4 degC: " << cold << " W (" << 100 * cold / P_in << " % of " << P_in << " W); at 40 degC: " << warm << " W");
     CHECK(cold < 0.15 * P_in);
     CHECK(cold > 10 * warm);
+}
+
+TEST_CASE("wet clutch drag: where the heated film leaves its range the case says so", "[clutch][clutch_drag]") {
+    // The limit: the film's core 1/beta above the plates, 2 ln cosh x = 1 with sinh^2 x = Na / 8.
+    const double x = std::asinh(std::sqrt(clutch::film_heating_nahme_limit / 8.0));
+    CHECK(2.0 * std::log(std::cosh(x)) == Approx(1.0).epsilon(1e-12));
+    // The shipped automatic reaches it in cold oil: one located note per open pack concerned (C1
+    // is engaged), naming the temperature below which its drag is extrapolated.
+    const auto c = io::load_case(test_support::source_path("configs/automatic-6speed.yaml"));
+    int notes = 0;
+    for (const auto& w : c.warnings)
+        if (w.find("note: open pack") != std::string::npos) {
+            ++notes;
+            CHECK(w.find("automatic-6speed.yaml:") != std::string::npos);
+            CHECK(w.find("clutches[") != std::string::npos);
+            CHECK(w.find("degC its oil film heats beyond the range") != std::string::npos);
+        }
+    CHECK(notes == 5);
+    // An independent look at C6's 1000 rpm point (slip 1233 rpm): at 0 degC the film is inside
+    // the range, at -20 degC outside.
+    const auto& m = c.model;
+    const auto& pack = m.gearbox.clutches[5].pack;
+    const double slip = m.layout.clutch_slip_ratio[5] * 1000 * rpm;
+    auto Na = [&](double T) {
+        const auto s = m.oil_state(T);
+        return clutch::nahme_number(s.beta_T, s.eta, slip * pack.r_outer, s.k);
+    };
+    CHECK(Na(degC + 0) < clutch::film_heating_nahme_limit);
+    CHECK(Na(degC - 20) > clutch::film_heating_nahme_limit);
 }

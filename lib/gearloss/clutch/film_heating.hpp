@@ -19,6 +19,12 @@ double nahme_number(double beta, double eta0, double U, double k);
 // Nahme 1940; Gavis & Laurence 1968). 1 - Na/12 for a small Na; 1 at Na = 0.
 double thermal_shear_factor(double nahme);
 
+// The closed form takes the viscosity as exponential about the plates' temperature; it is kept
+// within its range while the film's core stays within 1/beta of the plates: 2 ln cosh x <= 1,
+// i.e. Na <= 8 (cosh^2 x - 1) = 8 (e - 1) = 13.75. Beyond it the drag is an extrapolation
+// (reported as a plausibility note, gearloss/solver/plausibility.hpp).
+inline constexpr double film_heating_nahme_limit = 8.0 * (2.718281828459045 - 1.0);
+
 // Drag of an open pack with the film's viscous heating: the local shear stress eta dw r / h
 // is reduced by thermal_shear_factor(Na(r)), Na(r) = beta eta (dw r)^2 / k, and integrated
 // over the wetted annulus (times 1 + phi_fs of Patir & Cheng 1979); the wetted radius

@@ -20,10 +20,10 @@ struct HousingBox {
 
 struct PlausibilityFinding {
     enum class Severity { note, warning, error };
-    enum class Subject { oil_level, oil_volume, gear, lubrication };
+    enum class Subject { oil_level, oil_volume, gear, lubrication, clutch };
     Severity severity = Severity::warning;
     Subject subject = Subject::oil_level;
-    int gear = -1;  // index into gearbox.gears for Subject::gear
+    int gear = -1;  // index into gearbox.gears for Subject::gear, into gearbox.clutches for Subject::clutch
     std::string message;
 };
 
@@ -32,6 +32,12 @@ struct PlausibilityFinding {
 std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication lubrication,
                                                     const std::optional<HousingBox>& box,
                                                     std::optional<double> housing_height);
+
+// The open clutch packs whose oil film, at one of the input speeds [rad/s] and some oil temperature
+// within the oil's validity, heats beyond the range of the heated-film drag model (Nahme number at
+// the outer radius above clutch::film_heating_nahme_limit while the film is not broken): one note
+// per pack with the oil temperature below which its drag is extrapolated.
+std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const std::vector<double>& input_speeds);
 
 // Box of a rectangular housing from its outer surface A = 2(LH + LW + HW), height H
 // and length L; nullopt when no positive width fits.
