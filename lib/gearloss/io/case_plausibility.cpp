@@ -1,5 +1,6 @@
 #include "gearloss/io/case_plausibility.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fmt/format.h>
 #include <mutex>
@@ -31,7 +32,15 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
     using S = solver::PlausibilityFinding::Severity;
     const auto gears = root.at("gears").items();
     const auto meshes = root.at("meshes").items();
-    for (const auto& f : solver::check_plausibility(c.model, lubrication, box, housing_height)) {
+    auto findings = solver::check_plausibility(c.model, lubrication, box, housing_height);
+    std::vector<double> speeds;
+    for (size_t i = 0; i < c.grid.size(); ++i) speeds.push_back(c.grid.at(i).first);
+    std::sort(speeds.begin(), speeds.end());
+    speeds.erase(std::unique(speeds.begin(), speeds.end()), speeds.end());
+    for (auto& f : solver::check_clutch_film_range(c.model, speeds)) findings.push_back(std::move(f));
+    std::vector<YamlNode> clutches;
+    if (auto n = root.get("clutches")) clutches = n->items();
+    for (const auto& f : findings) {
         // (YamlNode is never assigned: assigning a YAML::Node rebinds the document's data.)
         const auto locate = [&]() -> YamlNode {
             switch (f.subject) {
@@ -62,6 +71,9 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
                         return g;
                     }
                     return root.at("gears");
+                case J::clutch:
+                    if (f.gear >= 0 && static_cast<size_t>(f.gear) < clutches.size()) return clutches[static_cast<size_t>(f.gear)];
+                    return housing;
                 case J::lubrication:
                     if (auto n = housing.get("lubrication")) return *n;
                     if (auto lv = housing.get("oil_level")) return *lv;

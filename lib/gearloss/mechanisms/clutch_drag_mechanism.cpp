@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 #include <numbers>
 
-#include "gearloss/clutch/wet_clutch.hpp"
+#include "gearloss/clutch/film_heating.hpp"
 #include "gearloss/losses/registry.hpp"
 #include "gearloss/model/model.hpp"
 
@@ -50,7 +50,7 @@ public:
         double total = 0.0;
         for (size_t i = 0; i < p.slip.size(); ++i) {
             if (p.slip[i] == 0.0) continue;
-            const double P = open_pack_drag(m.gearbox.clutches[i].pack, e.oil.eta, e.oil.rho, p.slip[i]).power;
+            const double P = open_pack_drag(m.gearbox.clutches[i].pack, e.oil, p.slip[i]).power;
             total += P;
             if (d) d->at(i) = P;
         }

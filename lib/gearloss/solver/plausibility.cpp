@@ -6,6 +6,8 @@
 #include <numbers>
 
 #include "gearloss/geometry/gear_geometry.hpp"
+#include "gearloss/clutch/film_heating.hpp"
+#include "gearloss/model/validate.hpp"
 
 namespace gearloss::solver {
 
@@ -150,6 +152,42 @@ std::vector<PlausibilityFinding> check_mesh_geometry(const Model& m) {
                                            (geom.da[s] + (spec.internal ? longer : -longer)) * 1e3, spec.x,
                                            geom.k_applied[s])});
         }
+    }
+    return out;
+}
+
+std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const std::vector<double>& input_speeds) {
+    std::vector<PlausibilityFinding> out;
+    const auto& gb = m.gearbox;
+    if (gb.clutches.empty() || input_speeds.empty()) return out;
+    const auto valid = oil_validity(m.oil);
+    constexpr double rpm = 30.0 / std::numbers::pi;
+    for (size_t i = 0; i < gb.clutches.size() && i < m.layout.clutch_slip_ratio.size(); ++i) {
+        const double ratio = m.layout.clutch_slip_ratio[i];
+        if (!(ratio > 0)) continue;  // engaged
+        const auto& pack = gb.clutches[i].pack;
+        // The warmest oil temperature (1 K steps) at which, at one of the case's input speeds, the pack
+        // still holds an oil film (a broken film drags air only) whose Nahme number is beyond the range.
+        double below = 0, at_speed = 0;
+        for (double w : input_speeds) {
+            const double slip = ratio * w;
+            if (!(slip > 0)) continue;
+            for (double T = std::ceil(valid.T_min) + 1.0; T < valid.T_max; T += 1.0) {
+                if (T <= below) continue;
+                const auto s = m.oil_state(T);
+                if (!(clutch::nahme_number(s.beta_T, s.eta, slip * pack.r_outer, s.k) > clutch::film_heating_nahme_limit))
+                    break;  // the Nahme number falls as the oil warms
+                if (clutch::open_pack_drag(pack, s, slip).wetted_radius > pack.r_inner) below = T, at_speed = w;
+            }
+        }
+        if (below == 0) continue;
+        out.push_back({PlausibilityFinding::Severity::note, PlausibilityFinding::Subject::clutch, static_cast<int>(i),
+                       fmt::format("open pack '{}' (slip {:.0f} rpm at input speed {:.0f} rpm): below {:.0f} degC its "
+                                   "oil film heats beyond the range of the drag model (Nahme number above {:.1f}: the "
+                                   "film's core runs more than 1/beta above plates taken at the oil temperature); the "
+                                   "clutch drag there is extrapolated",
+                                   pack.name, ratio * at_speed * rpm, at_speed * rpm, below - 273.15,
+                                   clutch::film_heating_nahme_limit)});
     }
     return out;
 }

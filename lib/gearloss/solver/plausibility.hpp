@@ -21,10 +21,10 @@ struct HousingBox {
 struct PlausibilityFinding {
     enum class Severity { note, warning, error };
     // centre_distance: the mesh's centre_distance key; tip: the gear's tip_diameter or tip_alteration_factor.
-    enum class Subject { oil_level, oil_volume, gear, lubrication, centre_distance, tip };
+    enum class Subject { oil_level, oil_volume, gear, lubrication, centre_distance, tip, clutch };
     Severity severity = Severity::warning;
     Subject subject = Subject::oil_level;
-    int gear = -1;  // index into gearbox.gears for Subject::gear and Subject::tip
+    int gear = -1;  // index into gearbox.gears for Subject::gear and Subject::tip, into gearbox.clutches for Subject::clutch
     std::string message;
     int mesh = -1;  // index into gearbox.meshes for Subject::centre_distance
 };
@@ -39,6 +39,12 @@ std::vector<PlausibilityFinding> check_mesh_geometry(const Model& m);
 std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication lubrication,
                                                     const std::optional<HousingBox>& box,
                                                     std::optional<double> housing_height);
+
+// The open clutch packs whose oil film, at one of the input speeds [rad/s] and some oil temperature
+// within the oil's validity, heats beyond the range of the heated-film drag model (Nahme number at
+// the outer radius above clutch::film_heating_nahme_limit while the film is not broken): one note
+// per pack with the oil temperature below which its drag is extrapolated.
+std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const std::vector<double>& input_speeds);
 
 // Box of a rectangular housing from its outer surface A = 2(LH + LW + HW), height H
 // and length L; nullopt when no positive width fits.
