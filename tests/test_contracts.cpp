@@ -372,8 +372,9 @@ TEST_CASE("fast path: the solver's per-temperature evaluation equals the compone
                     }
                     for (size_t i = 0; i < gb.bearings.size(); ++i) {
                         const double wb = L.bearing_speed_ratio[i] * w_in;
-                        const double M = bearings::skf_moment(gb.bearings[i].spec, torque * L.bearing_Fr_pos[i],
-                                                              torque * L.bearing_Fa_pos[i], wb, s.nu_cSt * 1e-6)
+                        // The gear forces vector-added to the weights of gears and shafts.
+                        const auto load = L.bearing_load(i, torque, w_in);
+                        const double M = bearings::skf_moment(gb.bearings[i].spec, load.Fr, load.Fa, wb, s.nu_cSt * 1e-6)
                                              .total();  // N*m
                         CHECK(test::each(r, "bearings", i) == Approx(M * wb * gb.bearings[i].multiplicity).epsilon(1e-10));
                     }

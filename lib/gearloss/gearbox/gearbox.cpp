@@ -8,13 +8,16 @@
 #include <numbers>
 #include <set>
 
+#include "gearloss/gearbox/statics.hpp"
 #include "gearloss/mesh/loss_factor.hpp"
 
 namespace gearloss::gearbox {
 
-namespace {
+using detail::GearLoad;
+using detail::Reactions;
+using detail::Vec3;
 
-using Vec3 = Eigen::Vector3d;
+namespace {
 
 // Rotating bodies: a shaft with the gears fixed to it, a free gear, or a planet
 // (one body for the N identical planets of a set).
@@ -194,11 +197,6 @@ void place_shafts(const Gearbox& gb, Layout& L) {
         if (std::isnan(L.shaft_centre[s].x())) L.shaft_centre[s] = Eigen::Vector2d::Zero();
 }
 
-struct GearLoad {
-    Vec3 F = Vec3::Zero();
-    Vec3 r = Vec3::Zero();  // application point: (x, y) from the shaft axis, z along the shaft
-};
-
 // Forces of every loaded mesh on its two gears for an input torque of +1 or -1 N m.
 // Tangential component from the mesh force lambda (torque on the body = lambda r_w
 // for gear 0, s lambda r_w for gear 1), radial separating force F_t tan(alpha_wt),
@@ -249,26 +247,30 @@ std::vector<std::vector<GearLoad>> gear_forces(const Gearbox& gb, const Layout& 
     return out;
 }
 
-// Reactions on one shaft with at most two support positions (statically determinate).
-void shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std::vector<GearLoad>>& loads,
-                     std::vector<double>& Fr, std::vector<double>& Fa) {
-    std::vector<GearLoad> on_shaft;
+}  // namespace
+
+// Reactions on one shaft with at most two support positions (statically determinate): the
+// radial reaction vector (housing frame) and the signed axial reaction of each bearing.
+// `weights`: the loads are weights, not mesh forces: the planets' weights add on the carrier
+// (they do not cancel like their mesh forces), a planet's own bearings are left to
+// weight_reactions, and one support position takes a weight whole (its bearings take the moment).
+void detail::shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std::vector<GearLoad>>& loads,
+                             const std::vector<GearLoad>& shaft_loads, bool weights, Reactions& out) {
+    std::vector<GearLoad> on_shaft = shaft_loads;
     for (size_t g = 0; g < gb.gears.size(); ++g) {
         const Gear& gear = gb.gears[g];
         if (gear.is_planet()) {
-            // N planets on the carrier: their forces on the carrier's axis cancel
-            // transversally; their axial forces add.
+            // N planets on the carrier: their mesh forces on the carrier's axis cancel
+            // transversally; their axial forces (and their weights) add.
             if (gear.carrier != shaft) continue;
+            if (gear.planets < 2 || weights) {
+                for (const auto& gl : loads[g]) on_shaft.push_back(gl);
+                continue;
+            }
             GearLoad sum;
             for (const auto& gl : loads[g]) sum.F.z() += gl.F.z();
             sum.r.z() = gear.position;
-            if (gear.planets < 2)
-                for (const auto& gl : loads[g]) {
-                    GearLoad t = gl;
-                    on_shaft.push_back(t);
-                }
-            else
-                on_shaft.push_back(sum);
+            on_shaft.push_back(sum);
             continue;
         }
         if (gear.shaft == shaft)
@@ -279,13 +281,15 @@ void shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std::vector
     for (size_t i = 0; i < gb.bearings.size(); ++i) {
         const Bearing& br = gb.bearings[i];
         if (br.shaft != shaft || br.under_gear < 0) continue;
+        const Gear& gear = gb.gears[br.under_gear];
+        if (weights && gear.is_planet()) continue;
         Vec3 sum = Vec3::Zero();
         for (const auto& gl : loads[br.under_gear]) sum += gl.F;
         int n = 0;
         for (const Bearing& o : gb.bearings) n += (o.under_gear == br.under_gear);
-        const int planets = gb.gears[br.under_gear].planets;
-        Fr[i] = std::hypot(sum.x(), sum.y()) / n / (gb.gears[br.under_gear].is_planet() ? planets : 1);
-        Fa[i] = 0.0;  // thrust washers take the gear's axial force
+        // The reaction of the bearing on the gear: minus the load it takes from the gear.
+        out.R[i] = -sum.head<2>() / n / (gear.is_planet() ? gear.planets : 1);
+        out.Z[i] = 0.0;  // thrust washers take the gear's axial force
     }
     std::map<double, std::vector<int>> supports;
     for (size_t i = 0; i < gb.bearings.size(); ++i)
@@ -305,15 +309,16 @@ void shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std::vector
             "shaft '{}' has bearings at {} axial positions ({}); gearloss solves statically determinate shafts (two support "
             "positions; paired bearings share one position)",
             gb.shafts[shaft].name, supports.size(), names), "bearings", first, "position");
-    if (supports.size() == 1 && Fsum.head<2>().norm() > 1e-12)
+    if (!weights && supports.size() == 1 && Fsum.head<2>().norm() > 1e-12)
         throw TopologyError(fmt::format("shaft '{}' carries radial gear forces but has bearings at one axial position only ({})",
                                         gb.shafts[shaft].name, names), "bearings", first, "position");
     const double zA = supports.begin()->first;
-    Eigen::Vector2d RA(0, 0), RB(0, 0);
+    Eigen::Vector2d RA = -Fsum.head<2>(), RB(0, 0);
     if (supports.size() == 2) {
+        // Lever rule: moment balance about support A gives B's reaction, force balance A's.
         const double zB = std::next(supports.begin())->first;
         const double Lab = zB - zA;
-        double Mx = 0, My = 0;  // moment balance about support A
+        double Mx = 0, My = 0;
         for (const auto& gl : on_shaft) {
             const Vec3 r(gl.r.x(), gl.r.y(), gl.r.z() - zA);
             const Vec3 M = r.cross(gl.F);
@@ -324,7 +329,7 @@ void shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std::vector
         RA = -Fsum.head<2>() - RB;
     }
     auto distribute = [&](const std::vector<int>& ids, const Eigen::Vector2d& R) {
-        for (int i : ids) Fr[i] = R.norm() / static_cast<double>(ids.size());
+        for (int i : ids) out.R[i] = R / static_cast<double>(ids.size());
     };
     distribute(supports.begin()->second, RA);
     if (supports.size() == 2) distribute(std::next(supports.begin())->second, RB);
@@ -334,14 +339,17 @@ void shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std::vector
             if (gb.bearings[i].locating) loc.push_back(i);
     if (std::abs(Fsum.z()) > 1e-9) {
         if (loc.empty())
-            throw TopologyError(fmt::format(
-                "shaft '{}' carries an axial gear force but no bearing on it is marked 'locating: true' (its bearings: {})",
-                gb.shafts[shaft].name, names), "bearings", first, "locating");
-        for (int i : loc) Fa[i] = std::abs(Fsum.z()) / static_cast<double>(loc.size());
+            throw TopologyError(
+                weights ? fmt::format("shaft '{}': housing.gravity has a component along the shafts, so the weights load it "
+                                      "axially, but no bearing on it is marked 'locating: true' (its bearings: {})",
+                                      gb.shafts[shaft].name, names)
+                        : fmt::format("shaft '{}' carries an axial gear force but no bearing on it is marked 'locating: "
+                                      "true' (its bearings: {})",
+                                      gb.shafts[shaft].name, names),
+                "bearings", first, "locating");
+        for (int i : loc) out.Z[i] = -Fsum.z() / static_cast<double>(loc.size());
     }
 }
-
-}  // namespace
 
 Layout analyse(const Gearbox& gb) {
     Layout L;
@@ -428,6 +436,10 @@ Layout analyse(const Gearbox& gb) {
             L.gear_immersion[g] = std::max(0.0, *gb.oil_level - lowest);
         }
     }
+    L.gear_mass.resize(gb.gears.size());
+    for (size_t g = 0; g < gb.gears.size(); ++g) L.gear_mass[g] = detail::gear_mass(gb, L, static_cast<int>(g));
+    L.shaft_mass.resize(gb.shafts.size());
+    for (size_t s = 0; s < gb.shafts.size(); ++s) L.shaft_mass[s] = detail::shaft_mass(gb, static_cast<int>(s));
     // Ring speeds of bearings and seals.
     L.bearing_speed_ratio.resize(gb.bearings.size());
     L.bearing_Fcf_per_w2.assign(gb.bearings.size(), 0.0);
@@ -439,13 +451,12 @@ Layout analyse(const Gearbox& gb) {
             const double wg = L.body_speed_ratio[L.body_of_gear[br.under_gear]];
             L.bearing_speed_ratio[i] = std::abs(wg - ws);
             if (gear.is_planet()) {
-                // Centrifugal force of one planet (solid disc of its pitch diameter) on its bearings:
+                // Centrifugal force of one planet (its mass, gear_mass) on its bearings:
                 // m omega_c^2 a, shared by the bearings under it.
                 double a = 0;
                 for (size_t m = 0; m < gb.meshes.size(); ++m)
                     if (gb.meshes[m].gear[0] == br.under_gear || gb.meshes[m].gear[1] == br.under_gear) a = L.meshes[m].geom.a_w;
-                const double d = gear.spec.d();
-                const double mass = gear.spec.material.density * std::numbers::pi / 4 * d * d * gear.spec.b;
+                const double mass = L.gear_mass[br.under_gear];
                 int n = 0;
                 for (const Bearing& o : gb.bearings) n += (o.under_gear == br.under_gear);
                 L.bearing_Fcf_per_w2[i] = mass * ws * ws * a / n;
@@ -464,13 +475,22 @@ Layout analyse(const Gearbox& gb) {
     for (size_t i = 0; i < gb.seals.size(); ++i)
         L.seal_speed_ratio[i] = std::abs(L.body_speed_ratio[L.body_of_shaft[gb.seals[i].shaft]]);
     // Unit bearing loads for +1 and -1 N m.
+    const size_t nbr = gb.bearings.size();
     for (double sign : {+1.0, -1.0}) {
         const auto loads = gear_forces(gb, L, sign);
-        std::vector<double> Fr(gb.bearings.size(), 0.0), Fa(gb.bearings.size(), 0.0);
-        for (size_t s = 0; s < gb.shafts.size(); ++s) shaft_reactions(gb, static_cast<int>(s), loads, Fr, Fa);
+        Reactions R{std::vector<Eigen::Vector2d>(nbr, Eigen::Vector2d::Zero()), std::vector<double>(nbr, 0.0)};
+        for (size_t s = 0; s < gb.shafts.size(); ++s) detail::shaft_reactions(gb, static_cast<int>(s), loads, {}, false, R);
+        std::vector<double> Fr(nbr), Fa(nbr);
+        for (size_t i = 0; i < nbr; ++i) {
+            Fr[i] = R.R[i].norm();
+            Fa[i] = std::abs(R.Z[i]);
+        }
+        (sign > 0 ? L.bearing_R_pos : L.bearing_R_neg) = R.R;
+        (sign > 0 ? L.bearing_Z_pos : L.bearing_Z_neg) = R.Z;
         (sign > 0 ? L.bearing_Fr_pos : L.bearing_Fr_neg) = Fr;
         (sign > 0 ? L.bearing_Fa_pos : L.bearing_Fa_neg) = Fa;
     }
+    detail::weight_reactions(gb, L);
     return L;
 }
 

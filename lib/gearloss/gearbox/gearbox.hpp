@@ -18,6 +18,12 @@ namespace gearloss::gearbox {
 struct Shaft {
     std::string name;
     bool fixed = false;         // held by the housing (e.g. a fixed ring gear's mounting)
+    // Weight of the shaft (a steel cylinder between its bearings, see shaft_mass in gearbox.cpp):
+    // an explicit mass overrides; else diameter and length (both optional) and density.
+    std::optional<double> mass;      // kg
+    std::optional<double> diameter;  // m; else the largest bore of its support bearings
+    std::optional<double> length;    // m; else the span of its support bearings
+    double density = 7850;           // kg/m^3
 };
 
 struct Gear {
@@ -28,6 +34,10 @@ struct Gear {
     std::optional<double> immersion;  // depth below the oil level [m]; else from the oil level
     int carrier = -1;           // planet gear: the shaft (carrier) its pins sit on
     int planets = 1;            // planet gear: number of identical, equally spaced planets
+    // Weight: an explicit mass overrides the disc of the gear's geometry (gear_mass in gearbox.cpp),
+    // a bore (or the bearings under a free gear or planet) hollows it; density from spec.material.
+    std::optional<double> mass;  // kg, one gear (one planet)
+    std::optional<double> bore;  // m
     bool is_planet() const { return carrier >= 0; }
 };
 
@@ -78,6 +88,9 @@ struct Gearbox {
     std::vector<int> engaged;   // free gears locked to their shaft in the selected ratio
     std::vector<Ratio> ratios;  // every ratio the case defines, in its order (empty: one fixed train)
     std::optional<double> oil_level;  // y of the oil surface in the housing frame [m]
+    // Direction of gravity in the housing frame (x, y in the plane of the mesh angles, y up;
+    // z along the shafts), a unit vector; default: down, shafts horizontal.
+    Eigen::Vector3d gravity{0.0, -1.0, 0.0};
     double oil_volume = 0;      // m^3
 };
 
@@ -124,10 +137,27 @@ struct Layout {
     std::vector<double> seal_speed_ratio;
     std::vector<double> clutch_slip_ratio;  // |omega_gear - omega_shaft| / omega_input of each pack
     // Bearing radial and axial load [N] per N*m of input torque, for positive
-    // and negative input torque (the radial separating force does not reverse).
+    // and negative input torque (the radial separating force does not reverse):
+    // the gear forces alone, magnitudes.
     std::vector<double> bearing_Fr_pos, bearing_Fa_pos, bearing_Fr_neg, bearing_Fa_neg;
+    // The same as vectors: radial reaction (x, y, housing frame) and signed axial reaction
+    // per N*m; for a planet's bearing the vector is in the carrier's frame.
+    std::vector<Eigen::Vector2d> bearing_R_pos, bearing_R_neg;
+    std::vector<double> bearing_Z_pos, bearing_Z_neg;
+    // Reactions to the weights of the gears and shafts [N] (housing frame), and for a planet's
+    // bearing the magnitude of its planet's weight, which turns with the carrier.
+    std::vector<Eigen::Vector2d> bearing_R_weight;
+    std::vector<double> bearing_Z_weight;
+    std::vector<double> bearing_W_orbiting;
     // Centrifugal load of planet bearings per (omega_in)^2 [N s^2].
     std::vector<double> bearing_Fcf_per_w2;
+    std::vector<double> gear_mass, shaft_mass;  // kg (one planet of a set); shaft 0 without support bearings
+    // Radial and axial load of bearing i at input torque T [N m] and input speed omega_in [rad/s]:
+    // the gear forces vector-added to the weights, and the planets' centrifugal force.
+    struct BearingLoad {
+        double Fr = 0, Fa = 0;
+    };
+    BearingLoad bearing_load(size_t i, double T, double omega_in = 0.0) const;
     double ratio = 0;   // omega_out / omega_in (signed)
     double output_torque_per_Nm = 0;  // ideal (lossless) output torque per N m input, signed
 };

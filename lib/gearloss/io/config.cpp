@@ -264,13 +264,17 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
     }
 
     const YamlNode h = root.at("housing");
-    h.allow_keys({"oil_volume", "oil_level", "lubrication", "note"});
+    h.allow_keys({"oil_volume", "oil_level", "lubrication", "gravity", "note"});
     const auto lubrication = h.has("lubrication") ? h.at("lubrication").as_enum<solver::Lubrication>(
                                                         {{"dip", solver::Lubrication::dip}, {"injection", solver::Lubrication::injection}})
                                                   : solver::Lubrication::dip;
     if (!h.has("lubrication")) detail::assume(&c.assumed, h, "housing.lubrication", "dip", "splash lubrication from the sump");
     m.gearbox.oil_volume = h.positive_quantity("oil_volume", units::dim::volume, "2 L");
     if (auto lv = h.get("oil_level")) m.gearbox.oil_level = lv->as_quantity(units::dim::length, "-60 mm");
+    if (auto gv = h.get("gravity")) m.gearbox.gravity = detail::load_gravity(*gv);
+    else
+        detail::assume(&c.assumed, h, "housing.gravity", "[0, -1, 0]",
+                       "shafts horizontal, gravity along -y (y up: the frame of the mesh angles and the oil level)");
 
     detail::load_thermal(root.at("thermal"), m.thermal, &c.assumed);
     if (auto o = root.get("options")) detail::load_options(*o, m);
@@ -322,6 +326,7 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
         }
     };
     assemble(m);
+    detail::note_weights(c);
     if (m.gearbox.ratios.size() > 1) {
         solver::Model other = m;
         for (const auto& r : m.gearbox.ratios)

@@ -1,4 +1,6 @@
 // Case loader: materials, shafts, gears and meshes (the Loader's gear-train sections, docs/config.md).
+#include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <set>
 #include <string>
@@ -49,17 +51,26 @@ void Loader::load_materials() {
 void Loader::load_shafts() {
     const YamlNode s = root.at("shafts");
     for (const auto& item : s.items()) {
-        std::string name;
-        bool fixed = false;
-        if (item.is_scalar()) name = item.as_name();
+        gearbox::Shaft shaft;
+        if (item.is_scalar()) shaft.name = item.as_name();
         else {
-            item.allow_keys({"name", "fixed", "note"});
-            name = item.at("name").as_name();
-            if (auto f = item.get("fixed")) fixed = f->as_bool();
+            item.allow_keys({"name", "fixed", "mass", "diameter", "length", "material", "density", "note"});
+            shaft.name = item.at("name").as_name();
+            if (auto f = item.get("fixed")) shaft.fixed = f->as_bool();
+            // Its weight on its bearings (gearbox/weights.cpp): a mass, or a cylinder's size and density.
+            if (item.has("mass")) {
+                shaft.mass = item.positive_quantity("mass", dim::mass, "12 kg");
+                for (const char* k : {"diameter", "length", "material", "density"})
+                    if (item.has(k)) item.at(k).fail(std::string("'mass' is given: '") + k + "' would not be read");
+            }
+            if (item.has("diameter")) shaft.diameter = item.positive_quantity("diameter", dim::length, "40 mm");
+            if (item.has("length")) shaft.length = item.positive_quantity("length", dim::length, "200 mm");
+            if (item.has("material")) shaft.density = material(item.at("material")).density;
+            if (item.has("density")) shaft.density = item.positive_quantity("density", dim::density, "7850 kg/m^3");
         }
-        if (shaft_index.count(name)) item.fail("duplicate shaft name '" + excerpt(name) + "'");
-        shaft_index[name] = static_cast<int>(model.gearbox.shafts.size());
-        model.gearbox.shafts.push_back({name, fixed});
+        if (shaft_index.count(shaft.name)) item.fail("duplicate shaft name '" + excerpt(shaft.name) + "'");
+        shaft_index[shaft.name] = static_cast<int>(model.gearbox.shafts.size());
+        model.gearbox.shafts.push_back(shaft);
     }
     if (model.gearbox.shafts.size() < 2) s.fail("a gearbox needs at least two shafts");
 }
@@ -68,7 +79,8 @@ void Loader::load_gears() {
     for (const auto& n : root.at("gears").items()) {
         n.allow_keys({"name", "shaft", "position", "teeth", "module", "profile_shift", "face_width", "pressure_angle",
                       "helix_angle", "hand", "material", "Ra", "Rq", "mount", "immersion", "addendum_coefficient",
-                      "dedendum_coefficient", "internal", "carrier", "planets", "tip_diameter", "tip_alteration_factor", "note"});
+                      "dedendum_coefficient", "internal", "carrier", "planets", "tip_diameter", "tip_alteration_factor", "mass",
+                      "bore", "density", "note"});
         gearbox::Gear g;
         auto& s = g.spec;
         s.name = n.at("name").as_name();
@@ -120,6 +132,17 @@ void Loader::load_gears() {
                 k->fail("tip alteration factor k outside -1..0.5 (ISO 21771 sign: k <= 0 shortens the tip)");
         }
         s.material = n.has("material") ? material(n.at("material")) : materials["steel"];
+        if (n.has("density")) s.material.density = n.positive_quantity("density", dim::density, "7850 kg/m^3");
+        // Its weight on the bearings (gearbox/weights.cpp): a mass, else a disc less its bore.
+        if (n.has("mass")) {
+            g.mass = n.positive_quantity("mass", dim::mass, "2.5 kg");
+            for (const char* k : {"bore", "density"})
+                if (n.has(k)) n.at(k).fail(std::string("'mass' is given: '") + k + "' would not be read");
+        }
+        if (n.has("bore")) {
+            g.bore = n.quantity("bore", dim::length, "40 mm");
+            if (!(*g.bore >= 0)) n.at("bore").fail("bore diameter cannot be negative");
+        }
         if (n.has("Ra")) s.Ra = n.positive_quantity("Ra", dim::length, "0.5 um");
         unless_given("profile_shift", "0", "no profile shift");
         unless_given("pressure_angle", "20 deg", "ISO 53 basic rack");
@@ -172,6 +195,64 @@ void Loader::load_meshes() {
             (!e.key.empty() && n.has(e.key) ? n.at(e.key) : n).fail(e.message);
         }
         model.gearbox.meshes.push_back(m);
+    }
+}
+
+}  // namespace gearloss::io::detail
+
+namespace gearloss::io::detail {
+
+Eigen::Vector3d load_gravity(const YamlNode& n) {
+    Eigen::Vector3d g;
+    if (n.is_sequence()) {
+        const auto c = n.items();
+        if (c.size() != 3) n.fail("gravity as a direction [x, y, z] needs three numbers, e.g. [0, -1, 0]");
+        for (int i = 0; i < 3; ++i) g[i] = c[static_cast<size_t>(i)].as_number();
+        if (!g.allFinite() || g.norm() < 1e-9) n.fail("the direction of gravity cannot be a zero vector");
+        return g.normalized();
+    }
+    // An angle in the plane of the mesh angles (0 deg along +x, 90 deg up): -90 deg is straight down.
+    const double a = n.as_quantity(dim::angle, "-90 deg");
+    if (!std::isfinite(a)) n.fail("the direction of gravity must be a finite angle");
+    return {std::cos(a), std::sin(a), 0.0};
+}
+
+void note_weights(Case& c) {
+    std::erase_if(c.assumed, [](const AssumedValue& a) {
+        return (a.key.starts_with("gears.") || a.key.starts_with("shafts.")) && a.key.ends_with(".mass");
+    });
+    const auto& gb = c.model.gearbox;
+    const auto& L = c.model.layout;
+    if (L.gear_mass.size() != gb.gears.size() || L.shaft_mass.size() != gb.shafts.size()) return;
+    const auto carried = [&](int shaft, int gear) {
+        return std::ranges::any_of(gb.bearings, [&](const auto& b) { return b.shaft == shaft || b.under_gear == gear; });
+    };
+    for (size_t g = 0; g < gb.gears.size(); ++g) {
+        const auto& gear = gb.gears[g];
+        if (gear.mass || !carried(gear.shaft, static_cast<int>(g))) continue;  // given, or its weight reaches no bearing
+        std::string hollow;
+        if (gear.spec.internal) hollow = "; an internal gear: its teeth and a rim of 3 m_n outside its root circle (assumed)";
+        else if (gear.bore) hollow = ", less the given bore";
+        else if (gear.free || gear.is_planet()) hollow = ", less the outer diameter of the bearings under it (its bore)";
+        else hollow = ", less its shaft's diameter when inside its root circle (the shaft is counted with the shaft), else solid";
+        c.assumed.push_back({"gears." + gear.spec.name + ".mass", fmt::format("{:.4g} kg", L.gear_mass[g]),
+                             fmt::format("disc of diameter sqrt((d_a^2 + d_f^2)/2) (teeth half metal) over the face width{}, "
+                                         "{:g} kg/m^3",
+                                         hollow, gear.spec.material.density),
+                             located_at(case_location(c, "gears", gear.spec.name))});
+    }
+    for (size_t s = 0; s < gb.shafts.size(); ++s) {
+        const auto& shaft = gb.shafts[s];
+        const bool supported = std::ranges::any_of(
+            gb.bearings, [&](const auto& b) { return b.shaft == static_cast<int>(s) && b.under_gear < 0; });
+        if (shaft.mass || !supported) continue;
+        c.assumed.push_back(
+            {"shafts." + shaft.name + ".mass", fmt::format("{:.4g} kg", L.shaft_mass[s]),
+             fmt::format("cylinder of {} over {}, {:g} kg/m^3, centred between its bearings (gears, hubs and carrier plates "
+                         "not included)",
+                         shaft.diameter ? "the given diameter" : "its largest bearing bore (its diameter is not given)",
+                         shaft.length ? "the given length" : "its bearing span (its length is not given)", shaft.density),
+             located_at(case_location(c, "shafts", shaft.name))});
     }
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 // Internals of the case loader shared by config.cpp and config_*.cpp: the Loader of the gearbox sections.
+#include <Eigen/Core>
 #include <map>
 #include <numbers>
 #include <string>
@@ -56,6 +57,14 @@ struct Loader {
     void load_seals();
     void load_clutches();
 };
+
+// The direction of gravity of `housing.gravity` (docs/config.md): a vector [x, y, z] in the
+// housing frame, or an angle in the plane of the mesh angles; a unit vector (config_gears.cpp).
+Eigen::Vector3d load_gravity(const YamlNode& n);
+
+// The masses of gears and shafts the case does not give, as derived by the layout (after
+// Model::finalise): one assumed value each ("gears.w1.mass", "shafts.II.mass").
+void note_weights(Case& c);
 
 // config_options.cpp
 void load_options(const YamlNode& n, solver::Model& m);

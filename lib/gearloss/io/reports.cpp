@@ -136,20 +136,26 @@ std::string check_report(const Case& c) {
                          md.H_V_ohlendorf, md.H_V_buckingham, md.H_V_wimmer, mesh::to_string(mesh::mesh_forms(m).loss_factor),
                          g.rho_redC * 1e3, md.L_min * 1e3);
     }
-    s += "\nshafts (housing frame, y up, mm) and speeds per input speed\n";
+    s += "\nshafts (housing frame, y up, mm) and speeds per input speed; mass [kg] on its bearings\n";
     for (size_t i = 0; i < gb.shafts.size(); ++i)
-        s += fmt::format("  {:<10} centre ({:8.3f}, {:8.3f})  n/n_in = {:+.6f}\n", gb.shafts[i].name,
-                         L.shaft_centre[i].x() * 1e3, L.shaft_centre[i].y() * 1e3, L.body_speed_ratio[L.body_of_shaft[i]]);
-    s += "\ngears: n/n_in, immersion [mm]\n";
+        s += fmt::format("  {:<10} centre ({:8.3f}, {:8.3f})  n/n_in = {:+.6f}  {:8.3f} kg\n", gb.shafts[i].name,
+                         L.shaft_centre[i].x() * 1e3, L.shaft_centre[i].y() * 1e3, L.body_speed_ratio[L.body_of_shaft[i]],
+                         L.shaft_mass[i]);
+    s += "\ngears: n/n_in, immersion [mm], mass [kg] (one planet)\n";
     for (size_t g = 0; g < gb.gears.size(); ++g)
-        s += fmt::format("  {:<10} {:+.6f}  {:7.2f}{}\n", gb.gears[g].spec.name, L.body_speed_ratio[L.body_of_gear[g]],
-                         L.gear_immersion[g] * 1e3, gb.gears[g].free ? "  (free)" : "");
-    s += "\nbearings: n/n_in, radial and axial load per 100 N*m input (forward / reverse torque)\n";
+        s += fmt::format("  {:<10} {:+.6f}  {:7.2f}  {:8.3f} kg{}\n", gb.gears[g].spec.name,
+                         L.body_speed_ratio[L.body_of_gear[g]], L.gear_immersion[g] * 1e3, L.gear_mass[g],
+                         gb.gears[g].free ? "  (free)" : "");
+    s += fmt::format("\nbearings: n/n_in, radial and axial load of the gear forces per 100 N*m input (forward / reverse "
+                     "torque); load at 0 N*m (weights, gravity [{:g}, {:g}, {:g}])\n",
+                     gb.gravity.x(), gb.gravity.y(), gb.gravity.z());
     for (size_t i = 0; i < gb.bearings.size(); ++i) {
         const auto& b = gb.bearings[i];
-        s += fmt::format("  {:<10} {:<26} {:.5f}  Fr {:8.1f} / {:8.1f} N  Fa {:8.1f} / {:8.1f} N{}\n", b.name,
-                         bearings::to_string(b.spec.type), L.bearing_speed_ratio[i], 100 * L.bearing_Fr_pos[i],
-                         100 * L.bearing_Fr_neg[i], 100 * L.bearing_Fa_pos[i], 100 * L.bearing_Fa_neg[i],
+        const auto at0 = L.bearing_load(i, 0.0);
+        s += fmt::format("  {:<10} {:<26} {:.5f}  Fr {:8.1f} / {:8.1f} N  Fa {:8.1f} / {:8.1f} N  at 0 N*m: Fr {:8.1f} N  "
+                         "Fa {:8.1f} N{}\n",
+                         b.name, bearings::to_string(b.spec.type), L.bearing_speed_ratio[i], 100 * L.bearing_Fr_pos[i],
+                         100 * L.bearing_Fr_neg[i], 100 * L.bearing_Fa_pos[i], 100 * L.bearing_Fa_neg[i], at0.Fr, at0.Fa,
                          b.spec.type == bearings::BearingType::needle_roller ? "  (SKF constants: caged CRB proxy)" : "");
     }
     if (!c.bearings_resolved.empty()) {
@@ -272,19 +278,23 @@ nlohmann::ordered_json check_json_object(const Case& c) {
         j["shafts"].push_back({{"name", gb.shafts[i].name},
                                {"x_mm", L.shaft_centre[i].x() * 1e3},
                                {"y_mm", L.shaft_centre[i].y() * 1e3},
-                               {"speed_ratio", L.body_speed_ratio[L.body_of_shaft[i]]}});
+                               {"speed_ratio", L.body_speed_ratio[L.body_of_shaft[i]]},
+                               {"mass_kg", L.shaft_mass[i]}});
     j["gears"] = ordered_json::array();
     for (size_t g = 0; g < gb.gears.size(); ++g)
         j["gears"].push_back({{"name", gb.gears[g].spec.name},
                               {"speed_ratio", L.body_speed_ratio[L.body_of_gear[g]]},
-                              {"immersion_mm", L.gear_immersion[g] * 1e3}});
+                              {"immersion_mm", L.gear_immersion[g] * 1e3},
+                              {"mass_kg", L.gear_mass[g]}});
     j["bearings"] = ordered_json::array();
     for (size_t i = 0; i < gb.bearings.size(); ++i) {
         ordered_json b{{"name", gb.bearings[i].name},
                        {"type", bearings::to_string(gb.bearings[i].spec.type)},
                        {"speed_ratio", L.bearing_speed_ratio[i]},
                        {"Fr_per_Nm", L.bearing_Fr_pos[i]},
-                       {"Fa_per_Nm", L.bearing_Fa_pos[i]}};
+                       {"Fa_per_Nm", L.bearing_Fa_pos[i]},
+                       {"Fr_at_0_Nm", L.bearing_load(i, 0.0).Fr},
+                       {"Fa_at_0_Nm", L.bearing_load(i, 0.0).Fa}};
         // The bearing block this bearing came from (one block may give `count` bearings).
         for (const auto& r : c.bearings_resolved) {
             if (gb.bearings[i].name != r.bearing && gb.bearings[i].name.rfind(r.bearing + ".", 0) != 0) continue;

@@ -1,5 +1,5 @@
 // Rolling bearings as a loss mechanism: the SKF (2004) friction model per bearing with the
-// loads from the gear forces (gearbox::Layout), times the planets it stands for, plus the
+// loads from the gear forces and the weights (gearbox::Layout::bearing_load), times the planets it stands for, plus the
 // calibration's no-load drag term after Palmgren (1959).
 #include <cmath>
 #include <fmt/format.h>
@@ -20,6 +20,7 @@ struct BearingPoint : losses::MechanismPointOf<BearingPoint> {
     // reused for the points a thread solves) and made again only when the bearing differs.
     std::vector<SkfGeometry> geometry;
     std::vector<double> omega;       // rad/s
+    std::vector<double> Fr, Fa;      // N: gear forces and weights (Layout::bearing_load)
     std::vector<double> drag_coef;   // Palmgren drag, W per (nu_cSt)^(2/3)
     bool any_drag = false;           // a bearing with the SKF drag term
 };
@@ -34,7 +35,10 @@ public:
     std::vector<std::string> components(const solver::Model& m) const override {
         return losses::names_of(m.gearbox.bearings, [](const auto& b) { return b.name; });
     }
-    std::vector<losses::DetailQuantity> quantities() const override { return {{"P_bearing_{}_W", 1.0}}; }
+    // The loss of each bearing and its radial and axial load (at zero torque: the weights alone).
+    std::vector<losses::DetailQuantity> quantities() const override {
+        return {{"P_bearing_{}_W", 1.0}, {"Fr_{}_N", 1.0}, {"Fa_{}_N", 1.0}};
+    }
     std::vector<losses::Parameter> parameters() const override {
         // Palmgren (1959) no-load moment M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm] per bearing.
         return {{"drag_f0", "Palmgren no-load factor f0 of an added bearing drag", nullptr, "1.5", 0.0, 0.0, 100.0, true,
@@ -50,22 +54,22 @@ public:
         p.skf.assign(n, SkfAtPoint{});
         p.geometry.resize(n);
         p.omega.assign(n, 0.0);
+        p.Fr.assign(n, 0.0);
+        p.Fa.assign(n, 0.0);
         p.drag_coef.assign(n, 0.0);
         p.any_drag = false;
         const double f0 = param(kDragF0);
-        const bool neg = in.torque_in < 0.0;
-        const double T = std::abs(in.torque_in);
         for (size_t i = 0; i < n; ++i) {
             const double w = L.bearing_speed_ratio[i] * std::abs(in.omega_in);
             p.omega[i] = w;
+            // Gear forces vector-added to the weights of gears and shafts (and a planet's centrifugal force).
+            const auto load = L.bearing_load(i, in.torque_in, in.omega_in);
+            p.Fr[i] = load.Fr;
+            p.Fa[i] = load.Fa;
             if (!enabled()) continue;  // switched off: no SKF loss and no drag
-            const double Fr_gear = T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]);
-            const double Fcf = L.bearing_Fcf_per_w2[i] * in.omega_in * in.omega_in;  // planet centrifugal load
-            const double Fr = Fcf > 0.0 ? std::hypot(Fr_gear, Fcf) : Fr_gear;
-            const double Fa = T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]);
             const auto& spec = gb.bearings[i].spec;
             if (!p.geometry[i].matches(spec)) p.geometry[i] = SkfGeometry::of(spec);
-            p.skf[i] = SkfAtPoint::make(spec, p.geometry[i], Fr, Fa, w);
+            p.skf[i] = SkfAtPoint::make(spec, p.geometry[i], load.Fr, load.Fa, w);
             // Palmgren (1959): M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm], P = M0 omega.
             if (f0 > 0.0) p.drag_coef[i] = palmgren_drag_coef(gb.bearings[i].spec, f0, w);
             p.any_drag = p.any_drag || p.skf[i].drag_b != 0.0;
@@ -87,7 +91,13 @@ public:
                  losses::MechanismDetail* d) const override {
         const auto& gb = m.gearbox;
         const auto& p = static_cast<const BearingPoint&>(pt);
-        if (d) d->reset(p.skf.size(), 1);
+        if (d) {
+            d->reset(p.skf.size(), 3);
+            for (size_t i = 0; i < p.Fr.size(); ++i) {
+                d->at(i, 1) = p.Fr[i];
+                d->at(i, 2) = p.Fa[i];
+            }
+        }
         double total = 0.0;
         // The SKF and Palmgren correlations take nu in cSt (their catalogue unit): its powers are
         // computed here once per temperature, from the ln(nu/cSt) shared by every mechanism.
@@ -124,15 +134,12 @@ public:
     std::string report(const solver::Model& m, const losses::PointInput& in, const losses::MechanismPoint&,
                        const losses::MechanismDetail& d) const override {
         const auto& gb = m.gearbox;
-        const auto& L = m.layout;
         std::string s = "bearings              type                       n [rpm]   Fr [N]    Fa [N]    P [W]\n";
-        const bool neg = in.torque_in < 0;
-        const double T = std::abs(in.torque_in);
         for (size_t i = 0; i < gb.bearings.size(); ++i)
             s += fmt::format("  {:<18} {:<26} {:8.1f} {:9.1f} {:9.1f} {:8.2f}\n", gb.bearings[i].name,
-                             to_string(gb.bearings[i].spec.type), L.bearing_speed_ratio[i] * std::abs(in.omega_in) * rad_s_to_rpm,
-                             T * (neg ? L.bearing_Fr_neg[i] : L.bearing_Fr_pos[i]),
-                             T * (neg ? L.bearing_Fa_neg[i] : L.bearing_Fa_pos[i]), d.at(i));
+                             to_string(gb.bearings[i].spec.type),
+                             m.layout.bearing_speed_ratio[i] * std::abs(in.omega_in) * rad_s_to_rpm, d.at(i, 1), d.at(i, 2),
+                             d.at(i));
         return s;
     }
 };

@@ -283,10 +283,18 @@ void validate_layout(const Model& m, std::vector<Issue>& out) {
     for (size_t g = 0; g < gb.gears.size() && g < L.gear_immersion.size(); ++g)
         if (!finite(L.gear_immersion[g]))
             out.push_back({"gears", gb.gears[g].spec.name, "immersion", "immersion is not a finite number"});
+    for (size_t g = 0; g < gb.gears.size() && g < L.gear_mass.size(); ++g)
+        if (!(finite(L.gear_mass[g]) && L.gear_mass[g] >= 0))
+            out.push_back({"gears", gb.gears[g].spec.name, "mass", "its mass is not a finite, non-negative number"});
+    for (size_t s = 0; s < gb.shafts.size() && s < L.shaft_mass.size(); ++s)
+        if (!(finite(L.shaft_mass[s]) && L.shaft_mass[s] >= 0))
+            out.push_back({"shafts", gb.shafts[s].name, "mass", "its mass is not a finite, non-negative number"});
     for (size_t i = 0; i < gb.bearings.size(); ++i) {
         bool ok = i < L.bearing_speed_ratio.size() && finite(L.bearing_speed_ratio[i]);
-        for (const auto* v : {&L.bearing_Fr_pos, &L.bearing_Fa_pos, &L.bearing_Fr_neg, &L.bearing_Fa_neg, &L.bearing_Fcf_per_w2})
+        for (const auto* v : {&L.bearing_Fr_pos, &L.bearing_Fa_pos, &L.bearing_Fr_neg, &L.bearing_Fa_neg, &L.bearing_Fcf_per_w2,
+                              &L.bearing_Z_weight, &L.bearing_W_orbiting})
             ok = ok && i < v->size() && finite((*v)[i]);
+        ok = ok && i < L.bearing_R_weight.size() && L.bearing_R_weight[i].allFinite();
         if (!ok) out.push_back({"bearings", gb.bearings[i].name, "", "its speed or load is not a finite number"});
     }
 }
