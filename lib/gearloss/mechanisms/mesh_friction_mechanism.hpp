@@ -21,7 +21,7 @@ enum class LambdaRoughness { average_Ra, composite_Rq };
 // `mechanisms: {mesh: ...}` block). friction, loss_factor and film_correction are its form
 // axes (`check`, `map --spread`). The roughness of Lambda is a setting outside the spread:
 // only fernandes_mixed and the ehl_ forms read Lambda, so as an axis it would double the
-// combinations (108 to 216 on every shipped case) while half of the added ones repeat a total.
+// combinations (135 to 270 on every shipped case) while half of the added ones repeat a total.
 struct MeshForms {
     FrictionModel friction = FrictionModel::schlenk;
     // Rigid load sharing over the contact lines (Wimmer 2006 H_VL): for spur pairs it equals
