@@ -223,14 +223,16 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
         const auto rh = n.get("rheology");
         const YamlNode& at = rh ? *rh : n;
         auto& t = oil.traction;
-        const std::string why = "assumed: the shear modulus of the viscoelastic traction (ehl_maxwell), order of "
-                                "magnitude of measured limiting elastic moduli (docs/config.md)";
-        const auto unless_given = [&](const char* key, const std::string& value) {
+        const auto unless_given = [&](const char* key, const std::string& value, const char* why) {
             if (!rh || !rh->has(key)) assume(assumed, at, std::string("oil.rheology.") + key, value, why);
         };
-        unless_given("shear_modulus", number_text(t.shear_modulus_0 * 1e-9) + " GPa");
-        unless_given("shear_modulus_pressure_slope", number_text(t.shear_modulus_slope));
-        unless_given("shear_modulus_temperature_coefficient", number_text(t.shear_modulus_beta) + " 1/K");
+        unless_given("shear_modulus", number_text(t.shear_modulus_0 * 1e-9) + " GPa",
+                     "shear modulus of the viscoelastic traction (ehl_maxwell): the order of magnitude of limiting "
+                     "elastic moduli of EHL films (docs/config.md)");
+        unless_given("shear_modulus_pressure_slope", number_text(t.shear_modulus_slope),
+                     "shear modulus of ehl_maxwell independent of pressure (no data)");
+        unless_given("shear_modulus_temperature_coefficient", number_text(t.shear_modulus_beta) + " 1/K",
+                     "shear modulus of ehl_maxwell independent of temperature (no data)");
         if (rh) {
             rh->allow_keys({"shear_modulus", "shear_modulus_pressure_slope", "shear_modulus_temperature_coefficient",
                             "reference_temperature"});
