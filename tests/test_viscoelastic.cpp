@@ -46,6 +46,9 @@ TEST_CASE("Maxwell-Eyring: De -> infinity gives the elastic stress G gamma cappe
     // mean is tau_L (l/2 + (2a - l)) / 2a = 60 MPa x (0.3 + 0.4) / 1 = 42 MPa.
     CHECK(mesh::maxwell_eyring_mean_stress(uniform(400, 1e-3, 1e15, 1e8, 60e6), 1e4, 10.0, 5e6) ==
           Approx(42e6).epsilon(1e-3));
+    // An overflowing viscosity (eta = inf) is the purely elastic film, not a NaN.
+    CHECK(mesh::maxwell_eyring_mean_stress(uniform(32, 1e-3, HUGE_VAL, 1e8, 1e12), 1e4, 10.0, 5e6) ==
+          Approx(50e6).epsilon(2e-4));
 }
 
 TEST_CASE("Maxwell-Eyring: the exact slice step agrees with a numerical integration at De ~ 1", "[viscoelastic]") {

@@ -13,11 +13,13 @@ namespace {
 struct SliceSolution {
     double z_plus, z_minus, decay, one_minus_decay, rate;
     SliceSolution(double dx, double gamma_dot, double u_e, double eta, double G, double tau_E) {
-        const double S = eta * gamma_dot / tau_E;
+        // S capped so that an overflowing in-contact viscosity (eta -> inf: purely elastic)
+        // keeps the roots finite; the rate written with sqrt(S^2 + 1)/eta = hypot(gamma_dot/tau_E, 1/eta).
+        const double S = std::min(eta * gamma_dot / tau_E, 1e300);
         const double root = std::hypot(S, 1.0);
         z_plus = S + root;
         z_minus = -1.0 / z_plus;
-        rate = G * root * dx / (u_e * eta);  // relaxation lengths in the slice
+        rate = G * dx / u_e * std::hypot(gamma_dot / tau_E, 1.0 / eta);  // relaxation lengths in the slice
         decay = std::exp(-rate);
         one_minus_decay = -std::expm1(-rate);
     }
@@ -25,7 +27,9 @@ struct SliceSolution {
     // (decay -> 1) the change of z is small against z: the form
     // z - z0 = (z+ - z0)(z0 - z-)(1 - decay) / ((z0 - z-) + (z+ - z0) decay) keeps its digits.
     double step(double tau0, double z0, double tau_E) const {
-        const double dz = (z_plus - z0) * (z0 - z_minus) * one_minus_decay / ((z0 - z_minus) + (z_plus - z0) * decay);
+        // (written divided by z0 - z- >= 1 so that no product overflows for huge S or z0)
+        const double ahead = z_plus - z0;
+        const double dz = ahead * one_minus_decay / (1.0 + ahead * decay / (z0 - z_minus));
         return tau0 + tau_E * std::log1p(dz / z0);
     }
 };
