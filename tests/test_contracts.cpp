@@ -190,6 +190,8 @@ TEST_CASE("contracts: mesh friction, every mean-friction model and the local EHL
     // grid the thin films of the transfer box make it rise everywhere; a full film falls).
     check_contract({"mesh, local thermal EHL", Trend::unchecked}, solver_part(with(mesh::FrictionModel::ehl_local), mesh_loss),
                    kBoxGrid);
+    check_contract({"mesh, local thermal EHL, viscoelastic", Trend::unchecked},
+                   solver_part(with(mesh::FrictionModel::ehl_maxwell), mesh_loss), kBoxGrid);
 }
 
 TEST_CASE("contracts: churning, seals and the calibration terms through the solver", "[contracts]") {

@@ -72,7 +72,8 @@ TEST_CASE("mechanisms: every mechanism keeps its contract on every shipped case"
                     // The hot path and the detailed evaluation agree exactly; so does total_loss.
                     // (The local EHL model warm-starts its film temperatures from the previous
                     // evaluation of the point: equal within its iteration tolerance.)
-                    const double tol = mesh::mesh_forms(m).friction == mesh::FrictionModel::ehl_local ? 1e-3 : 0.0;
+                    const auto fr = mesh::mesh_forms(m).friction;
+                    const double tol = fr == mesh::FrictionModel::ehl_local || fr == mesh::FrictionModel::ehl_maxwell ? 1e-3 : 0.0;
                     CHECK(solver::total_loss(m, p, T_oil) == Approx(full.total()).epsilon(tol));
                     for (size_t i = 0; i < m.mechanisms.size(); ++i) {
                         const auto& mech = m.mechanisms[i];
@@ -199,7 +200,7 @@ TEST_CASE("mechanisms: calibration per mechanism, the earlier flat keys and the 
     e = load_error(base + "calibration:\n  gearing: {factor: 2}\n");
     CHECK_THAT(e.message, Catch::Contains("unknown calibration key 'gearing'"));
     e = load_error(base + "mechanisms:\n  mesh: {friction: coulomb}\n");
-    CHECK_THAT(e.message, Catch::Contains("'coulomb' is not one of: schlenk, iso_6336_20, fernandes_mixed, ehl_local"));
+    CHECK_THAT(e.message, Catch::Contains("'coulomb' is not one of: schlenk, iso_6336_20, fernandes_mixed, ehl_local, ehl_maxwell"));
     e = load_error(base + "mechanisms:\n  mesh: {friction_factor: 1.2}\n");
     CHECK_THAT(e.message, Catch::Contains("belongs under 'calibration:'"));
     e = load_error(base + "mechanisms:\n  tyres: {form: x}\n");

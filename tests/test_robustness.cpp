@@ -348,9 +348,11 @@ TEST_CASE("robustness: the EHL film-temperature loop terminates on inputs that a
     }
     // The local thermal-EHL friction model on the whole gearbox: ok, and out_of_range at 1e7 N m.
     io::Case e = transfer_box();
-    mesh::mesh_forms(e.model).friction = mesh::FrictionModel::ehl_local;
-    CHECK(solver::has_values(solve(e.model, 800, 200).status));
-    require_out_of_range(solve(e.model, 800, 1e7), "contact angle");
+    for (auto form : {mesh::FrictionModel::ehl_local, mesh::FrictionModel::ehl_maxwell}) {
+        mesh::mesh_forms(e.model).friction = form;
+        CHECK(solver::has_values(solve(e.model, 800, 200).status));
+        require_out_of_range(solve(e.model, 800, 1e7), "contact angle");
+    }
 }
 
 TEST_CASE("robustness: a cycle of two rows spanning 1e300 s and extreme temperatures are errors and not hangs",

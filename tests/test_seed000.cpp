@@ -25,7 +25,8 @@ TEST_CASE("seed 000 trends along the path of contact and for the gearbox", "[ehl
     const auto& md = m.layout.meshes[0];
     const auto& ms = mesh::mesh_friction_point(m, p.data).meshes[0];
     const auto prof = mesh::ehl_path(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, 1,
-                                     ms.contact.E_prime, ms.sigma, T70, m.oil, m.oil.traction, 41);
+                                     ms.contact.E_prime, ms.sigma, T70, m.oil, m.oil.traction, 41, true,
+                                     mesh::traction_law(mesh::mesh_forms(m).friction));
     const auto& pts = prof.points;
     const auto pitch = std::min_element(pts.begin(), pts.end(), [](const auto& a, const auto& b) {
         return std::abs(a.from_pitch) < std::abs(b.from_pitch);

@@ -16,7 +16,7 @@ from .cases import top_level_blocks, strip_comment
 
 # axis -> (mechanism, key under mechanisms.<mechanism>, the flat options key or None, forms, default)
 AXES = {
-    "friction": ("mesh", "friction", "mesh_friction", ["schlenk", "iso_6336_20", "fernandes_mixed", "ehl_local"],
+    "friction": ("mesh", "friction", "mesh_friction", ["schlenk", "iso_6336_20", "fernandes_mixed", "ehl_local", "ehl_maxwell"],
                  "schlenk"),
     "loss_factor": ("mesh", "loss_factor", "gear_loss_factor", ["wimmer", "ohlendorf", "buckingham"], "wimmer"),
     "film_correction": ("mesh", "film_correction", "film_thermal_correction", ["gupta", "simplified", "none"],

@@ -48,7 +48,7 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
     using detail::assume;
     using detail::number_text;
     n.allow_keys({"name", "base", "viscosity", "density", "thermal_expansion", "piezoviscosity", "X_L",
-                  "thermal_conductivity", "specific_heat", "bearing_friction", "gear_friction", "traction",
+                  "thermal_conductivity", "specific_heat", "bearing_friction", "gear_friction", "traction", "rheology",
                   "max_temperature", "note"});
     lubricant::Oil oil;
     oil.name = n.at("name").as_title();
@@ -216,6 +216,44 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
         if (!(t.eyring_stress > 0 && t.limiting_shear_0 >= 0 && t.limiting_shear_slope >= 0 && t.limiting_shear_slope < 1 &&
               t.mu_boundary > 0 && t.mu_boundary < 1 && t.mixed_B > 0 && t.mixed_m > 0))
             tr->fail("traction properties out of range (Eyring stress > 0, 0 <= slope < 1, 0 < boundary friction < 1)");
+    }
+    {
+        // Shear modulus of the viscoelastic traction (read by the mesh form ehl_maxwell):
+        // G = (G0 + G_p p) exp(-beta_G (T - T_ref)).
+        const auto rh = n.get("rheology");
+        const YamlNode& at = rh ? *rh : n;
+        auto& t = oil.traction;
+        const auto unless_given = [&](const char* key, const std::string& value, const char* why) {
+            if (!rh || !rh->has(key)) assume(assumed, at, std::string("oil.rheology.") + key, value, why);
+        };
+        unless_given("shear_modulus", number_text(t.shear_modulus_0 * 1e-9) + " GPa",
+                     "shear modulus of the viscoelastic traction (ehl_maxwell): the order of magnitude of limiting "
+                     "elastic moduli of EHL films (docs/config.md)");
+        unless_given("shear_modulus_pressure_slope", number_text(t.shear_modulus_slope),
+                     "shear modulus of ehl_maxwell independent of pressure (no data)");
+        unless_given("shear_modulus_temperature_coefficient", number_text(t.shear_modulus_beta) + " 1/K",
+                     "shear modulus of ehl_maxwell independent of temperature (no data)");
+        if (rh) {
+            rh->allow_keys({"shear_modulus", "shear_modulus_pressure_slope", "shear_modulus_temperature_coefficient",
+                            "reference_temperature"});
+            if (auto v = rh->get("shear_modulus")) {
+                t.shear_modulus_0 = v->as_quantity(dim::pressure, "1 GPa");
+                if (!(t.shear_modulus_0 > 0 && t.shear_modulus_0 < 1e12)) v->fail("shear modulus must be in (0, 1000 GPa)");
+            }
+            if (auto v = rh->get("shear_modulus_pressure_slope")) {
+                t.shear_modulus_slope = v->as_number();
+                if (!(t.shear_modulus_slope >= 0 && t.shear_modulus_slope < 100))
+                    v->fail("shear modulus pressure slope dG/dp must be in [0, 100)");
+            }
+            if (auto v = rh->get("shear_modulus_temperature_coefficient")) {
+                t.shear_modulus_beta = v->as_quantity(dim::per_kelvin, "0.01 1/K");
+                if (!(t.shear_modulus_beta >= 0 && t.shear_modulus_beta < 1))
+                    v->fail("shear modulus temperature coefficient must be in [0, 1) 1/K");
+            }
+            if (auto v = rh->get("reference_temperature")) t.shear_modulus_T_ref = v->as_temperature();
+            else if (t.shear_modulus_beta > 0)
+                rh->fail("'shear_modulus_temperature_coefficient' needs the 'reference_temperature' of 'shear_modulus'");
+        }
     }
     // The mixed-film pair of the mesh (Fernandes et al. 2015), measured per oil.
     if (auto gf = n.get("gear_friction")) {

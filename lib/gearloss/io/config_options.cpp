@@ -25,7 +25,8 @@ void load_options(const YamlNode& n, solver::Model& m) {
         f.friction = v->as_enum<mesh::FrictionModel>({{"schlenk", mesh::FrictionModel::schlenk},
                                                       {"iso_6336_20", mesh::FrictionModel::iso_6336_20},
                                                       {"fernandes_mixed", mesh::FrictionModel::fernandes_mixed},
-                                                      {"ehl_local", mesh::FrictionModel::ehl_local}});
+                                                      {"ehl_local", mesh::FrictionModel::ehl_local},
+                                                      {"ehl_maxwell", mesh::FrictionModel::ehl_maxwell}});
     if (auto v = n.get("film_thermal_correction"))
         f.film_correction = v->as_enum<mesh::ThermalFilmCorrection>({{"gupta", mesh::ThermalFilmCorrection::gupta},
                                                                      {"simplified", mesh::ThermalFilmCorrection::simplified},

@@ -384,16 +384,17 @@ std::string mesh_profile_csv(const Case& c, const std::string& mesh_name, double
     if (ms.F_bn <= 0.0 || ms.omega_rel == 0.0)
         throw InputError("", 0, 0, "--mesh", "mesh '" + excerpt(mesh_name) + "' carries no load or does not turn at this point");
     const auto prof = mesh::ehl_path(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime, ms.sigma,
-                                     oil_temperature, m.oil, m.oil.traction, positions);
+                                     oil_temperature, m.oil, m.oil.traction, positions, true,
+                                     mesh::traction_law(mesh::mesh_forms(m).friction));
     std::string s =
         "position_from_pitch_mm,position_from_T1_mm,load_share,p0_GPa,hertz_halfwidth_um,u_entrainment_m_s,v_slide_m_s,"
-        "slide_to_roll,h_c_um,h_min_um,lambda,film_temp_C,flash_rise_K,shear_rise_K,mu_ehl,mu,local_efficiency\n";
+        "slide_to_roll,h_c_um,h_min_um,lambda,film_temp_C,flash_rise_K,shear_rise_K,mu_ehl,mu,local_efficiency,deborah\n";
     for (const auto& pt : prof.points)
         s += fmt::format("{:.4f},{:.4f},{:.4f},{:.5f},{:.3f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{:.4f},{:.3f},{:.3f},{:.3f},{:.6f},"
-                         "{:.6f},{:.6f}\n",
+                         "{:.6f},{:.6f},{:.4g}\n",
                          pt.from_pitch * 1e3, pt.xi * 1e3, pt.load_share, pt.c.p0 * 1e-9, pt.c.a * 1e6, pt.u_e, pt.v_slide,
                          pt.srr, pt.c.h_c * 1e6, pt.c.h_min * 1e6, pt.c.lambda, pt.c.T_film - 273.15, pt.c.dT_flash,
-                         pt.c.dT_shear, pt.c.mu_ehl, pt.c.mu, pt.local_efficiency);
+                         pt.c.dT_shear, pt.c.mu_ehl, pt.c.mu, pt.local_efficiency, pt.c.deborah);
     return s;
 }
 

@@ -25,7 +25,8 @@ struct NamedForm {
 constexpr NamedForm kFriction[] = {{"schlenk", int(FrictionModel::schlenk)},
                                    {"iso_6336_20", int(FrictionModel::iso_6336_20)},
                                    {"fernandes_mixed", int(FrictionModel::fernandes_mixed)},
-                                   {"ehl_local", int(FrictionModel::ehl_local)}};
+                                   {"ehl_local", int(FrictionModel::ehl_local)},
+                                   {"ehl_maxwell", int(FrictionModel::ehl_maxwell)}};
 constexpr NamedForm kLossFactor[] = {{"wimmer", int(LossFactorModel::wimmer)},
                                      {"ohlendorf", int(LossFactorModel::ohlendorf)},
                                      {"buckingham", int(LossFactorModel::buckingham)}};
@@ -227,6 +228,7 @@ void MeshFriction::prepare(const solver::Model& m, const losses::PointInput& in,
         ms.omega_rel = w0;
         switch (opt.friction) {
             case FrictionModel::ehl_local:
+            case FrictionModel::ehl_maxwell:
             case FrictionModel::schlenk:
             case FrictionModel::fernandes_mixed:
                 ms.mu_prefactor = mean_friction_schlenk(w_Nmm, v_sum, rho_mm, 1.0, Ra_um, m.oil.X_L);
@@ -290,11 +292,11 @@ double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint&
             }
         }
         double loss = ms.power * mu * ms.H_V;
-        if (opt.friction == FrictionModel::ehl_local) {
+        if (opt.friction == FrictionModel::ehl_local || opt.friction == FrictionModel::ehl_maxwell) {
             // Local thermal EHL along the path of contact at the oil temperature.
             const auto& md = m.layout.meshes[i];
             loss = ehl_mesh_loss(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime, ms.sigma,
-                                 s.T, m.oil, m.oil.traction, &ms.ehl_film_rise) *
+                                 s.T, m.oil, m.oil.traction, &ms.ehl_film_rise, traction_law(opt.friction)) *
                    factor * mixed;
             mu = ms.power * ms.H_V > 0 ? loss / (ms.power * ms.H_V) : 0.0;  // equivalent mean friction
         }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gearloss/losses/loss_mechanism.hpp"
+#include "gearloss/mesh/ehl_contact.hpp"
 #include "gearloss/mesh/friction.hpp"
 #include "gearloss/mesh/loss_factor.hpp"
 
@@ -19,8 +20,8 @@ enum class LambdaRoughness { average_Ra, composite_Rq };
 // The model choices the mesh mechanism owns (set by the case's `options:` keys or its
 // `mechanisms: {mesh: ...}` block). friction, loss_factor and film_correction are its form
 // axes (`check`, `map --spread`). The roughness of Lambda is a setting outside the spread:
-// only fernandes_mixed and ehl_local read Lambda, so as an axis it would double the
-// combinations (108 to 216 on every shipped case) while half of the added ones repeat a total.
+// only fernandes_mixed and the ehl_ forms read Lambda, so as an axis it would double the
+// combinations (135 to 270 on every shipped case) while half of the added ones repeat a total.
 struct MeshForms {
     FrictionModel friction = FrictionModel::schlenk;
     // Rigid load sharing over the contact lines (Wimmer 2006 H_VL): for spur pairs it equals
@@ -30,6 +31,11 @@ struct MeshForms {
     ThermalFilmCorrection film_correction = ThermalFilmCorrection::gupta;
     LambdaRoughness lambda_roughness = LambdaRoughness::average_Ra;
 };
+
+// The traction law of a local-EHL friction form (Eyring for every other form).
+inline TractionLaw traction_law(FrictionModel f) {
+    return f == FrictionModel::ehl_maxwell ? TractionLaw::maxwell_eyring : TractionLaw::eyring;
+}
 
 // The choices of the model's mesh mechanism, by type (for code that names them: the case
 // loader's `options:` keys, the reports, tests); generic code goes through form()/set_form().

@@ -4,12 +4,17 @@
 // temperature, Eyring shear capped by a limiting shear stress, integrated over
 // the Hertz pressure; flash temperature (Jaeger 1942 band source, Blok 1937 partition) and
 // Couette shear heating, converged by bracketing; mixed friction through Lambda.
+// Traction law: Eyring capped by tau_L (the stress in equilibrium with the shear rate at
+// every x), or viscoelastic Maxwell-Eyring (Johnson & Tevaarwerk 1977; viscoelastic.hpp),
+// the stress building up elastically from the inlet.
 #include "gearloss/lubricant/oil.hpp"
 #include "gearloss/mesh/friction.hpp"
 
 namespace gearloss::mesh {
 
 using Rheology = lubricant::TractionProperties;
+
+enum class TractionLaw { eyring, maxwell_eyring };
 
 struct Solid {
     double density = 7850, specific_heat = 460, conductivity = 46;  // steel
@@ -24,6 +29,7 @@ struct EhlContactInput {
     double sigma = 0;      // composite roughness for Lambda [m]
     double T_bulk = 0;     // oil / surface bulk temperature [K]
     double film_rise_guess = 0;  // start of the film-temperature loop above T_bulk [K] (warm start)
+    TractionLaw law = TractionLaw::eyring;
 };
 
 struct EhlContactResult {
@@ -34,6 +40,9 @@ struct EhlContactResult {
     double dT_flash = 0, dT_shear = 0;
     double mu_ehl = 0, f_c = 0, mu = 0;
     double residual = 0;           // |T - F(T)| at the solution [K]
+    // Deborah number eta(p0) u_e / (G a) at the centre of the contact (film temperature);
+    // computed by the Maxwell-Eyring law only (0 otherwise).
+    double deborah = 0;
 };
 
 // `heating = false` gives the isothermal solution (film at T_bulk).

@@ -28,7 +28,7 @@ struct PathProfile {
 // F_bn: normal force per mesh [N]; planets: identical meshes; sigma: roughness.
 PathProfile ehl_path(const geometry::PairGeometry& g, double L_mean, double omega_rel, double F_bn, int planets,
                      double E_prime, double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh,
-                     int positions = 21, bool heating = true);
+                     int positions = 21, bool heating = true, TractionLaw law = TractionLaw::eyring);
 
 // Mesh friction power only. Spur pair: the path split at the load-share jumps B, D and the
 // sliding kink C, 3-point Gauss-Legendre per segment (12 contact solutions). Helical pair:
@@ -38,6 +38,6 @@ PathProfile ehl_path(const geometry::PairGeometry& g, double L_mean, double omeg
 // call, used to start its thermal loop (successive calls of a thermal solve differ little).
 double ehl_mesh_loss(const geometry::PairGeometry& g, double L_mean, double omega_rel, double F_bn, int planets,
                      double E_prime, double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh,
-                     std::vector<double>* film_rise = nullptr);
+                     std::vector<double>* film_rise = nullptr, TractionLaw law = TractionLaw::eyring);
 
 }  // namespace gearloss::mesh

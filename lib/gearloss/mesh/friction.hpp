@@ -4,7 +4,9 @@
 
 namespace gearloss::mesh {
 
-enum class FrictionModel { schlenk, iso_6336_20, fernandes_mixed, ehl_local };
+// ehl_local: local thermal EHL with the Eyring / limiting-shear traction; ehl_maxwell: the same
+// with the viscoelastic Maxwell-Eyring traction (Johnson & Tevaarwerk 1977), as seed 000.
+enum class FrictionModel { schlenk, iso_6336_20, fernandes_mixed, ehl_local, ehl_maxwell };
 enum class ThermalFilmCorrection { gupta, simplified, none };
 
 // Schlenk (1994) = ISO/TR 14179-2: mu = 0.048 (w/(v_sum rho))^0.2 eta^-0.05 Ra^0.25 X_L,

@@ -91,6 +91,9 @@ void validate_oil(const lubricant::Oil& oil, std::vector<Issue>& out) {
     c.positive("traction", t.mixed_B, "mixed_B");
     c.positive("traction", t.mixed_m, "mixed_m");
     c.non_negative("traction", t.roelands_Z, "Roelands index");
+    c.positive("rheology", t.shear_modulus_0, "shear modulus");
+    c.non_negative("rheology", t.shear_modulus_slope, "shear modulus pressure slope");
+    c.non_negative("rheology", t.shear_modulus_beta, "shear modulus temperature coefficient");
     for (const auto* pair : {&oil.bearing_ball, &oil.bearing_roller}) {
         c.range("bearing_friction", pair->mu_bl, 0.0, 1.0, "bearing mu_bl", false, true);
         if (pair->mu_ehl) c.range("bearing_friction", *pair->mu_ehl, 0.0, 1.0, "bearing mu_ehl", false, true);
