@@ -105,6 +105,9 @@ TEST_CASE("churning forms: the reducer's wheel with heingartner_mba_2003 selecte
     CHECK(P_cv > 0);
     CHECK(P_hm > 0);
     CHECK(P_hm != Approx(P_cv));
+    // The point report names the form in the regime column of the wheel.
+    const auto r = solver::solve_point(c.model, 2000 * rpm, 50, true);
+    CHECK_THAT(io::point_report(c, r), Catch::Contains("686.6") && Catch::Contains("heingartner_mba_2003"));
 }
 
 TEST_CASE("churning forms: spur gears keep the default form, and the form outside its range is a finding",

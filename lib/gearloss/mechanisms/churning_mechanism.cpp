@@ -183,9 +183,11 @@ public:
         std::string capped;
         for (size_t g = 0; g < gb.gears.size(); ++g) {
             const auto regime = Regime(int(d.at(g, kRegime)));
+            // A gear churning by the tooth-surface form has no Reynolds regime: the form is named.
+            const bool tooth_surface = g < p.tooth_surface.size() && p.tooth_surface[g] != 0.0;
             s += fmt::format("  {:<18} {:14.2f} {:12.1f} {:9.2f}  {}\n", gb.gears[g].spec.name, L.gear_immersion[g] * 1e3,
                              std::abs(L.body_speed_ratio[L.body_of_gear[g]] * in.omega_in) * rad_s_to_rpm,
-                             d.at(g, kPower), to_string(regime));
+                             d.at(g, kPower), tooth_surface ? kFormNames[1] : to_string(regime));
             if (regime == Regime::capped && g < p.gears.size())
                 capped += fmt::format("  capped '{}': the high-Re form is {:.2f} x the low-Re one at Re_c = 6000; held at the "
                                       "minimum of the published curve over Re_c (reached at Re_c = {:.0f})\n",
