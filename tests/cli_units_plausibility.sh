@@ -10,6 +10,7 @@ cp -r "$src/configs/oils" "$tmp/oils"
 cp "$src/configs/transfer-box.yaml" "$tmp/tb.yaml"
 cp "$src/configs/fzg-c40-paor.yaml" "$tmp/fzg.yaml"
 tb=$tmp/tb.yaml
+py=/usr/bin/python3
 
 # ---------------------------------------------------------------------------------------
 # 1. Rotational speeds on the command line. 10 Hz = 10 rev/s = 600 rev/min; 62.8319 rad/s
@@ -274,6 +275,57 @@ assert jb['ok'] == 9 and jb['above_oil_limit'] == 0 and jb['no_equilibrium'] == 
 check "limit map: no NaN/inf" bash -c "! grep -qiE 'nan|inf' '$tmp/lim.csv'"
 "$bin" check "$tmp/lim/tb.yaml" > "$tmp/lim_check.txt"
 check "limit check: permissible 60 degC shown" grep -q 'permissible oil temperature 60\.0 degC' "$tmp/lim_check.txt"
+
+# ---------------------------------------------------------------------------------------
+# 7. Churning forms and their ranges (docs/config.md "Churning forms and their ranges").
+#    The tooth-surface form (heingartner_mba_2003) has no value for spur teeth (its
+#    R_f / sqrt(tan beta)): the FZG C40 gears are spur, so selecting it is a finding for both
+#    dipping gears -- in check (text and --json warnings), once on stderr of map and point,
+#    and in the map's sidecar -- and both keep the default form (the same churning).
+#    The shipped case with the default form is quiet.
+cp "$tmp/fzg.yaml" "$tmp/fzg_hm.yaml"
+printf 'mechanisms:\n  churning: {form: heingartner_mba_2003}\n' >> "$tmp/fzg_hm.yaml"
+"$bin" check "$tmp/fzg_hm.yaml" > "$tmp/hm_check.txt" 2> "$tmp/hm_check.err"
+check "churning form: check exit 0" test $? -eq 0
+check "churning form: check names the form outside its range for the wheel" \
+    grep -q "churning form heingartner_mba_2003 outside its defined range for gear 'wheel': helix angle 0 deg given, defined for > 0 deg" "$tmp/hm_check.txt"
+check "churning form: check names the pinion too" grep -q "range for gear 'pinion'" "$tmp/hm_check.txt"
+check "churning form: located at the case's oil level" grep -q "fzg_hm.yaml:[0-9]*:[0-9]*: .*note: churning form" "$tmp/hm_check.txt"
+"$bin" check "$tmp/fzg_hm.yaml" --json > "$tmp/hm_check.json"
+check "churning form: check --json lists the form and the findings" "$py" -c "
+import json
+j = json.load(open('$tmp/hm_check.json'))
+ch = [m for m in j['mechanisms'] if m['name'] == 'churning'][0]
+assert ch['forms'] == [{'axis': 'form', 'selected': 'heingartner_mba_2003', 'forms': ['changenet_velex_2007', 'heingartner_mba_2003']}], ch
+w = [x for x in j['warnings'] if 'churning form heingartner_mba_2003 outside' in x]
+assert len(w) == 2, j['warnings']
+"
+"$bin" map "$tmp/fzg_hm.yaml" --speed 1000,2000rpm --torque 100Nm --oil-temp 80degC -o "$tmp/hm.csv" 2> "$tmp/hm_map.err"
+check "churning form: map exit 0" test $? -eq 0
+check "churning form: map stderr once per gear (not per point)" \
+    bash -c "[ \"\$(grep -c 'churning form heingartner_mba_2003 outside' '$tmp/hm_map.err')\" = 2 ]"
+check "churning form: the sidecar carries the findings" "$py" -c "
+import json
+j = json.load(open('$tmp/hm.csv.meta.json'))
+assert j['model_forms']['churning.form'] == 'heingartner_mba_2003', j['model_forms']
+assert sum('churning form heingartner_mba_2003 outside' in x for x in j['findings']) == 2, j.get('findings')
+"
+"$bin" map "$tmp/fzg.yaml" --speed 1000,2000rpm --torque 100Nm --oil-temp 80degC -o "$tmp/cv.csv" 2> "$tmp/cv_map.err"
+check "churning form: spur gears keep the default form (same churning column)" \
+    bash -c "diff <(cut -d, -f1-2,\$(head -1 '$tmp/cv.csv' | tr ',' '\n' | grep -n '^P_churn_W$' | cut -d: -f1) '$tmp/cv.csv') \
+                  <(cut -d, -f1-2,\$(head -1 '$tmp/hm.csv' | tr ',' '\n' | grep -n '^P_churn_W$' | cut -d: -f1) '$tmp/hm.csv')"
+check "churning form: the default form is quiet" bash -c "! grep -q 'churning form' '$tmp/cv_map.err'"
+check "churning form: no findings key in the default sidecar" "$py" -c "
+import json
+assert 'findings' not in json.load(open('$tmp/cv.csv.meta.json'))
+"
+"$bin" point "$tmp/fzg_hm.yaml" --speed 1000rpm --torque 100Nm --oil-temp 80degC > /dev/null 2> "$tmp/hm_point.err"
+check "churning form: point stderr names it" grep -q "churning form heingartner_mba_2003 outside" "$tmp/hm_point.err"
+printf 'mechanisms:\n  churning: {form: dudley}\n' > "$tmp/bad_form.part"
+cat "$tmp/fzg.yaml" "$tmp/bad_form.part" > "$tmp/fzg_bad.yaml"
+"$bin" check "$tmp/fzg_bad.yaml" > /dev/null 2> "$tmp/bad_form.err"
+check "churning form: an unknown form exits 2" test $? -eq 2
+check "churning form: the error names the key and the form" grep -q "churning.*dudley" "$tmp/bad_form.err"
 
 echo "cli_units_plausibility: $pass passed, $fail failed"
 test $fail -eq 0

@@ -163,6 +163,9 @@ ordered_json output_metadata(const io::Case& c, const MetadataRequest& r) {
         mechanisms[std::string(m.mechanisms[i].name())] = m.mechanisms[i].enabled();
     j["mechanisms_enabled"] = mechanisms;
     j["assumed"] = io::assumed_json(c.assumed);
+    // The case's plausibility findings (the selected churning form outside its range, ...), as
+    // on stderr; absent when there are none.
+    if (!c.warnings.empty()) j["findings"] = c.warnings;
     // Bearings taken from a catalogue by designation: which row of which file (absent otherwise).
     ordered_json rows = ordered_json::array();
     for (const auto& b : c.bearings_resolved)

@@ -1,13 +1,24 @@
-// Churning of dip-lubricated gears as a loss mechanism: Changenet & Velex (2007, 2008)
-// per immersed gear (gearloss/churning/changenet_velex.hpp), with a calibration factor. The
-// torque is the running minimum over Re_c of the published curve (regime 'capped' beyond
-// its minimum), precomputed per gear in prepare(): the hot path adds one comparison. (The drag of
-// the air/oil mist is the windage mechanism's, gearloss/windage/gear_windage.cpp.)
+// Churning of dip-lubricated gears as a loss mechanism, per immersed gear, with a
+// calibration factor. (The drag of the air/oil mist is the windage mechanism's,
+// gearloss/windage/gear_windage.cpp.)
+//
+// Forms (mechanisms: {churning: {form: ...}}):
+//   changenet_velex_2007  (default) Changenet & Velex (2007, 2008), gearloss/churning/changenet_velex.hpp:
+//                         the running minimum over Re_c of the published curve (regime 'capped'
+//                         beyond its minimum), precomputed per gear in prepare(): the hot path adds
+//                         one comparison;
+//   heingartner_mba_2003  the tooth-surface form of Heingartner & Mba (2003) as quoted by seed 003,
+//                         gearloss/churning/heingartner_mba.hpp: P = k mu, k per gear and speed from
+//                         prepare(). Its roughness factor R_f and arrangement constant A_g are
+//                         settings (the quote gives no values); a spur gear, for which the quoted
+//                         expression has no value (R_f / sqrt(tan beta)), keeps the default form.
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
 
 #include "gearloss/churning/changenet_velex.hpp"
+#include "gearloss/churning/heingartner_mba.hpp"
+#include "gearloss/core/errors.hpp"
 #include "gearloss/losses/registry.hpp"
 #include "gearloss/model/model.hpp"
 
@@ -16,13 +27,30 @@ namespace {
 
 constexpr double rad_s_to_rpm = 30.0 / std::numbers::pi;
 
+enum class Form { changenet_velex_2007, heingartner_mba_2003 };
+constexpr const char* kFormNames[] = {"changenet_velex_2007", "heingartner_mba_2003"};
+constexpr int kForms = 2;
+
 struct ChurningPoint : losses::MechanismPointOf<ChurningPoint> {
     std::vector<ChurningAtSpeed> gears;  // per gear (zero coefficients: not immersed)
+    // Per gear, heingartner_mba_2003: P / mu [W/(Pa s)]; 0 where that form is not used.
+    std::vector<double> tooth_surface;
 };
+
+// Outside diameter of gear g: the tip diameter of its first mesh (ISO 21771 tip alteration
+// or as given), else d + 2 m_n (h*_a + x).
+double outside_diameter(const solver::Model& m, size_t g) {
+    const auto& gb = m.gearbox;
+    for (size_t k = 0; k < gb.meshes.size() && k < m.layout.meshes.size(); ++k)
+        for (int s = 0; s < 2; ++s)
+            if (gb.meshes[k].gear[s] == static_cast<int>(g)) return m.layout.meshes[k].geom.da[s];
+    const auto& spec = gb.gears[g].spec;
+    return spec.d() + 2.0 * spec.mn * (spec.ha_star + spec.x);
+}
 
 class Churning final : public losses::LossMechanism {
 public:
-    enum : size_t { kFactor };
+    enum : size_t { kFactor, kRoughnessFactor, kArrangementConstant };
     enum : size_t { kPower, kRegime, kQuantities };
     std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<Churning>(*this); }
     std::string_view name() const override { return "churning"; }
@@ -34,7 +62,31 @@ public:
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_churn_{}_W", 1.0}, {"", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {
         return {{"factor", "scales every churning loss", nullptr, "1.3", 1.0, 0.0, 100.0, true, "churning",
-                 "churning level of the dipping gears (immersion or oil level) differs from the description"}};
+                 "churning level of the dipping gears (immersion or oil level) differs from the description"},
+                {"roughness_factor",
+                 "roughness factor R_f of the tooth-surface form (heingartner_mba_2003; the quoted source gives no value, "
+                 "1 leaves it out)",
+                 nullptr, "6.4", 1.0, 1e-6, 1e6, false, "", "", false, kFormNames[1]},
+                {"arrangement_constant",
+                 "arrangement constant A_g of the tooth-surface form (heingartner_mba_2003; the quoted source gives no "
+                 "value, 1 leaves it out)",
+                 nullptr, "0.2", 1.0, 1e-6, 1e6, false, "", "", false, kFormNames[1]}};
+    }
+    std::vector<losses::FormAxis> forms(const solver::Model&) const override {
+        return {{"form", {kFormNames[0], kFormNames[1]}}};
+    }
+    std::string form(const solver::Model& m, std::string_view axis) const override {
+        if (axis == "form") return kFormNames[int(form_)];
+        return LossMechanism::form(m, axis);
+    }
+    void set_form(solver::Model& m, std::string_view axis, std::string_view f) override {
+        if (axis != "form") return LossMechanism::set_form(m, axis, f);
+        for (int i = 0; i < kForms; ++i)
+            if (f == kFormNames[i]) {
+                form_ = Form(i);
+                return;
+            }
+        throw InputError(fmt::format("churning has no form '{}'", f));
     }
     std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<ChurningPoint>(); }
 
@@ -43,6 +95,7 @@ public:
         const auto& L = m.layout;
         auto& p = static_cast<ChurningPoint&>(out);
         p.gears.assign(gb.gears.size(), ChurningAtSpeed{});
+        p.tooth_surface.assign(gb.gears.size(), 0.0);
         if (!enabled()) return;
         for (size_t g = 0; g < gb.gears.size(); ++g) {
             const double h = L.gear_immersion[g];
@@ -56,6 +109,16 @@ public:
             dg.alpha = spec.alpha_t();
             dg.h = h;
             const double w = L.body_speed_ratio[L.body_of_gear[g]] * in.omega_in;
+            if (form_ == Form::heingartner_mba_2003) {
+                const double D = outside_diameter(m, g);
+                const ToothSurfaceGear tg{D, spec.b, spec.beta, dip_factor(h, D)};
+                if (heingartner_mba_defined(tg)) {
+                    p.tooth_surface[g] =
+                        heingartner_mba_coefficient(tg, w, param(kRoughnessFactor), param(kArrangementConstant));
+                    p.gears[g].omega = std::abs(w);
+                    continue;
+                }
+            }
             p.gears[g] = ChurningAtSpeed::make(dg, w, gb.oil_volume);
         }
     }
@@ -65,7 +128,7 @@ public:
         for (size_t g = 0; g < p.gears.size(); ++g) {
             const auto& c = p.gears[g];
             if (!std::isfinite(c.omega) || !std::isfinite(c.coef_low) || !std::isfinite(c.coef_high) ||
-                !std::isfinite(c.ReC_times_nu))
+                !std::isfinite(c.ReC_times_nu) || !std::isfinite(p.tooth_surface[g]))
                 return "churning gear " + m.gearbox.gears[g].spec.name;
         }
         return {};
@@ -84,6 +147,13 @@ public:
             const double nu021 = std::exp(0.21 * std::log(e.oil.nu));
             for (size_t g = 0; g < p.gears.size(); ++g) {
                 const auto& c = p.gears[g];
+                if (p.tooth_surface[g] != 0.0) {
+                    // heingartner_mba_2003: P = k mu (mu = rho nu, falls as the oil warms).
+                    const double P = param(kFactor) * p.tooth_surface[g] * e.oil.rho * e.oil.nu;
+                    total += P;
+                    if (d) d->at(g, kPower) = P;  // regime 'none': the form has no regimes
+                    continue;
+                }
                 if (c.coef_low == 0.0 && c.coef_high == 0.0) continue;
                 Regime reg;
                 const double P = param(kFactor) * c.torque(e.oil.rho, e.oil.nu, nu021, &reg) * c.omega;
@@ -113,9 +183,11 @@ public:
         std::string capped;
         for (size_t g = 0; g < gb.gears.size(); ++g) {
             const auto regime = Regime(int(d.at(g, kRegime)));
+            // A gear churning by the tooth-surface form has no Reynolds regime: the form is named.
+            const bool tooth_surface = g < p.tooth_surface.size() && p.tooth_surface[g] != 0.0;
             s += fmt::format("  {:<18} {:14.2f} {:12.1f} {:9.2f}  {}\n", gb.gears[g].spec.name, L.gear_immersion[g] * 1e3,
                              std::abs(L.body_speed_ratio[L.body_of_gear[g]] * in.omega_in) * rad_s_to_rpm,
-                             d.at(g, kPower), to_string(regime));
+                             d.at(g, kPower), tooth_surface ? kFormNames[1] : to_string(regime));
             if (regime == Regime::capped && g < p.gears.size())
                 capped += fmt::format("  capped '{}': the high-Re form is {:.2f} x the low-Re one at Re_c = 6000; held at the "
                                       "minimum of the published curve over Re_c (reached at Re_c = {:.0f})\n",
@@ -123,6 +195,9 @@ public:
         }
         return s + capped;
     }
+
+private:
+    Form form_ = Form::changenet_velex_2007;
 };
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include "gearloss/geometry/gear_geometry.hpp"
 #include "gearloss/clutch/film_heating.hpp"
 #include "gearloss/model/validate.hpp"
+#include "gearloss/churning/fitted_range.hpp"
+#include "gearloss/losses/loss_mechanism.hpp"
 
 namespace gearloss::solver {
 
@@ -72,6 +74,30 @@ std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication 
                            fmt::format("the oil stands {:.1f} mm above the axis of gear '{}' (immersion {:.1f} mm > tip "
                                        "radius {:.1f} mm): the shaft's seals and bearings run submerged",
                                        (h - ra) * mm, gear.spec.name, h * mm, ra * mm)});
+    }
+    // The selected churning form against its range, per dipping gear (once per case, not per
+    // operating point: the quantities checked do not depend on the point).
+    if (const auto* churn = m.mechanisms.find("churning"); churn && churn->enabled()) {
+        const auto range = churning::fitted_range(churn->form(m, "form"));
+        if (!range.limits.empty())
+            for (size_t g = 0; g < gb.gears.size(); ++g) {
+                if (!(L.gear_immersion[g] > 0)) continue;
+                const auto& spec = gb.gears[g].spec;
+                const double D = 2.0 * tip_radius(m, g);
+                const std::vector<churning::GivenSpan> given{
+                    {"helix angle", spec.beta * 180.0 / std::numbers::pi, spec.beta * 180.0 / std::numbers::pi},
+                    {"h/D", L.gear_immersion[g] / D, L.gear_immersion[g] / D},
+                    {"b/D", spec.b / D, spec.b / D},
+                    {"V0/D^3", gb.oil_volume / (D * D * D), gb.oil_volume / (D * D * D)}};
+                const std::string why = churning::outside_range(range, given);
+                if (!why.empty())
+                    out.push_back({S::note, J::gear, static_cast<int>(g),
+                                   fmt::format("churning form {} outside its {} range for gear '{}': {}{}", range.form,
+                                               range.fitted ? "fitted" : "defined", spec.name, why,
+                                               range.form == "heingartner_mba_2003"
+                                                   ? " (the gear keeps the default form, changenet_velex_2007)"
+                                                   : "")});
+            }
     }
     if (!any_dipping && lubrication == Lubrication::dip)
         out.push_back({S::warning, J::lubrication, -1,
