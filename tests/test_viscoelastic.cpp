@@ -130,8 +130,8 @@ Peak seed000_peak(double G, mesh::TractionLaw law) {
 TEST_CASE("seed 000: the friction peak along the path of contact, and its sensitivity to G", "[viscoelastic][seed000]") {
     // Seed 000 (Figure 6, oil A): "Friction reaches a maximum value of 0.0593 at around 6 mm
     // along the contact path and is minimized at the pitch point." The seed's text gives no
-    // module, face width (Table 2), viscosities (Table 1), fitted tau_E and Z_R, nor its shear
-    // modulus law (Muraki, exponential): the case assumes m 4 mm, b 20 mm and G 1 GPa.
+    // module, face width (Table 2), viscosities (Table 1), fitted tau_E and Z_R, nor any value or
+    // law for its shear modulus (text at its Figure 1): the case assumes m 4 mm, b 20 mm and G 1 GPa.
     const auto c = io::load_case(test_support::source_path("configs/spur-seed000.yaml"));
     REQUIRE(mesh::mesh_forms(c.model).friction == mesh::FrictionModel::ehl_maxwell);
     const auto& g = c.model.layout.meshes[0].geom;

@@ -31,8 +31,8 @@ struct TractionProperties {
     // pressure-viscosity coefficient, Z = alpha p_r / (ln eta0 + 9.67).
     double roelands_Z = 0;
     // Shear modulus of the viscoelastic (Maxwell-Eyring) traction, read only by that form:
-    // G = (G0 + G_p p) exp(-beta_G (T - T_ref)). Seed 000 takes G from an exponential law it
-    // credits to Muraki without giving it; these defaults are assumed (docs/config.md).
+    // G = (G0 + G_p p) exp(-beta_G (T - T_ref)). Seed 000 (text at its Figure 1) uses a Deborah number
+    // with G but gives neither a value nor a law for it; these defaults are assumed (docs/config.md).
     double shear_modulus_0 = 1e9;            // G0 [Pa]
     double shear_modulus_slope = 0;          // G_p = dG/dp [-]
     double shear_modulus_beta = 0;           // beta_G [1/K]
