@@ -110,6 +110,31 @@ TEST_CASE("churning forms: the reducer's wheel with heingartner_mba_2003 selecte
     CHECK_THAT(io::point_report(c, r), Catch::Contains("686.6") && Catch::Contains("heingartner_mba_2003"));
 }
 
+TEST_CASE("churning forms: heingartner_mba_2003 with its default R_f and A_g has the level of Changenet & Velex (2007)",
+          "[churning][forms]") {
+    // The defaults R_f = 7.93 - 4.648/m_t (m_t = 3/cos 15 deg = 3.10583 mm: R_f = 6.43347) and
+    // A_g = 0.2 are AGMA 6123's as commonly quoted (unconfirmed). Their product with the quoted
+    // expression is checked here against an independent model of the same wheel, Changenet &
+    // Velex (2007): at 1000-2000 rpm input and 60-100 degC the two agree within a factor of 5
+    // (a reading of the units or constants off by 10^3, or R_f/A_g = 1, would miss by > 30x).
+    // They part at low speed: the quoted form goes as n^3, the 2007 one nearer n^1.7.
+    const test_support::TempConfig hm_file(reducer("mechanisms:\n  churning: {form: heingartner_mba_2003}\n"));
+    const auto hm = io::load_case(hm_file.path);
+    const test_support::TempConfig cv_file(reducer(""));
+    const auto cv = io::load_case(cv_file.path);
+    // By hand at 2000 rpm: P / mu = 0.020898955 W per mPa s at R_f/A_g = 4 (test above), so with
+    // R_f/A_g = 6.43347/0.2 = 32.1674 it is 0.020898955 x 32.1674 / 4 = 0.16806 W per mPa s.
+    const auto oil = hm.model.oil_state(degC + 80);
+    CHECK(churning_at(hm.model, 2000 * rpm, degC + 80) == Approx(0.16806 * oil.rho * oil.nu * 1e3).epsilon(1e-4));
+    for (double n : {1000.0, 2000.0})
+        for (double T : {60.0, 80.0, 100.0}) {
+            const double P_hm = churning_at(hm.model, n * rpm, degC + T), P_cv = churning_at(cv.model, n * rpm, degC + T);
+            CAPTURE(n, T, P_hm, P_cv);
+            CHECK(P_hm / P_cv > 1 / 5.0);
+            CHECK(P_hm / P_cv < 5.0);
+        }
+}
+
 TEST_CASE("churning forms: spur gears keep the default form, and the form outside its range is a finding",
           "[churning][forms]") {
     // FZG C40 (spur): the tooth-surface expression has no value, both dipping gears keep

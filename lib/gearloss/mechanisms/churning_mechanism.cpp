@@ -64,13 +64,13 @@ public:
         return {{"factor", "scales every churning loss", nullptr, "1.3", 1.0, 0.0, 100.0, true, "churning",
                  "churning level of the dipping gears (immersion or oil level) differs from the description"},
                 {"roughness_factor",
-                 "roughness factor R_f of the tooth-surface form (heingartner_mba_2003; the quoted source gives no value, "
-                 "1 leaves it out)",
-                 nullptr, "6.4", 1.0, 1e-6, 1e6, false, "", "", false, kFormNames[1]},
+                 "roughness factor R_f of the tooth-surface form (heingartner_mba_2003); 0: R_f = 7.93 - 4.648/m_t "
+                 "(m_t in mm), the AGMA 6123 value as commonly quoted (unconfirmed)",
+                 nullptr, "6.4", 0.0, 0.0, 1e6, false, "", "", false, kFormNames[1]},
                 {"arrangement_constant",
-                 "arrangement constant A_g of the tooth-surface form (heingartner_mba_2003; the quoted source gives no "
-                 "value, 1 leaves it out)",
-                 nullptr, "0.2", 1.0, 1e-6, 1e6, false, "", "", false, kFormNames[1]}};
+                 "arrangement constant A_g of the tooth-surface form (heingartner_mba_2003); 0.2 as commonly quoted "
+                 "from AGMA 6123 (unconfirmed)",
+                 nullptr, "0.2", 0.2, 1e-6, 1e6, false, "", "", false, kFormNames[1]}};
     }
     std::vector<losses::FormAxis> forms(const solver::Model&) const override {
         return {{"form", {kFormNames[0], kFormNames[1]}}};
@@ -113,8 +113,11 @@ public:
                 const double D = outside_diameter(m, g);
                 const ToothSurfaceGear tg{D, spec.b, spec.beta, dip_factor(h, D)};
                 if (heingartner_mba_defined(tg)) {
-                    p.tooth_surface[g] =
-                        heingartner_mba_coefficient(tg, w, param(kRoughnessFactor), param(kArrangementConstant));
+                    // R_f = 0: from the transverse module, R_f = 7.93 - 4.648/m_t with m_t in mm (AGMA 6123
+                    // as quoted for the Heingartner & Mba form; unconfirmed, docs/config.md "Churning forms").
+                    const double Rf = param(kRoughnessFactor) > 0 ? param(kRoughnessFactor)
+                                                                  : 7.93 - 4.648 / (spec.mn / std::cos(spec.beta) * 1e3);
+                    p.tooth_surface[g] = heingartner_mba_coefficient(tg, w, Rf, param(kArrangementConstant));
                     p.gears[g].omega = std::abs(w);
                     continue;
                 }
