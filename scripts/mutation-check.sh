@@ -137,6 +137,19 @@ mut D3 diagnosis lib/gearloss/diagnosis/adequacy.cpp "power from the critical va
     'return std::sqrt(std::max(0.0, critical / median - 1));' 'return std::sqrt(std::max(0.0, critical - 1));'
 mut V1 vehicle lib/gearloss/vehicle/vehicle.cpp "rotating-mass factor subtracted instead of added" \
     'mass * (1.0 + rotating_mass_factor) * a' 'mass * (1.0 - rotating_mass_factor) * a'
+# Issue 36: the physics over the whole envelope.
+mut C3 churning lib/gearloss/churning/changenet_velex.cpp "churning held 2 % above the transition minimum (capped regime)" \
+    'c.coef_cap = blend(lo);' 'c.coef_cap = 1.02 * blend(lo);'
+mut C4 churning lib/gearloss/churning/heingartner_mba.cpp "Heingartner & Mba constant 7.37 -> 7.73 (digits swapped)" \
+    'return 7.37 *' 'return 7.73 *'
+mut W1 gearbox lib/gearloss/gearbox/weights.cpp "gear weighed as a disc of its tip diameter (teeth taken solid)" \
+    'const double d_eq2 = 0.5 * (da * da + df * df);' 'const double d_eq2 = da * da;'
+mut G3 geometry lib/gearloss/geometry/gear_geometry.cpp "inv alpha_wt from the shifts without the factor 2 (ISO 21771)" \
+    'involute(at) + 2.0 * tan(an) * (g1.x + g2.x) / z_sum' 'involute(at) + tan(an) * (g1.x + g2.x) / z_sum'
+mut K2 clutch lib/gearloss/clutch/wet_clutch.cpp "heated clutch film: sinh^2 x = Na/4 instead of Na/8 (Nahme)" \
+    'std::sqrt(nahme / 8.0)' 'std::sqrt(nahme / 4.0)'
+mut M12 mesh lib/gearloss/mesh/viscoelastic.cpp "Maxwell relaxation per slice halved (G dx/u_e -> G dx/(2 u_e))" \
+    'rate = G * dx / u_e *' 'rate = 0.5 * G * dx / u_e *'
 
 # ---------------------------------------------------------------------------------
 usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
