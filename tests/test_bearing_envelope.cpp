@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gearloss/bearings/skf_model.hpp"
+#include "gearloss/io/case_plausibility.hpp"
 #include "gearloss/io/config.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "loss_parts.hpp"
@@ -175,4 +176,28 @@ TEST_CASE("bearing loss over the envelope of every shipped case: no fall with sp
         CHECK(steps == 0);
         CHECK(bad == 0);
     }
+}
+
+// Not silently: a fixed-temperature run names the bearings past the starvation limit. Transfer
+// box, B1_RMS11 (d 35, D 89 mm, 63 series, K_Z 3.1), splash (K_rs 3e-8): limit nu n = 0.6 /
+// (3e-8 * 124 * sqrt(3.1 / 108)) = 0.6 / 6.303e-7 = 9.52e5 mm^2/s r/min; at 800 rpm the limit is
+// 1190 mm^2/s, passed by 75W90-A at -30 degC (about 3e4 mm^2/s) and not at 100 degC (about 15).
+TEST_CASE("a fixed oil temperature past the SKF starvation limit is a note naming the bearings", "[bearings][envelope_bearings][plausibility]") {
+    auto cold = test_support::load_shipped("configs/transfer-box.yaml");
+    cold.model.thermal.mode = solver::ThermalMode::fixed;
+    cold.model.thermal.oil_temperature = 243.15;
+    cold.warnings.clear();
+    io::check_oil_temperature(cold, "--oil-temp");
+    REQUIRE(cold.warnings.size() == 1);
+    INFO(cold.warnings[0]);
+    CHECK_THAT(cold.warnings[0], Catch::Contains("--oil-temp: note:"));
+    CHECK_THAT(cold.warnings[0], Catch::Contains("'B1_RMS11' (nu n = "));
+    CHECK_THAT(cold.warnings[0], Catch::Contains("> 9.52e+05 mm^2/s r/min"));
+
+    auto warm = test_support::load_shipped("configs/transfer-box.yaml");
+    warm.model.thermal.mode = solver::ThermalMode::fixed;
+    warm.model.thermal.oil_temperature = 373.15;
+    warm.warnings.clear();
+    io::check_oil_temperature(warm, "--oil-temp");
+    CHECK(warm.warnings.empty());
 }
