@@ -170,23 +170,33 @@ double starvation_coefficient(const BearingSpec& b, const Catalogue& c) {
     return b.K_rs * c.n * (c.d + c.D) * std::sqrt(b.k.K_Z / (2.0 * (c.D - c.d)));
 }
 
-// phi_rs (nu n)^0.6 = exp(-a nu) (nu n)^0.6 is largest at a nu = 0.6 (d/dnu of 0.6 ln nu - a nu = 0):
-// the viscosity past which SKF's starved rolling moment would fall as the oil thickens or the speed
-// rises. The model holds the rolling moment there (skf_model.hpp, skf_starvation_limit_nu).
-constexpr double kStarvedPeak = 0.6;
-double starvation_limit(double a_rs) {
-    return a_rs > 0.0 ? kStarvedPeak / a_rs : std::numeric_limits<double>::infinity();
+// The starvation limit [cSt]: the viscosity at which the starved rolling moment
+// phi_ish phi_rs G_rr (nu n)^0.6 is largest at this speed. d ln M_rr / d ln nu
+// = 0.6 - 0.64 s - a_rs nu with s = a_ish nu^0.64 / (1 + a_ish nu^0.64) (from SKF (2004) phi_ish and
+// phi_rs) falls from 0.6 at nu -> 0 to -0.64 s at a_rs nu = 0.6: one root, found by bisection on
+// ln nu. Past it SKF's exponential would make the loss fall as the oil thickens; holding the
+// moment at its maximum over nu also keeps it rising with speed (d/dn of a maximum over nu is
+// the partial derivative at the maximum, (1.6 - 1.28 s - a_rs nu) M_rr / n > 0 there).
+double starvation_limit(double a_rs, double a_ish) {
+    if (!(a_rs > 0.0)) return std::numeric_limits<double>::infinity();
+    const auto slope = [&](double nu) {
+        const double x = a_ish * std::pow(nu, 0.64);
+        return 0.6 - 0.64 * x / (1.0 + x) - a_rs * nu;
+    };
+    double hi = 0.6 / a_rs;  // slope <= 0
+    double lo = 0.5 * hi;
+    while (!(slope(lo) > 0.0) && lo > 1e-12 * hi) lo *= 0.5;  // slope -> 0.6 as nu -> 0
+    for (int i = 0; i < 48; ++i) {
+        const double mid = std::sqrt(lo * hi);
+        (slope(mid) > 0.0 ? lo : hi) = mid;
+    }
+    return std::sqrt(lo * hi);
 }
 }  // namespace
 
 double skf_starvation_limit_nu(const BearingSpec& b, double omega) {
-    return starvation_limit(starvation_coefficient(b, Catalogue::of(b, omega))) / kCStPerM2s;
-}
-
-double skf_starvation_limit_nu_n(const BearingSpec& b) {
-    // a_rs is proportional to n: the limit on nu is inversely so, and nu n is a constant.
-    const Catalogue c = Catalogue::of(b, 1.0 / kRpmPerRadS);  // n = 1 r/min
-    return starvation_limit(starvation_coefficient(b, c));
+    const SkfAtPoint p = SkfAtPoint::make(b, 0.0, 0.0, omega);
+    return p.nu_rs_limit / kCStPerM2s;
 }
 
 namespace {
@@ -253,7 +263,7 @@ SkfAtPoint SkfAtPoint::make(const BearingSpec& b, const SkfGeometry& geo, double
     p.rr = g.G_rr * std::pow(p.n, 0.6);
     p.a_ish = 1.84e-9 * std::pow(p.n * dm, 1.28);
     p.a_rs = starvation_coefficient(b, c);
-    p.nu_rs_limit = starvation_limit(p.a_rs);
+    p.nu_rs_limit = starvation_limit(p.a_rs, p.a_ish);
     p.a_bl = 2.6e-8 * std::pow(p.n, 1.4) * dm;
     p.G_sl = g.G_sl;
     p.alpha_F = g.alpha_F;

@@ -91,16 +91,13 @@ struct SkfMoment {
 SkfMoment skf_moment(const BearingSpec& b, double Fr, double Fa, double omega, double nu_m2s);
 
 // The starvation limit: the kinematic viscosity [m^2/s] at speed omega [rad/s] past which SKF's
-// starved rolling moment phi_rs (nu n)^0.6 would fall as nu n rises (K_rs nu n (d+D)
-// sqrt(K_Z / (2 (D-d))) = 0.6, the maximum of x^0.6 exp(-k x)); infinity where phi_rs does not
-// apply (flooded, K_rs = 0) or the bearing stands. Beyond it the model holds the rolling moment at
-// its value at this viscosity: a starved film is set by the oil that reaches the contact, and
-// SKF's exponential, fitted over moderate nu n, is not extrapolated into a loss that falls with
-// speed or with colder oil.
+// starved rolling moment phi_ish phi_rs G_rr (nu n)^0.6 would fall as the oil thickens (its
+// maximum over nu; phi_rs alone gives K_rs nu n (d+D) sqrt(K_Z / (2 (D-d))) = 0.6, phi_ish moves it
+// lower); infinity where phi_rs does not apply (flooded, K_rs = 0) or the bearing stands. Beyond it
+// the model holds the rolling moment at its value at this viscosity: a starved film is set by the
+// oil that reaches the contact, and SKF's exponential, fitted over moderate nu n, is not
+// extrapolated into a loss that falls with speed or with colder oil.
 double skf_starvation_limit_nu(const BearingSpec& b, double omega);
-// The same limit as the product nu n in the catalogue's units (mm^2/s times r/min): independent of
-// speed and oil; infinity where phi_rs does not apply.
-double skf_starvation_limit_nu_n(const BearingSpec& b);
 
 // Oil-bath drag moment [N*m] (SKF (2013) catalogue form): omega in rad/s, nu in m^2/s.
 double skf_drag_moment(const BearingSpec& b, double omega, double nu_m2s);
@@ -117,7 +114,7 @@ struct SkfAtPoint {
     double rr = 0;           // G_rr n^0.6
     double a_ish = 0;        // 1.84e-9 (n d_m)^1.28
     double a_rs = 0;         // K_rs n (d+D) sqrt(K_Z / (2 (D-d))); 0 where phi_rs does not apply
-    double nu_rs_limit = 0;  // starvation limit 0.6 / a_rs in cSt (infinity when a_rs = 0)
+    double nu_rs_limit = 0;  // starvation limit in cSt (skf_starvation_limit_nu; infinity when a_rs = 0)
     double a_bl = 0;         // 2.6e-8 n^1.4 d_m
     double G_sl = 0, mu_bl = 0, mu_ehl = 0;
     double M_seal = 0;

@@ -117,17 +117,17 @@ std::vector<PlausibilityFinding> check_bearing_starvation(const Model& m, double
     std::string past;
     for (size_t i = 0; i < m.gearbox.bearings.size(); ++i) {
         const auto& b = m.gearbox.bearings[i];
-        const double n_rpm = m.layout.bearing_speed_ratio[i] * omega_in * 30.0 / std::numbers::pi;
-        const double limit = bearings::skf_starvation_limit_nu_n(b.spec);  // mm^2/s r/min
-        if (!(nu * n_rpm > limit)) continue;
-        past += fmt::format("{}'{}' (nu n = {:.3g} > {:.3g} mm^2/s r/min at {:.0f} r/min)", past.empty() ? "" : ", ",
-                            b.name, nu * n_rpm, limit, n_rpm);
+        const double w = m.layout.bearing_speed_ratio[i] * omega_in;
+        const double limit = bearings::skf_starvation_limit_nu(b.spec, w) * 1e6;  // mm^2/s
+        if (!(nu > limit)) continue;
+        past += fmt::format("{}'{}' (limit {:.4g} mm^2/s at {:.0f} r/min)", past.empty() ? "" : ", ", b.name, limit,
+                            w * 30.0 / std::numbers::pi);
     }
     if (!past.empty())
         out.push_back({PlausibilityFinding::Severity::note, PlausibilityFinding::Subject::lubrication, -1,
                        fmt::format("at {:.1f} degC ({:.0f} mm^2/s) and {:.0f} rpm the SKF (2004) starvation factor "
-                                   "phi_rs of bearing(s) {} is past its limit (K_rs nu n (d+D) sqrt(K_Z/(2(D-d))) > 0.6, "
-                                   "where phi_rs (nu n)^0.6 peaks): their rolling moment is held at its value at the limit",
+                                   "phi_rs of bearing(s) {} is past its limit (the viscosity where phi_ish phi_rs (nu n)^0.6 "
+                                   "peaks): their rolling moment is held at its value at the limit",
                                    m.thermal.oil_temperature - 273.15, nu, omega_in * 30.0 / std::numbers::pi, past)});
     return out;
 }
