@@ -39,6 +39,9 @@ TEST_CASE("independent: SKF oil-bath drag of a cylindrical roller bearing, by ha
     b.bath_VM = 5e-4;
     CHECK(bearings::skf_drag_moment(b, 3000 * rpm, 20 * cSt) == Approx((8.17994 + 3.49911) * Nmm).epsilon(1e-4));
     // The drag is in the full moment too, unchanged by load: M(Fr) - M_without_bath(Fr) = M_drag.
+    // Both flooded (K_rs = 0, lubrication: oil_bath): a 23 mm bath is above the rolling-element
+    // centres, where SKF's starvation factor phi_rs does not apply, so only the drag differs.
+    b.K_rs = 0.0;
     auto dry = b;
     dry.bath_H.reset();
     CHECK(bearings::skf_moment(b, 2000, 0, 3000 * rpm, 20 * cSt).total() -

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 
@@ -161,6 +162,60 @@ void drag_terms(const BearingSpec& b, const Catalogue& c, const SkfGeometry& geo
     // 1.093e-7 n^2 d_m^3 (n d_m^2 f_t / nu)^-1.379 R_s
     second_coef = 1.093e-7 * n * n * dm * dm * dm * std::pow(n * dm * dm * ft, -1.379) * Rs;
 }
+
+// SKF (2004) replenishment/starvation: phi_rs = exp(-K_rs nu n (d+D) sqrt(K_Z / (2 (D-d)))), the
+// coefficient of nu (catalogue units) returned here; 0 where the bearing runs flooded (phi_rs = 1).
+double starvation_coefficient(const BearingSpec& b, const Catalogue& c) {
+    if (!b.starvation_applies()) return 0.0;
+    return b.K_rs * c.n * (c.d + c.D) * std::sqrt(b.k.K_Z / (2.0 * (c.D - c.d)));
+}
+
+// The starvation limit [cSt]: the viscosity at which the starved rolling moment
+// phi_ish phi_rs G_rr (nu n)^0.6 is largest at this speed. d ln M_rr / d ln nu
+// = 0.6 - 0.64 s - a_rs nu with s = a_ish nu^0.64 / (1 + a_ish nu^0.64) (from SKF (2004) phi_ish and
+// phi_rs) falls from 0.6 at nu -> 0 to -0.64 s at a_rs nu = 0.6: one root, found by bisection on
+// ln nu. Past it SKF's exponential would make the loss fall as the oil thickens; holding the
+// moment at its maximum over nu also keeps it rising with speed (d/dn of a maximum over nu is
+// the partial derivative at the maximum, (1.6 - 1.28 s - a_rs nu) M_rr / n > 0 there).
+double starvation_limit(double a_rs, double a_ish) {
+    if (!(a_rs > 0.0)) return std::numeric_limits<double>::infinity();
+    const auto slope = [&](double nu) {
+        const double x = a_ish * std::pow(nu, 0.64);
+        return 0.6 - 0.64 * x / (1.0 + x) - a_rs * nu;
+    };
+    double hi = 0.6 / a_rs;  // slope <= 0
+    double lo = 0.5 * hi;
+    while (!(slope(lo) > 0.0) && lo > 1e-12 * hi) lo *= 0.5;  // slope -> 0.6 as nu -> 0
+    for (int i = 0; i < 48; ++i) {
+        const double mid = std::sqrt(lo * hi);
+        (slope(mid) > 0.0 ? lo : hi) = mid;
+    }
+    return std::sqrt(lo * hi);
+}
+}  // namespace
+
+double skf_starvation_limit_nu(const BearingSpec& b, double omega) {
+    const SkfAtPoint p = SkfAtPoint::make(b, 0.0, 0.0, omega);
+    return p.nu_rs_limit / kCStPerM2s;
+}
+
+namespace {
+// The rolling moment phi_ish phi_rs G_rr (nu n)^0.6 [N*mm] given the shared powers of nu; past
+// the starvation limit, the same at the limit viscosity (powers computed here, only then).
+double rolling_moment(const SkfAtPoint& p, double nu, double nu06, double nu064, double* phi_ish,
+                      double* phi_rs, bool* held) {
+    if (nu > p.nu_rs_limit) {
+        nu = p.nu_rs_limit;
+        nu06 = std::pow(nu, 0.6);
+        nu064 = std::pow(nu, 0.64);
+        if (held) *held = true;
+    }
+    const double ish = 1.0 / (1.0 + p.a_ish * nu064);  // SKF (2004) inlet shear heating
+    const double rs = std::exp(-p.a_rs * nu);           // SKF (2004) replenishment/starvation
+    if (phi_ish) *phi_ish = ish;
+    if (phi_rs) *phi_rs = rs;
+    return ish * rs * p.rr * nu06;
+}
 }  // namespace
 
 SkfLoadTerms skf_load_terms(const BearingSpec& b, double Fr, double Fa, double omega) {
@@ -207,7 +262,8 @@ SkfAtPoint SkfAtPoint::make(const BearingSpec& b, const SkfGeometry& geo, double
     const double dm = c.dm;
     p.rr = g.G_rr * std::pow(p.n, 0.6);
     p.a_ish = 1.84e-9 * std::pow(p.n * dm, 1.28);
-    p.a_rs = b.K_rs * p.n * (c.d + c.D) * std::sqrt(b.k.K_Z / (2.0 * (c.D - c.d)));
+    p.a_rs = starvation_coefficient(b, c);
+    p.nu_rs_limit = starvation_limit(p.a_rs, p.a_ish);
     p.a_bl = 2.6e-8 * std::pow(p.n, 1.4) * dm;
     p.G_sl = g.G_sl;
     p.alpha_F = g.alpha_F;
@@ -223,11 +279,10 @@ SkfAtPoint SkfAtPoint::make(const BearingSpec& b, const SkfGeometry& geo, double
 double SkfAtPoint::moment(double nu_cSt, double nu_cSt_06, double nu_cSt_064, double nu_cSt_14,
                           double nu_cSt_1379) const {
     if (n <= 0.0) return 0.0;
-    const double phi_ish = 1.0 / (1.0 + a_ish * nu_cSt_064);
-    const double phi_rs = std::exp(-a_rs * nu_cSt);
+    const double M_rr = rolling_moment(*this, nu_cSt, nu_cSt_06, nu_cSt_064, nullptr, nullptr, nullptr);
     const double phi_bl = std::exp(-a_bl * nu_cSt_14);
     const double mu_sl = phi_bl * mu_bl + (1.0 - phi_bl) * mu_ehl;
-    return (phi_ish * phi_rs * rr * nu_cSt_06 + G_sl * mu_sl + M_seal + drag_a + drag_b * nu_cSt_1379) * kNmPerNmm;
+    return (M_rr + G_sl * mu_sl + M_seal + drag_a + drag_b * nu_cSt_1379) * kNmPerNmm;
 }
 
 const char* SkfAtPoint::fault() const {
@@ -251,10 +306,9 @@ SkfMoment skf_moment(const BearingSpec& b, double Fr, double Fa, double omega, d
     SkfMoment m;
     if (p.n <= 0.0) return m;
     const double nu = nu_m2s * kCStPerM2s;
-    m.phi_ish = 1.0 / (1.0 + p.a_ish * std::pow(nu, 0.64));
-    m.phi_rs = std::exp(-p.a_rs * nu);
+    m.rolling = rolling_moment(p, nu, std::pow(nu, 0.6), std::pow(nu, 0.64), &m.phi_ish, &m.phi_rs,
+                               &m.starvation_held) * kNmPerNmm;
     m.phi_bl = std::exp(-p.a_bl * std::pow(nu, 1.4));
-    m.rolling = m.phi_ish * m.phi_rs * p.rr * std::pow(nu, 0.6) * kNmPerNmm;
     m.sliding = p.G_sl * (m.phi_bl * p.mu_bl + (1.0 - m.phi_bl) * p.mu_ehl) * kNmPerNmm;
     m.seal = p.M_seal * kNmPerNmm;
     m.drag = (p.drag_a + p.drag_b * std::pow(nu, 1.379)) * kNmPerNmm;

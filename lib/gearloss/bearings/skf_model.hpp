@@ -20,7 +20,10 @@ struct BearingSpec {
     double C0 = 0;                // static load rating, N (deep groove ball: needed for axial load)
     double Y = 1.6;               // tapered roller axial factor (product table)
     SkfConstants k;
-    double K_rs = 3e-8;           // replenishment/starvation constant (low-level oil bath, splash)
+    // Replenishment/starvation constant of phi_rs (SKF 2004): 3e-8 for a low-level oil bath, splash
+    // and oil jet, 6e-8 for grease and oil-air, 0 where the rolling elements are flooded (an oil
+    // bath at or above the centre of the lowest rolling element: phi_rs does not apply).
+    double K_rs = 3e-8;
     double mu_bl = 0.15;
     double mu_ehl = 0.05;
     // Integral contact seals (both sides): M_seal = K_S1 d_s^beta + K_S2, with the catalogue's
@@ -29,11 +32,18 @@ struct BearingSpec {
     double seal_KS1 = 0, seal_KS2 = 0, seal_beta = 2.0;
     std::optional<double> seal_ds;
     // Oil bath drag: oil level H above the lowest point of the outer-ring raceway [m]
-    // and the drag factor V_M read from the SKF diagram for H/d_m.
+    // and the drag factor V_M read from the SKF diagram for H/d_m. A level at or above the
+    // centre of the lowest rolling element (flooded_level()) also floods the bearing: no phi_rs.
     std::optional<double> bath_H;
     double bath_VM = 0;
 
     double dm() const { return 0.5 * (d + D); }  // mean diameter [m]
+    // Height of the lowest rolling element's centre above the lowest point of the outer-ring
+    // raceway [m]: half a rolling-element diameter, estimated as D_w = 0.3 (D - d) (the section of
+    // radial ball and roller bearings of the 62/63/2/3/303 series, e.g. 6205: 7.94 mm of 27 mm).
+    double flooded_level() const { return 0.15 * (D - d); }
+    // Whether SKF's starvation factor phi_rs applies: K_rs > 0 and no oil bath up to flooded_level().
+    bool starvation_applies() const { return K_rs > 0.0 && !(bath_H && *bath_H >= flooded_level()); }
 };
 
 struct SkfLoadTerms {
@@ -71,11 +81,23 @@ private:
 struct SkfMoment {
     double rolling = 0, sliding = 0, seal = 0, drag = 0;  // N*m
     double phi_ish = 1, phi_rs = 1, phi_bl = 1;
+    // The point lies beyond the starvation limit (skf_starvation_limit_nu): the rolling moment
+    // is the one at the limit viscosity (phi_ish and phi_rs included).
+    bool starvation_held = false;
     double total() const { return rolling + sliding + seal + drag; }
 };
 
 // Full evaluation (used by the tests): Fr, Fa in N, omega in rad/s, nu in m^2/s.
 SkfMoment skf_moment(const BearingSpec& b, double Fr, double Fa, double omega, double nu_m2s);
+
+// The starvation limit: the kinematic viscosity [m^2/s] at speed omega [rad/s] past which SKF's
+// starved rolling moment phi_ish phi_rs G_rr (nu n)^0.6 would fall as the oil thickens (its
+// maximum over nu; phi_rs alone gives K_rs nu n (d+D) sqrt(K_Z / (2 (D-d))) = 0.6, phi_ish moves it
+// lower); infinity where phi_rs does not apply (flooded, K_rs = 0) or the bearing stands. Beyond it
+// the model holds the rolling moment at its value at this viscosity: a starved film is set by the
+// oil that reaches the contact, and SKF's exponential, fitted over moderate nu n, is not
+// extrapolated into a loss that falls with speed or with colder oil.
+double skf_starvation_limit_nu(const BearingSpec& b, double omega);
 
 // Oil-bath drag moment [N*m] (SKF (2013) catalogue form): omega in rad/s, nu in m^2/s.
 double skf_drag_moment(const BearingSpec& b, double omega, double nu_m2s);
@@ -91,7 +113,8 @@ struct SkfAtPoint {
     double n = 0;            // speed in the catalogue unit r/min, magnitude
     double rr = 0;           // G_rr n^0.6
     double a_ish = 0;        // 1.84e-9 (n d_m)^1.28
-    double a_rs = 0;         // K_rs n (d+D) sqrt(K_Z / (2 (D-d)))
+    double a_rs = 0;         // K_rs n (d+D) sqrt(K_Z / (2 (D-d))); 0 where phi_rs does not apply
+    double nu_rs_limit = 0;  // starvation limit in cSt (skf_starvation_limit_nu; infinity when a_rs = 0)
     double a_bl = 0;         // 2.6e-8 n^1.4 d_m
     double G_sl = 0, mu_bl = 0, mu_ehl = 0;
     double M_seal = 0;
@@ -104,7 +127,7 @@ struct SkfAtPoint {
     static SkfAtPoint make(const BearingSpec& b, const SkfGeometry& g, double Fr, double Fa, double omega);
     // The kinematic viscosity in cSt (= mm^2/s, the catalogue unit) and its powers ^0.6, ^0.64,
     // ^1.4, ^1.379, shared by every bearing at one temperature (from losses::Evaluation::ln_nu_cSt);
-    // returns M [N*m].
+    // returns M [N*m]. Past nu_rs_limit the rolling term is evaluated at nu_rs_limit.
     double moment(double nu_cSt, double nu_cSt_06, double nu_cSt_064, double nu_cSt_14, double nu_cSt_1379) const;
     // What is out of the model's range at this point ("contact angle", "rolling moment", ...),
     // or nullptr: the contact angle at or past 90 deg, or a term that is not a finite number.

@@ -1,6 +1,7 @@
 #include "gearloss/io/case_plausibility.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fmt/format.h>
 #include <mutex>
@@ -89,6 +90,14 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
 
 void check_oil_temperature(Case& c, const std::string& option) {
     const auto& m = c.model;
+    // Bearings past SKF's starvation limit at the fixed oil temperature and the grid's largest speed.
+    double omega_max = 0;
+    for (double w : c.grid.speeds) omega_max = std::max(omega_max, std::abs(w));
+    for (const auto& f : solver::check_bearing_starvation(m, omega_max)) {
+        const std::string what = "note: " + f.message;
+        if (option.empty() && !c.oil_temperature_key.empty()) c.warnings.push_back(c.oil_temperature_key + ": " + what);
+        else c.warnings.push_back(InputError::format("", 0, 0, option.empty() ? "thermal.oil_temperature" : option, what));
+    }
     if (m.thermal.mode != solver::ThermalMode::fixed || !(m.thermal.oil_temperature > m.oil.max_temperature)) return;
     const std::string what = fmt::format("warning: fixed oil temperature {:.1f} degC is above the permissible {:.1f} degC "
                                          "of oil '{}' (its 'max_temperature')",

@@ -11,7 +11,8 @@ namespace gearloss::io {
 void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication lubrication);
 
 // After the command-line overrides: a fixed oil temperature above the oil's permissible
-// one is a warning (`option` names the override, or empty for the case file's value).
+// one is a warning (`option` names the override, or empty for the case file's value); bearings
+// past SKF's starvation limit there, at the grid's largest speed, are a note.
 void check_oil_temperature(Case& c, const std::string& option);
 
 // Prints the case's warnings on stderr, each once per process (sweeps re-read the case).

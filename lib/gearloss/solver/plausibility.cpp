@@ -10,6 +10,7 @@
 #include "gearloss/model/validate.hpp"
 #include "gearloss/churning/fitted_range.hpp"
 #include "gearloss/losses/loss_mechanism.hpp"
+#include "gearloss/bearings/skf_model.hpp"
 
 namespace gearloss::solver {
 
@@ -215,6 +216,28 @@ std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const s
                                    pack.name, ratio * at_speed * rpm, at_speed * rpm, below - 273.15,
                                    clutch::film_heating_nahme_limit)});
     }
+    return out;
+}
+
+std::vector<PlausibilityFinding> check_bearing_starvation(const Model& m, double omega_in) {
+    std::vector<PlausibilityFinding> out;
+    if (m.thermal.mode != ThermalMode::fixed || !(omega_in > 0)) return out;
+    const double nu = m.oil_state(m.thermal.oil_temperature).nu_cSt;  // mm^2/s
+    std::string past;
+    for (size_t i = 0; i < m.gearbox.bearings.size(); ++i) {
+        const auto& b = m.gearbox.bearings[i];
+        const double w = m.layout.bearing_speed_ratio[i] * omega_in;
+        const double limit = bearings::skf_starvation_limit_nu(b.spec, w) * 1e6;  // mm^2/s
+        if (!(nu > limit)) continue;
+        past += fmt::format("{}'{}' (limit {:.4g} mm^2/s at {:.0f} r/min)", past.empty() ? "" : ", ", b.name, limit,
+                            w * 30.0 / std::numbers::pi);
+    }
+    if (!past.empty())
+        out.push_back({PlausibilityFinding::Severity::note, PlausibilityFinding::Subject::lubrication, -1,
+                       fmt::format("at {:.1f} degC ({:.0f} mm^2/s) and {:.0f} rpm the SKF (2004) starvation factor "
+                                   "phi_rs of bearing(s) {} is past its limit (the viscosity where phi_ish phi_rs (nu n)^0.6 "
+                                   "peaks): their rolling moment is held at its value at the limit",
+                                   m.thermal.oil_temperature - 273.15, nu, omega_in * 30.0 / std::numbers::pi, past)});
     return out;
 }
 

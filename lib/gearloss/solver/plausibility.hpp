@@ -46,6 +46,13 @@ std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication 
 // per pack with the oil temperature below which its drag is extrapolated.
 std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const std::vector<double>& input_speeds);
 
+// Bearings past SKF's starvation limit (gearloss/bearings/skf_model.hpp, skf_starvation_limit_nu)
+// at the model's fixed oil temperature and the input speed omega_in [rad/s] (the case's largest):
+// one note for all of them, naming each with its nu n and the limit, and saying that the rolling
+// moment is held at its value at the limit. Empty in stabilised mode (the oil temperature is
+// known only after the solve) or when no bearing is past the limit.
+std::vector<PlausibilityFinding> check_bearing_starvation(const Model& m, double omega_in);
+
 // Box of a rectangular housing from its outer surface A = 2(LH + LW + HW), height H
 // and length L; nullopt when no positive width fits.
 std::optional<HousingBox> housing_box(double area, double height, double length);
