@@ -39,6 +39,9 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
     std::sort(speeds.begin(), speeds.end());
     speeds.erase(std::unique(speeds.begin(), speeds.end()), speeds.end());
     for (auto& f : solver::check_clutch_film_range(c.model, speeds)) findings.push_back(std::move(f));
+    std::vector<std::pair<double, double>> points;
+    for (size_t i = 0; i < c.grid.size(); ++i) points.push_back(c.grid.at(i));
+    for (auto& f : solver::check_mesh_film_range(c.model, points)) findings.push_back(std::move(f));
     std::vector<YamlNode> clutches;
     if (auto n = root.get("clutches")) clutches = n->items();
     for (const auto& f : findings) {
@@ -72,6 +75,9 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
                         return g;
                     }
                     return root.at("gears");
+                case J::mesh_film:
+                    if (f.mesh >= 0 && static_cast<size_t>(f.mesh) < meshes.size()) return meshes[static_cast<size_t>(f.mesh)];
+                    return root.at("meshes");
                 case J::clutch:
                     if (f.gear >= 0 && static_cast<size_t>(f.gear) < clutches.size()) return clutches[static_cast<size_t>(f.gear)];
                     return housing;

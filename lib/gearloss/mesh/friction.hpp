@@ -39,6 +39,16 @@ struct Film {
 // Hertz maximum pressure of a line contact: p0 = sqrt(w E*/(pi R)), E* = E'/2.
 double hertz_pressure(double w_line, double R, double E_prime);
 
+// Thermal reduction factor of Gupta et al. (1992) (full form):
+// phi_T = [1 - 13.2 (p_H/E') L^0.42] / [1 + 0.213 (1 + 2.23 SRR^0.83) L^0.64],
+// L = beta eta0 u_e^2 / k. Beyond the turning point L* (gupta_turning_point) the correlation
+// would thin the film of a thickening oil down to zero; there the load term is held at L*.
+// p_ratio = p_H / E'.
+double gupta_thermal_factor(double L, double p_ratio, double SRR);
+// L* where d ln(phi_T)/d ln L = -8/11: the Ertel-Grubin film phi_T H_c (H_c ~ eta0^(8/11)) is
+// largest there at a fixed pressure-viscosity coefficient.
+double gupta_turning_point(double p_ratio, double SRR);
+
 // Ertel-Grubin central film H_c = 1.95 (GU)^(8/11) W^(-1/11) and Dowson-Higginson
 // minimum H_min = 2.65 U^0.70 G^0.54 W^-0.13, both with E'; thermal reduction by
 // Gupta et al. (1992) (full form, L = beta eta u_e^2 / k) or the simplified form of

@@ -7,10 +7,13 @@
 
 #include "gearloss/geometry/gear_geometry.hpp"
 #include "gearloss/clutch/film_heating.hpp"
+#include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
+#include "gearloss/mesh/friction.hpp"
 #include "gearloss/model/validate.hpp"
 #include "gearloss/churning/fitted_range.hpp"
 #include "gearloss/losses/loss_mechanism.hpp"
 #include "gearloss/bearings/skf_model.hpp"
+#include "gearloss/solver/operating_point.hpp"
 
 namespace gearloss::solver {
 
@@ -238,6 +241,54 @@ std::vector<PlausibilityFinding> check_bearing_starvation(const Model& m, double
                                    "phi_rs of bearing(s) {} is past its limit (the viscosity where phi_ish phi_rs (nu n)^0.6 "
                                    "peaks): their rolling moment is held at its value at the limit",
                                    m.thermal.oil_temperature - 273.15, nu, omega_in * 30.0 / std::numbers::pi, past)});
+    return out;
+}
+
+std::vector<PlausibilityFinding> check_mesh_film_range(const Model& m,
+                                                       const std::vector<std::pair<double, double>>& points) {
+    std::vector<PlausibilityFinding> out;
+    const auto& gb = m.gearbox;
+    if (gb.meshes.empty() || points.empty() || !m.mechanisms.find("mesh") || !m.mechanisms.at("mesh").enabled()) return out;
+    const auto& forms = mesh::mesh_forms(m);
+    const bool local = forms.friction == mesh::FrictionModel::ehl_local || forms.friction == mesh::FrictionModel::ehl_maxwell;
+    // The local forms always correct their films by Gupta et al. (1992); the others when chosen.
+    if (!local && forms.film_correction != mesh::ThermalFilmCorrection::gupta) return out;
+    const auto valid = oil_validity(m.oil);
+    // The coldest oil the case runs with: its fixed oil temperature, else the ambient (a
+    // stabilised or transient oil does not fall below it); a colder oil is another case.
+    const double T_case = m.thermal.mode == ThermalMode::fixed ? m.thermal.oil_temperature : m.thermal.ambient;
+    constexpr double rpm = 30.0 / std::numbers::pi;
+    for (size_t i = 0; i < gb.meshes.size(); ++i) {
+        // The warmest oil temperature (1 K steps) at which, at one of the case's points, the
+        // pitch-point film's thermal loading L = beta eta0 u_e^2 / k is past the turning point
+        // L* of the correlation (mesh::gupta_turning_point): the load term is held there.
+        double below = 0, at_speed = 0, at_torque = 0, at_L_star = 0;
+        for (const auto& [w, torque] : points) {
+            if (!(std::abs(w) > 0) || torque == 0.0) continue;
+            const auto p = prepare_point(m, w, torque);
+            const auto& ms = mesh::mesh_friction_point(m, p.data).meshes.at(i);
+            const auto& lc = ms.contact;
+            if (!(ms.power > 0) || !(lc.u_e > 0) || !(lc.w_line > 0)) continue;
+            const double L_star =
+                mesh::gupta_turning_point(mesh::hertz_pressure(lc.w_line, lc.R, lc.E_prime) / lc.E_prime, lc.SRR);
+            for (double T = std::max(std::ceil(valid.T_min) + 1.0, T_case); T < valid.T_max; T += 1.0) {
+                if (T <= below) continue;
+                const auto s = m.oil_state(T);
+                if (!(s.beta_T * s.eta * lc.u_e * lc.u_e / s.k > L_star)) break;  // L falls as the oil warms
+                below = T, at_speed = w, at_torque = torque, at_L_star = L_star;
+            }
+        }
+        if (below == 0) continue;
+        PlausibilityFinding f{PlausibilityFinding::Severity::note, PlausibilityFinding::Subject::mesh_film, -1,
+                              fmt::format("mesh '{}' (input {:.0f} rpm, {:.0f} N m): below {:.0f} degC the thermal "
+                                          "film correction of Gupta et al. (1992) is past its turning point (the "
+                                          "pitch point's inlet heating parameter beta eta u_e^2/k above {:.3g}): its load term is "
+                                          "held there, and the film{} and Lambda are extrapolated",
+                                          gb.meshes[i].name, std::abs(at_speed) * rpm, at_torque, below - 273.15, at_L_star,
+                                          local ? ", the local EHL friction" : "")};
+        f.mesh = static_cast<int>(i);
+        out.push_back(std::move(f));
+    }
     return out;
 }
 

@@ -4,6 +4,7 @@
 // any computation; the loader turns each finding into a located warning or error.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gearloss/model/model.hpp"
@@ -21,12 +22,12 @@ struct HousingBox {
 struct PlausibilityFinding {
     enum class Severity { note, warning, error };
     // centre_distance: the mesh's centre_distance key; tip: the gear's tip_diameter or tip_alteration_factor.
-    enum class Subject { oil_level, oil_volume, gear, lubrication, centre_distance, tip, clutch };
+    enum class Subject { oil_level, oil_volume, gear, lubrication, centre_distance, tip, clutch, mesh_film };
     Severity severity = Severity::warning;
     Subject subject = Subject::oil_level;
     int gear = -1;  // index into gearbox.gears for Subject::gear and Subject::tip, into gearbox.clutches for Subject::clutch
     std::string message;
-    int mesh = -1;  // index into gearbox.meshes for Subject::centre_distance
+    int mesh = -1;  // index into gearbox.meshes for Subject::centre_distance and Subject::mesh_film
 };
 
 // The mesh geometry against itself (after finalise()): a given centre distance beyond the
@@ -52,6 +53,14 @@ std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const s
 // moment is held at its value at the limit. Empty in stabilised mode (the oil temperature is
 // known only after the solve) or when no bearing is past the limit.
 std::vector<PlausibilityFinding> check_bearing_starvation(const Model& m, double omega_in);
+
+// The meshes whose pitch-point film, at one of the case's (input speed [rad/s], torque [N m])
+// points and some oil temperature within the oil's validity and not below the case's coldest oil
+// (its fixed oil temperature, else the ambient), is past the turning point of the
+// thermal film correction of Gupta et al. (1992) (mesh::gupta_turning_point; a cold, viscous oil
+// at speed): one note per mesh with the oil temperature below which its film is extrapolated.
+std::vector<PlausibilityFinding> check_mesh_film_range(const Model& m,
+                                                       const std::vector<std::pair<double, double>>& points);
 
 // Box of a rectangular housing from its outer surface A = 2(LH + LW + HW), height H
 // and length L; nullopt when no positive width fits.
