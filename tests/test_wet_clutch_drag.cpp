@@ -223,3 +223,54 @@ TEST_CASE("wet clutch drag: where the heated film leaves its range the case says
     CHECK(Na(degC + 0) < clutch::film_heating_nahme_limit);
     CHECK(Na(degC - 20) > clutch::film_heating_nahme_limit);
 }
+
+TEST_CASE("wet clutch drag: each open pack names the regime of its film", "[clutch][clutch_drag]") {
+    // configs/automatic-6speed.yaml in ATF-A at 40 degC (eta 24.64 mPa s, rho 835.1 kg/m^3), pack
+    // C6 (first gear: slip 1.2329 x input speed; 6 gaps of h = 0.3 mm, r_i 52 mm, r_o 68 mm, supply
+    // 0.3 L/min = 5e-6 m^3/s). By hand: the film's centrifugal outflow over the full plates
+    // pi h^3 rho w^2 (r_o^2 - r_i^2) / (40 eta ln(r_o/r_i)) equals the supply at w = 98.6 rad/s
+    // (941 rpm of slip); the annulus has shrunk to r_i, where the outflow tends to
+    // pi h^3 rho w^2 r_i^2 / (20 eta), at 113.4 rad/s (1083 rpm) (Yuan et al. 2007). So at 600 rpm
+    // in (740 rpm slip) the film is full, at 820 rpm (1011 rpm slip) it is breaking up, at
+    // 1000 rpm (1233 rpm slip) broken; C1 is engaged. The film's heating lowers the apparent
+    // viscosity by a few % here (Nahme number ~0.3, 1 - Na/12), which moves both limits (~ eta^0.5)
+    // by ~1 %, inside the margins to them (7 % and more).
+    const auto c = io::load_case(test_support::source_path("configs/automatic-6speed.yaml"));
+    const auto& m = c.model;
+    size_t k = m.mechanisms.size();
+    for (size_t i = 0; i < m.mechanisms.size(); ++i)
+        if (m.mechanisms[i].name() == "clutch_drag") k = i;
+    REQUIRE(k < m.mechanisms.size());
+    REQUIRE(m.gearbox.clutches.size() == 6);
+    struct Expect {
+        double rpm_in;
+        clutch::FilmRegime regime;
+        std::string name;
+    };
+    for (const auto& x : {Expect{600, clutch::FilmRegime::full_film, "full_film"},
+                          Expect{820, clutch::FilmRegime::breaking_up, "film_breaking_up"},
+                          Expect{1000, clutch::FilmRegime::broken, "film_broken"}}) {
+        const auto p = solver::prepare_point(m, x.rpm_in * rpm, 100);
+        const auto L = solver::evaluate_losses(m, p, m.oil_state(degC + 40), true);
+        const auto& d = L.detail_of(m, "clutch_drag");
+        INFO(x.rpm_in << " rpm in: C6 slip " << m.layout.clutch_slip_ratio[5] * x.rpm_in << " rpm");
+        CHECK(m.layout.clutch_slip_ratio[5] == Approx(1.2329).epsilon(1e-3));
+        CHECK(clutch::FilmRegime(int(d.at(5, 1))) == x.regime);
+        CHECK(std::isnan(d.at(0, 1)));  // C1 engaged: no film
+        // The point report names it (the regime is the table's last column).
+        const std::string text = m.mechanisms[k].report(m, p.input(), *p.data[k], d);
+        INFO(text);
+        CHECK(text.find("regime\n") != std::string::npos);
+        std::string c6, c1;
+        for (size_t a = 0, b; a < text.size(); a = b + 1) {
+            b = text.find('\n', a);
+            const std::string line = text.substr(a, b - a);
+            if (line.rfind("  C6 ", 0) == 0) c6 = line;
+            if (line.rfind("  C1 ", 0) == 0) c1 = line;
+            if (b == std::string::npos) break;
+        }
+        CHECK(c6.size() > x.name.size());
+        CHECK(c6.substr(c6.size() - x.name.size()) == x.name);
+        CHECK(c1.substr(c1.size() - 7) == "engaged");
+    }
+}

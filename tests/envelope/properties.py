@@ -18,6 +18,12 @@ STEP_LN = 0.10
 #            sides, "positive" rises with torque for torque >= 0 (signed torque near zero is not
 #            monotone: a reversed gear force can cancel part of a shaft's weight)
 #   turning: True the loss is > 0 whenever its parts turn, whatever the torque
+#   speed_falls_in: regimes (as `point` names them) in which the loss may fall with speed
+#            although speed=+1: the fall is excused where a component of the mechanism is in
+#            one of them at either end of the interval
+#   speed_falls_across: (from, to) regimes: a fall is also excused where a component goes from
+#            `from` at the lower speed to `to` at the higher one (it passed through
+#            speed_falls_in between the grid points)
 PHYSICS = {
     "churning": dict(
         warming=-1, speed=+1, load="none", turning=True,
@@ -34,8 +40,12 @@ PHYSICS = {
             "warmer, thinner oil under the lip does not raise it; load-free"),
     "clutch_drag": dict(
         warming=-1, speed=+1, load="none", turning=False,
+        speed_falls_in=("film_breaking_up",), speed_falls_across=("full_film", "film_broken"),
         why="viscous shear in the open plate gaps (tau = eta omega r / h): falls with viscosity, "
-            "rises with slip speed, load-free; zero when no pack is open"),
+            "rises with slip speed while the film is full, load-free; zero when no pack is open. "
+            "Once the supply cannot fill the gap against the centrifugal outflow the wetted radius "
+            "shrinks and the drag peaks and falls with speed (Yuan et al. 2007; measured by Iqbal "
+            "et al. 2013): a fall is allowed only where `point` names a pack's film breaking up"),
     "auxiliary": dict(
         warming=-1, speed=+1, load="none", turning=False,
         why="parasitic pump/accessory power: constant or viscous, never rises with warming"),
@@ -51,6 +61,25 @@ PHYSICS = {
             "film thins (no warming sign); F_N ~ |torque|; mu ~ v^-0.2 cannot beat v in P; "
             "zero at zero torque (no normal load)"),
 }
+
+
+def section_of(name):
+    """The prefix of the `point` report section of mechanism `name` (gearloss_cli.point_regimes
+    keys are '<section>:<component>'): 'chur' for churning, 'clut' for clutch_drag."""
+    return name.split("_")[0][:4]
+
+
+def regime_changes(ra, rb, name, with_status=True):
+    """Keys of mechanism `name` (and the point's status) whose named regime differs at two points."""
+    sec = section_of(name)
+    return sorted(k for k in set(ra) | set(rb) if ra.get(k) != rb.get(k)
+                  and ((with_status and k == "status") or k.startswith(sec)))
+
+
+def regimes_in(r, name, wanted):
+    """Components of mechanism `name` whose regime at a point is one of `wanted`."""
+    sec = section_of(name)
+    return sorted(k for k, v in r.items() if k.startswith(sec) and v in wanted)
 
 
 def ln(v):

@@ -33,6 +33,23 @@ double thermal_shear_factor(double nahme) {
     return y / std::sinh(y);
 }
 
+std::string_view to_string(FilmRegime r) {
+    switch (r) {
+        case FilmRegime::full_film: return "full_film";
+        case FilmRegime::breaking_up: return "film_breaking_up";
+        case FilmRegime::broken: return "film_broken";
+    }
+    return "?";
+}
+
+FilmRegime film_regime(const WetClutchPack& c, double wetted_radius) {
+    // wetted_outer_radius() returns r_outer itself when the supply fills the gap and a root
+    // bracketed within 1e-7 m otherwise: a relative margin of 1e-9 separates the two.
+    if (wetted_radius >= c.r_outer * (1.0 - 1e-9)) return FilmRegime::full_film;
+    if (wetted_radius <= c.r_inner * (1.0 + 1e-9)) return FilmRegime::broken;
+    return FilmRegime::breaking_up;
+}
+
 namespace {
 // Centrifugal outflow capacity of a film wetted from r_i to r [m^3/s].
 double outflow(const WetClutchPack& c, double eta, double rho, double w, double r) {

@@ -5,6 +5,7 @@
 // outer radius that shrinks when the supplied oil cannot fill the gap against the
 // centrifugal outflow (after Yuan et al. 2007).
 #include <string>
+#include <string_view>
 
 namespace gearloss::clutch {
 
@@ -28,6 +29,15 @@ double shear_stress_factor(double H);
 // (40 eta ln(r/r_i)) equals the supply (radial Poiseuille flow with the mean centrifugal
 // head of a linear Couette profile, both plates' ends at ambient pressure).
 double wetted_outer_radius(const WetClutchPack& c, double eta, double rho, double slip_speed);
+
+// State of the oil film of an open pack at a slip speed (Yuan et al. 2007; Iqbal et al. 2013):
+//   full_film    the supply fills the gap out to r_outer: the drag rises with slip speed;
+//   breaking_up  the centrifugal outflow exceeds the supply, the wetted annulus ends at
+//                r_inner < r_w < r_outer and shrinks with speed: the drag peaks and falls;
+//   broken       r_w at r_inner: only the air (oil mist) in the gap is sheared.
+enum class FilmRegime { full_film, breaking_up, broken };
+std::string_view to_string(FilmRegime r);
+FilmRegime film_regime(const WetClutchPack& c, double wetted_radius);
 
 struct ClutchDrag {
     double torque = 0;       // N m

@@ -19,6 +19,10 @@ struct ClutchPoint : losses::MechanismPointOf<ClutchPoint> {
 
 class ClutchDragMechanism final : public losses::LossMechanism {
 public:
+    // Per pack: its drag and, for the point report only, the state of its film (FilmRegime as a
+    // number, NaN when engaged): the drag of an open pack peaks and falls with speed once the
+    // supply cannot fill the gap (Yuan et al. 2007), a regime the report names.
+    enum : size_t { kPower, kRegime, kQuantities };
     std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<ClutchDragMechanism>(*this); }
     std::string_view name() const override { return "clutch_drag"; }
     std::string_view label() const override { return "clutch drag"; }
@@ -27,7 +31,7 @@ public:
     std::vector<std::string> components(const solver::Model& m) const override {
         return losses::names_of(m.gearbox.clutches, [](const auto& c) { return c.pack.name; });
     }
-    std::vector<losses::DetailQuantity> quantities() const override { return {{"P_clutch_{}_W", 1.0}}; }
+    std::vector<losses::DetailQuantity> quantities() const override { return {{"P_clutch_{}_W", 1.0}, {"", 1.0}}; }
     std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<ClutchPoint>(); }
 
     void prepare(const solver::Model& m, const losses::PointInput& in, losses::MechanismPoint& out) const override {
@@ -46,20 +50,27 @@ public:
     double power(const solver::Model& m, const losses::MechanismPoint& pt, losses::Evaluation& e,
                  losses::MechanismDetail* d) const override {
         const auto& p = static_cast<const ClutchPoint&>(pt);
-        if (d) d->reset(p.slip.size(), 1);
+        if (d) {
+            d->reset(p.slip.size(), kQuantities);
+            for (size_t i = 0; i < p.slip.size(); ++i) d->at(i, kRegime) = std::nan("");
+        }
         double total = 0.0;
         for (size_t i = 0; i < p.slip.size(); ++i) {
             if (p.slip[i] == 0.0) continue;
-            const double P = open_pack_drag(m.gearbox.clutches[i].pack, e.oil, p.slip[i]).power;
-            total += P;
-            if (d) d->at(i) = P;
+            const auto& pack = m.gearbox.clutches[i].pack;
+            const ClutchDrag drag = open_pack_drag(pack, e.oil, p.slip[i]);
+            total += drag.power;
+            if (d) {
+                d->at(i, kPower) = drag.power;
+                d->at(i, kRegime) = double(film_regime(pack, drag.wetted_radius));
+            }
         }
         return total;
     }
     std::string loss_fault(const solver::Model& m, const losses::MechanismPoint&,
                            const losses::MechanismDetail& d) const override {
         for (size_t i = 0; i < m.gearbox.clutches.size(); ++i)
-            if (!(std::isfinite(d.at(i)) && d.at(i) >= 0)) return "clutch " + m.gearbox.clutches[i].pack.name + " drag";
+            if (!(std::isfinite(d.at(i, kPower)) && d.at(i, kPower) >= 0)) return "clutch " + m.gearbox.clutches[i].pack.name + " drag";
         return {};
     }
     std::string report(const solver::Model& m, const losses::PointInput& in, const losses::MechanismPoint&,
@@ -67,11 +78,18 @@ public:
         const auto& gb = m.gearbox;
         const auto& L = m.layout;
         if (gb.clutches.empty()) return {};
-        std::string s = "clutch packs          slip [rpm]   P [W]\n";
-        for (size_t i = 0; i < gb.clutches.size(); ++i)
-            s += fmt::format("  {:<18} {:10.1f} {:8.2f}{}\n", gb.clutches[i].pack.name,
-                             L.clutch_slip_ratio[i] * std::abs(in.omega_in) * rad_s_to_rpm, d.at(i),
-                             L.clutch_slip_ratio[i] == 0.0 ? "  (engaged)" : "");
+        // The last column names the film's regime (engaged, or the FilmRegime of an open pack):
+        // a step of the drag between two points is physics where it changes.
+        std::string s = "clutch packs          slip [rpm]   P [W]     regime\n";
+        for (size_t i = 0; i < gb.clutches.size(); ++i) {
+            const double regime = d.at(i, kRegime);
+            const bool engaged = L.clutch_slip_ratio[i] == 0.0;
+            s += fmt::format("  {:<18} {:10.1f} {:8.2f}  {}\n", gb.clutches[i].pack.name,
+                             L.clutch_slip_ratio[i] * std::abs(in.omega_in) * rad_s_to_rpm, d.at(i, kPower),
+                             engaged                  ? std::string_view("engaged")
+                             : std::isfinite(regime) ? to_string(FilmRegime(int(regime)))
+                                                     : std::string_view("not_slipping"));
+        }
         return s;
     }
 };
