@@ -343,9 +343,31 @@ def main():
     return report(F, props, a.report, time.time() - t0)
 
 
+KNOWN_OPEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "known_open.json")
+
+
+def known_open_entry(row, entries):
+    """The entry of known_open.json a failure group matches (property, case, and the mechanism
+    or a text of its worst detail), or None."""
+    for e in entries:
+        if e["property"] != row["property"] or e["case"] != row["case"]:
+            continue
+        if "mechanism" in e and e["mechanism"] != row["mechanism"]:
+            continue
+        if "detail" in e and e["detail"] not in row["detail"]:
+            continue
+        return e
+    return None
+
+
 def report(F, props, path, seconds):
-    rows = F.worst_per_key()
-    print(f"\noperating envelope: {len(F.items)} failures in {len(rows)} (property, case, mechanism) "
+    with open(KNOWN_OPEN) as f:
+        entries = json.load(f)["open"]
+    all_rows = F.worst_per_key()
+    known = [(r, known_open_entry(r, entries)) for r in all_rows]
+    rows = [r for r, e in known if e is None]
+    known = [(r, e) for r, e in known if e is not None]
+    print(f"\noperating envelope: {sum(r['n'] for r in rows)} failures in {len(rows)} (property, case, mechanism) "
           f"groups, {seconds:.0f} s")
     for p in PROPERTIES:
         if p not in props:
@@ -354,13 +376,22 @@ def report(F, props, path, seconds):
         print(f"\n[{p}] {'FAIL' if mine else 'pass'} ({F.checked.get(p, 0)} curves/families checked)")
         for r in mine:
             print(f"  {r['case']} | {r['mechanism']} | x{r['n']} | worst: {r['detail']}")
+    if known:
+        print(f"\nknown open defects (tests/envelope/known_open.json), not counted as failures ({len(known)} groups):")
+        for r, e in known:
+            print(f"  [{r['property']}] {r['case']} | {r['mechanism']} | x{r['n']}: {e['reason']}; worst: {r['detail']}")
+    seen = [e for _, e in known]
+    for e in entries:
+        if e["property"] in props and e not in seen and any(e["case"] == r.get("case") for r in all_rows + [dict(case=e["case"])]):
+            print(f"  no longer seen (remove it from known_open.json when a full run agrees): [{e['property']}] {e['case']}")
     if F.named:
         print(f"\nsteps explained by a named regime change ({len(F.named)}):")
         for s in F.named[:20]:
             print("  " + s)
     if path:
         with open(path, "w") as f:
-            json.dump(dict(failures=rows, named_regime_steps=F.named), f, indent=1)
+            json.dump(dict(failures=rows, known_open=[dict(r, reason=e["reason"]) for r, e in known],
+                           named_regime_steps=F.named), f, indent=1)
     return 1 if rows else 0
 
 
