@@ -24,36 +24,8 @@ namespace {
 constexpr double degC = 273.15;
 constexpr double rpm = std::numbers::pi / 30.0;
 
-// A 23/67 helical reducer, m_n 3 mm, beta 15 deg, no profile shift, the wheel dipping 9 mm
-// (tests/test_churning_monotone.cpp), with the tooth-surface form and R_f = 2, A_g = 0.5.
-std::string reducer(const std::string& mechanisms) {
-    return std::string(R"(name: Reducer 23/67 m_n 3 mm
-oil: oils/75W90-syn-A.yaml
-shafts: [input, output]
-gears:
-  - {name: pinion, shaft: input,  position: 0 mm, teeth: 23, module: 3 mm, face_width: 30 mm, helix_angle: 15 deg, hand: right, Ra: 0.4 um}
-  - {name: wheel,  shaft: output, position: 0 mm, teeth: 67, module: 3 mm, face_width: 30 mm, helix_angle: 15 deg, hand: left, Ra: 0.4 um, immersion: 9 mm}
-meshes:
-  - {name: m, gears: [pinion, wheel], angle: 0 deg}
-bearings:
-  - {name: in_a,  type: deep_groove_ball, series: "62", d: 30 mm, D: 62 mm, B: 16 mm, C0: 11.2 kN, shaft: input,  position: -50 mm, locating: true}
-  - {name: in_b,  type: deep_groove_ball, series: "62", d: 30 mm, D: 62 mm, B: 16 mm, C0: 11.2 kN, shaft: input,  position: 50 mm}
-  - {name: out_a, type: deep_groove_ball, series: "62", d: 45 mm, D: 85 mm, B: 19 mm, C0: 21.6 kN, shaft: output, position: -50 mm, locating: true}
-  - {name: out_b, type: deep_groove_ball, series: "62", d: 45 mm, D: 85 mm, B: 19 mm, C0: 21.6 kN, shaft: output, position: 50 mm}
-housing:
-  oil_volume: 1.5 L
-thermal:
-  mode: fixed
-  oil_temperature: 80 degC
-  ambient: 20 degC
-gearbox:
-  input: input
-  output: output
-operating:
-  speeds: [500 rpm, 1000 rpm, 2000 rpm]
-  torques: [50 N*m]
-)") + mechanisms;
-}
+// The 23/67 helical reducer of tests/test_support.hpp with a mechanisms block.
+std::string reducer(const std::string& mechanisms) { return test_support::reducer_23_67(mechanisms); }
 
 double churning_at(const solver::Model& m, double omega_in, double T) {
     const auto p = solver::prepare_point(m, omega_in, 100.0);
