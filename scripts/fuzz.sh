@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Fuzzes the YAML case loader, the recordings reader and the solver on
-# arbitrary-but-valid cases with libFuzzer (clang), ASan and UBSan.
-# Usage: scripts/fuzz.sh SECONDS   (split between the three targets)
+# arbitrary-but-valid cases with libFuzzer (clang), ASan and UBSan, then the whole
+# command line (every subcommand, hostile case/oil files and output paths) with the
+# crash, hang, NaN, damage and message oracles of scripts/fuzz-cli.py, on the same
+# sanitized build.
+# Usage: scripts/fuzz.sh SECONDS   (a quarter to each libFuzzer target, a quarter to the CLI)
 # New corpus entries go to build-fuzz/corpus/; crash inputs to
 # build-fuzz/artifacts/ (copy them to tests/fuzz/regressions/<target>/ once fixed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 total=${1:-300}
-per=$((total / 3))
+per=$((total / 4))
 scripts/install-deps.sh
 pkgs=(clang libclang-rt-14-dev libomp-14-dev)
 missing=()
@@ -19,7 +22,7 @@ if [ ${#missing[@]} -gt 0 ]; then
     DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq "${missing[@]}" > /dev/null
 fi
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DGEARLOSS_FUZZ=ON -DBUILD_TESTING=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo > /dev/null
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_config fuzz_recordings fuzz_map > /dev/null
+cmake --build build-fuzz -j "$(nproc)" --target fuzz_config fuzz_recordings fuzz_map gearloss > /dev/null
 mkdir -p build-fuzz/artifacts
 status=0
 execs=0
@@ -41,5 +44,17 @@ for t in config recordings map; do
         echo "fuzz_$t: $n executions in ${per} s, no crash, no sanitizer report, no hang"
     fi
 done
-echo "total executions: $execs"
+echo "total libFuzzer executions: $execs"
+# A sanitizer report ends the program with a code of its own (86/87), which the CLI
+# fuzzer's crash oracle counts as undocumented.
+set +e
+ASAN_OPTIONS=exitcode=86:detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:exitcode=87:print_stacktrace=1 \
+    python3 scripts/fuzz-cli.py --binary build-fuzz/app/gearloss --seconds "$per" --jobs "$(nproc)" \
+    --timeout 120 --out build-fuzz/cli --report build-fuzz/fuzz-cli.json | tail -n 20
+rc=${PIPESTATUS[0]}
+set -e
+if [ "$rc" -ne 0 ]; then
+    status=1
+    echo "fuzz-cli: FINDINGS, see build-fuzz/fuzz-cli.json and build-fuzz/cli/"
+fi
 exit $status
