@@ -52,16 +52,16 @@ TEST_CASE("form spread: the extremes are the losses of the cases written with th
     const auto c = load_text(base);
     const auto axes = map::spread_axes(c.model, {});
     // Every axis of every mechanism with alternatives: mesh friction (5), H_V (3), film (3),
-    // churning (2), windage (3).
+    // churning (3), windage (3).
     std::set<std::string> labels;
     for (const auto& a : axes) labels.insert(a.label());
     CHECK(labels == std::set<std::string>{"mesh.friction", "mesh.loss_factor", "mesh.film_correction", "churning.form",
                                           "windage.form"});
-    CHECK(map::combination_count(axes) == 5 * 3 * 3 * 2 * 3);
+    CHECK(map::combination_count(axes) == 5 * 3 * 3 * 3 * 3);
     // Every combination is a distinct choice of forms.
     std::set<std::string> seen;
     for (size_t i = 0; i < map::combination_count(axes); ++i) seen.insert(map::combination_label(axes, i));
-    CHECK(seen.size() == 270);
+    CHECK(seen.size() == 405);
     CHECK(seen.count("nominal") == 1);
 
     io::OperatingGrid grid;
@@ -79,7 +79,7 @@ TEST_CASE("form spread: the extremes are the losses of the cases written with th
         const auto [w, T] = grid.at(p);
         INFO("point " << p);
         const auto& s = spread[p];
-        CHECK(s.solved + s.unsolved == 270);
+        CHECK(s.solved + s.unsolved == 405);
         REQUIRE(s.solved > 0);
         CHECK(s.P_min <= s.P_max);
         if (solver::has_values(nominal[p].status)) {
@@ -165,7 +165,7 @@ TEST_CASE("form spread: combinations whose forms do not apply to the case are le
 
     const auto axes = map::spread_axes(c.model, {});
     const size_t n = map::combination_count(axes);
-    REQUIRE(n == 270);
+    REQUIRE(n == 405);
     // The combinations that do not apply: those with a closed-form H_V, 2 of the 3 forms.
     std::set<size_t> closed_form;
     for (size_t i = 0; i < n; ++i) {
@@ -174,7 +174,7 @@ TEST_CASE("form spread: combinations whose forms do not apply to the case are le
             label.find("mesh.loss_factor=buckingham") != std::string::npos)
             closed_form.insert(i);
     }
-    REQUIRE(closed_form.size() == 180);
+    REQUIRE(closed_form.size() == 270);
 
     io::OperatingGrid grid;
     grid.is_grid = true;
@@ -190,13 +190,13 @@ TEST_CASE("form spread: combinations whose forms do not apply to the case are le
         CHECK_THAT(s.reason, Catch::Contains("mesh 'm' has eps_alpha = 2.086"));
     }
     CHECK(skipped == closed_form);
-    CHECK(map::not_applicable_combinations(c.model, axes).size() == 180);
+    CHECK(map::not_applicable_combinations(c.model, axes).size() == 270);
     REQUIRE(spread.points.size() == grid.size());
     for (size_t p = 0; p < grid.size(); ++p) {
         INFO("point " << p);
         const auto& s = spread.points[p];
-        // Neither solved nor unsolved: the 90 combinations with Wimmer's H_V are all that count.
-        CHECK(s.solved + s.unsolved == 90);
+        // Neither solved nor unsolved: the 135 combinations with Wimmer's H_V are all that count.
+        CHECK(s.solved + s.unsolved == 135);
         CHECK(closed_form.count(s.at_min) == 0);
         CHECK(closed_form.count(s.at_max) == 0);
         // The nominal map is the case's own, within the spread.
@@ -208,11 +208,11 @@ TEST_CASE("form spread: combinations whose forms do not apply to the case are le
     }
     // The line on stderr and the JSON summary name them.
     CHECK_THAT(map::not_applicable_note(axes, spread.not_applicable),
-               Catch::StartsWith("180 of 270 form combinations do not apply to this case") &&
+               Catch::StartsWith("270 of 405 form combinations do not apply to this case") &&
                    Catch::Contains("first: mesh.loss_factor=ohlendorf: mesh 'm' has eps_alpha = 2.086"));
     CHECK(map::not_applicable_note(axes, {}).empty());
     nlohmann::ordered_json j;
     map::spread_summary_json(j, axes, spread, nominal);
-    CHECK_THAT(j.dump(), Catch::Contains("\"combinations\":270,\"combinations_not_applicable\":180,"
+    CHECK_THAT(j.dump(), Catch::Contains("\"combinations\":405,\"combinations_not_applicable\":270,"
                                         "\"not_applicable\":[\"mesh.loss_factor=ohlendorf\","));
 }

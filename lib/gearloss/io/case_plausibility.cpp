@@ -39,6 +39,7 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
     std::sort(speeds.begin(), speeds.end());
     speeds.erase(std::unique(speeds.begin(), speeds.end()), speeds.end());
     for (auto& f : solver::check_clutch_film_range(c.model, speeds)) findings.push_back(std::move(f));
+    for (auto& f : solver::check_churning_speed_range(c.model, speeds)) findings.push_back(std::move(f));
     std::vector<std::pair<double, double>> points;
     for (size_t i = 0; i < c.grid.size(); ++i) points.push_back(c.grid.at(i));
     for (auto& f : solver::check_mesh_film_range(c.model, points)) findings.push_back(std::move(f));

@@ -6,6 +6,7 @@
 
 #include "gearloss/bearings/skf_constants.hpp"
 #include "gearloss/churning/changenet_velex.hpp"
+#include "gearloss/churning/fitted_range.hpp"
 #include "gearloss/core/errors.hpp"
 #include "gearloss/core/message_text.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
@@ -189,6 +190,12 @@ std::string check_report(const Case& c) {
                              mech.value_source(m, p.name) == losses::LossMechanism::Source::oil ? " [from the oil]" : "",
                              mech.reads(m, p) ? "" : " [not read: " + p.used_by + " is not selected]", p.description);
     }
+    if (const auto* ch = m.mechanisms.find("churning"); ch && ch->enabled()) {
+        const auto r = churning::fitted_range(ch->form(m, "form"));
+        const auto coefficients = churning::coefficient_provenance(r.form);
+        s += fmt::format("\nchurning form {}: {} range: {} ({}){}\n", r.form, r.fitted ? "fitted" : "defined",
+                         churning::describe_limits(r), r.provenance, coefficients.empty() ? "" : "; " + coefficients);
+    }
     if (const auto caps = churning_caps(m); !caps.empty()) {
         s += "\nchurning across the Reynolds transition (Changenet & Velex 2007; held at the minimum of the published curve "
              "over Re_c where its high-Re form exceeds the low-Re one):\n";
@@ -345,6 +352,20 @@ nlohmann::ordered_json check_json_object(const Case& c) {
         j["mechanisms"].push_back(std::move(o));
     }
     j["operating_points"] = c.grid.size();
+    if (const auto* ch = m.mechanisms.find("churning"); ch && ch->enabled()) {
+        const auto r = churning::fitted_range(ch->form(m, "form"));
+        ordered_json range{{"form", r.form}, {"kind", r.fitted ? "fitted" : "defined"}, {"limits", ordered_json::array()}};
+        for (const auto& l : r.limits)
+            range["limits"].push_back({{"quantity", l.quantity},
+                                       {"lo", l.lo},
+                                       {"hi", std::isfinite(l.hi) ? ordered_json(l.hi) : ordered_json(nullptr)},
+                                       {"lo_open", l.lo_open},
+                                       {"unit", l.unit}});
+        range["provenance"] = r.provenance;
+        if (const auto coefficients = churning::coefficient_provenance(r.form); !coefficients.empty())
+            range["coefficients"] = coefficients;
+        j["churning_range"] = std::move(range);
+    }
     j["churning_transition"] = ordered_json::array();
     for (const auto& g : churning_caps(m))
         j["churning_transition"].push_back(

@@ -11,31 +11,60 @@
 //                         gearloss/churning/heingartner_mba.hpp: P = k mu, k per gear and speed from
 //                         prepare(). Its roughness factor R_f and arrangement constant A_g are
 //                         settings (the quote gives no values); a spur gear, for which the quoted
-//                         expression has no value (R_f / sqrt(tan beta)), keeps the default form.
+//                         expression has no value (R_f / sqrt(tan beta)), keeps the default form;
+//   mauz_1987             the splash torque of a dipping gear pair of Mauz (1987) as quoted for ISO/TR
+//                         14179-2, gearloss/churning/mauz_1987.hpp: one torque per mesh from the
+//                         immersions of its two gears, shared between them in proportion to their
+//                         immersion, each share at its gear's speed; no oil property enters (fitted
+//                         at one oil). The sump lengths h_c and l_h of its splash factor are settings
+//                         (0: C_Sp = 1). A dipping gear counts in its first mesh only; a dipping gear
+//                         in no mesh keeps the default form.
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
+#include <utility>
 
 #include "gearloss/churning/changenet_velex.hpp"
 #include "gearloss/churning/heingartner_mba.hpp"
+#include "gearloss/churning/mauz_1987.hpp"
 #include "gearloss/core/errors.hpp"
 #include "gearloss/losses/registry.hpp"
 #include "gearloss/model/model.hpp"
+#include "gearloss/units/units.hpp"
 
 namespace gearloss::churning {
 namespace {
 
 constexpr double rad_s_to_rpm = 30.0 / std::numbers::pi;
 
-enum class Form { changenet_velex_2007, heingartner_mba_2003 };
-constexpr const char* kFormNames[] = {"changenet_velex_2007", "heingartner_mba_2003"};
-constexpr int kForms = 2;
+enum class Form { changenet_velex_2007, heingartner_mba_2003, mauz_1987 };
+constexpr const char* kFormNames[] = {"changenet_velex_2007", "heingartner_mba_2003", "mauz_1987"};
+constexpr int kForms = 3;
 
 struct ChurningPoint : losses::MechanismPointOf<ChurningPoint> {
     std::vector<ChurningAtSpeed> gears;  // per gear (zero coefficients: not immersed)
     // Per gear, heingartner_mba_2003: P / mu [W/(Pa s)]; 0 where that form is not used.
     std::vector<double> tooth_surface;
+    // Per gear, mauz_1987: its share of the pair's splash power [W] (independent of the oil);
+    // `splash_form` marks the gears that churn by that form.
+    std::vector<double> splash;
+    std::vector<char> splash_form;
+    // The form that churns gear g (for the report).
+    const char* form_of(size_t g) const {
+        if (g < splash_form.size() && splash_form[g]) return kFormNames[2];
+        if (g < tooth_surface.size() && tooth_surface[g] != 0.0) return kFormNames[1];
+        return nullptr;
+    }
 };
+
+// The first mesh of gear g (-1: in none), and its side in it.
+std::pair<int, int> first_mesh(const solver::Model& m, size_t g) {
+    const auto& gb = m.gearbox;
+    for (size_t k = 0; k < gb.meshes.size(); ++k)
+        for (int s = 0; s < 2; ++s)
+            if (gb.meshes[k].gear[s] == static_cast<int>(g)) return {static_cast<int>(k), s};
+    return {-1, 0};
+}
 
 // Outside diameter of gear g: the tip diameter of its first mesh (ISO 21771 tip alteration
 // or as given), else d + 2 m_n (h*_a + x).
@@ -50,7 +79,7 @@ double outside_diameter(const solver::Model& m, size_t g) {
 
 class Churning final : public losses::LossMechanism {
 public:
-    enum : size_t { kFactor, kRoughnessFactor, kArrangementConstant };
+    enum : size_t { kFactor, kRoughnessFactor, kArrangementConstant, kSplashHeight, kSplashLength };
     enum : size_t { kPower, kRegime, kQuantities };
     std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<Churning>(*this); }
     std::string_view name() const override { return "churning"; }
@@ -70,10 +99,17 @@ public:
                 {"arrangement_constant",
                  "arrangement constant A_g of the tooth-surface form (heingartner_mba_2003); 0.2 as commonly quoted "
                  "from AGMA 6123 (unconfirmed)",
-                 nullptr, "0.2", 0.2, 1e-6, 1e6, false, "", "", false, kFormNames[1]}};
+                 nullptr, "0.2", 0.2, 1e-6, 1e6, false, "", "", false, kFormNames[1]},
+                {"splash_height",
+                 "length h_c of the splash factor C_Sp = (4 e_max/(3 h_c))^1.5 (2 h_c/l_h) of mauz_1987 (its definition "
+                 "is not verified); 0: C_Sp = 1",
+                 &units::dim::length, "60 mm", 0.0, 0.0, 100.0, false, "", "", false, kFormNames[2]},
+                {"splash_length",
+                 "length l_h of the splash factor C_Sp of mauz_1987 (its definition is not verified); 0: C_Sp = 1",
+                 &units::dim::length, "200 mm", 0.0, 0.0, 100.0, false, "", "", false, kFormNames[2]}};
     }
     std::vector<losses::FormAxis> forms(const solver::Model&) const override {
-        return {{"form", {kFormNames[0], kFormNames[1]}}};
+        return {{"form", {kFormNames[0], kFormNames[1], kFormNames[2]}}};
     }
     std::string form(const solver::Model& m, std::string_view axis) const override {
         if (axis == "form") return kFormNames[int(form_)];
@@ -96,8 +132,12 @@ public:
         auto& p = static_cast<ChurningPoint&>(out);
         p.gears.assign(gb.gears.size(), ChurningAtSpeed{});
         p.tooth_surface.assign(gb.gears.size(), 0.0);
+        p.splash.assign(gb.gears.size(), 0.0);
+        p.splash_form.assign(gb.gears.size(), 0);
         if (!enabled()) return;
+        if (form_ == Form::mauz_1987) prepare_splash(m, in, p);
         for (size_t g = 0; g < gb.gears.size(); ++g) {
+            if (p.splash_form[g]) continue;
             const double h = L.gear_immersion[g];
             if (h <= 0.0) continue;
             const auto& spec = gb.gears[g].spec;
@@ -131,7 +171,7 @@ public:
         for (size_t g = 0; g < p.gears.size(); ++g) {
             const auto& c = p.gears[g];
             if (!std::isfinite(c.omega) || !std::isfinite(c.coef_low) || !std::isfinite(c.coef_high) ||
-                !std::isfinite(c.ReC_times_nu) || !std::isfinite(p.tooth_surface[g]))
+                !std::isfinite(c.ReC_times_nu) || !std::isfinite(p.tooth_surface[g]) || !std::isfinite(p.splash[g]))
                 return "churning gear " + m.gearbox.gears[g].spec.name;
         }
         return {};
@@ -150,6 +190,13 @@ public:
             const double nu021 = std::exp(0.21 * std::log(e.oil.nu));
             for (size_t g = 0; g < p.gears.size(); ++g) {
                 const auto& c = p.gears[g];
+                if (p.splash_form[g]) {
+                    // mauz_1987: no oil property enters (regime 'none').
+                    const double P = param(kFactor) * p.splash[g];
+                    total += P;
+                    if (d) d->at(g, kPower) = P;
+                    continue;
+                }
                 if (p.tooth_surface[g] != 0.0) {
                     // heingartner_mba_2003: P = k mu (mu = rho nu, falls as the oil warms).
                     const double P = param(kFactor) * p.tooth_surface[g] * e.oil.rho * e.oil.nu;
@@ -186,11 +233,11 @@ public:
         std::string capped;
         for (size_t g = 0; g < gb.gears.size(); ++g) {
             const auto regime = Regime(int(d.at(g, kRegime)));
-            // A gear churning by the tooth-surface form has no Reynolds regime: the form is named.
-            const bool tooth_surface = g < p.tooth_surface.size() && p.tooth_surface[g] != 0.0;
+            // A gear churning by a form without Reynolds regimes: the form is named.
+            const char* form = p.form_of(g);
             s += fmt::format("  {:<18} {:14.2f} {:12.1f} {:9.2f}  {}\n", gb.gears[g].spec.name, L.gear_immersion[g] * 1e3,
                              std::abs(L.body_speed_ratio[L.body_of_gear[g]] * in.omega_in) * rad_s_to_rpm,
-                             d.at(g, kPower), tooth_surface ? kFormNames[1] : to_string(regime));
+                             d.at(g, kPower), form ? form : to_string(regime));
             if (regime == Regime::capped && g < p.gears.size())
                 capped += fmt::format("  capped '{}': the high-Re form is {:.2f} x the low-Re one at Re_c = 6000; held at the "
                                       "minimum of the published curve over Re_c (reached at Re_c = {:.0f})\n",
@@ -200,6 +247,37 @@ public:
     }
 
 private:
+    // mauz_1987: per mesh, the pair's splash torque from the immersions of the gears that dip and
+    // count in it (their first mesh), shared between them in proportion to their immersion
+    // (docs/config.md "Churning forms and their ranges"), each share at its gear's speed.
+    void prepare_splash(const solver::Model& m, const losses::PointInput& in, ChurningPoint& p) const {
+        const auto& gb = m.gearbox;
+        const auto& L = m.layout;
+        const SplashSump sump{param(kSplashHeight), param(kSplashLength)};
+        for (size_t k = 0; k < gb.meshes.size(); ++k) {
+            double e[2] = {0, 0};
+            for (int s = 0; s < 2; ++s) {
+                const auto g = static_cast<size_t>(gb.meshes[k].gear[s]);
+                if (L.gear_immersion[g] > 0 && first_mesh(m, g).first == static_cast<int>(k)) e[s] = L.gear_immersion[g];
+            }
+            if (!(e[0] + e[1] > 0)) continue;
+            // The face width of the deeper-dipping gear; the pitch-line speed at its reference circle
+            // (the same for both gears of the pair).
+            const int deep = e[1] > e[0] ? 1 : 0;
+            const auto gd = static_cast<size_t>(gb.meshes[k].gear[deep]);
+            const double w_deep = L.body_speed_ratio[L.body_of_gear[gd]] * in.omega_in;
+            const SplashPair pair{e[0], e[1], gb.gears[gd].spec.b, std::abs(w_deep) * 0.5 * gb.gears[gd].spec.d()};
+            const double T = mauz_splash_torque(pair, mauz_splash_factor(e[deep], sump));
+            for (int s = 0; s < 2; ++s) {
+                if (!(e[s] > 0)) continue;
+                const auto g = static_cast<size_t>(gb.meshes[k].gear[s]);
+                const double w = L.body_speed_ratio[L.body_of_gear[g]] * in.omega_in;
+                p.splash[g] = T * e[s] / (e[0] + e[1]) * std::abs(w);
+                p.splash_form[g] = 1;
+            }
+        }
+    }
+
     Form form_ = Form::changenet_velex_2007;
 };
 

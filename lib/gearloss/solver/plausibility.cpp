@@ -186,6 +186,34 @@ std::vector<PlausibilityFinding> check_mesh_geometry(const Model& m) {
     return out;
 }
 
+std::vector<PlausibilityFinding> check_churning_speed_range(const Model& m, const std::vector<double>& input_speeds) {
+    std::vector<PlausibilityFinding> out;
+    const auto* churn = m.mechanisms.find("churning");
+    if (!churn || !churn->enabled() || input_speeds.empty()) return out;
+    const auto range = churning::fitted_range(churn->form(m, "form"));
+    const auto speed_limit = std::find_if(range.limits.begin(), range.limits.end(),
+                                          [](const auto& l) { return l.quantity == "pitch-line speed"; });
+    if (speed_limit == range.limits.end()) return out;
+    double w_lo = 1e300, w_hi = 0;
+    for (double w : input_speeds) {
+        w_lo = std::min(w_lo, std::abs(w));
+        w_hi = std::max(w_hi, std::abs(w));
+    }
+    const auto& gb = m.gearbox;
+    const auto& L = m.layout;
+    for (size_t g = 0; g < gb.gears.size(); ++g) {
+        if (!(L.gear_immersion[g] > 0)) continue;
+        // Pitch-line speed at the reference circle: |Omega_g| d/2.
+        const double r = std::abs(L.body_speed_ratio[L.body_of_gear[g]]) * 0.5 * gb.gears[g].spec.d();
+        const std::string why = churning::outside_range(range, {{"pitch-line speed", r * w_lo, r * w_hi}});
+        if (!why.empty())
+            out.push_back({PlausibilityFinding::Severity::note, PlausibilityFinding::Subject::gear, static_cast<int>(g),
+                           fmt::format("churning form {} outside its {} range for gear '{}': {} ({})", range.form,
+                                       range.fitted ? "fitted" : "defined", gb.gears[g].spec.name, why, range.provenance)});
+    }
+    return out;
+}
+
 std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const std::vector<double>& input_speeds) {
     std::vector<PlausibilityFinding> out;
     const auto& gb = m.gearbox;

@@ -47,6 +47,11 @@ std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication 
 // per pack with the oil temperature below which its drag is extrapolated.
 std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const std::vector<double>& input_speeds);
 
+// The selected churning form against the speed limits of its range (a pitch-line speed, e.g.
+// mauz_1987 up to 60 m/s), over the case's input speeds [rad/s]: one note per dipping gear
+// outside it, with the span of its pitch-line speed and the range's provenance.
+std::vector<PlausibilityFinding> check_churning_speed_range(const Model& m, const std::vector<double>& input_speeds);
+
 // Bearings past SKF's starvation limit (gearloss/bearings/skf_model.hpp, skf_starvation_limit_nu)
 // at the model's fixed oil temperature and the input speed omega_in [rad/s] (the case's largest):
 // one note for all of them, naming each with its nu n and the limit, and saying that the rolling
