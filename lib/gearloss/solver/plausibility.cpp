@@ -197,7 +197,8 @@ std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const s
         if (!(ratio > 0)) continue;  // engaged
         const auto& pack = gb.clutches[i].pack;
         // The warmest oil temperature (1 K steps) at which, at one of the case's input speeds, the pack
-        // still holds an oil film (a broken film drags air only) whose Nahme number is beyond the range.
+        // still holds oil that drags more than the air (the film is not broken) and whose Nahme number
+        // is beyond the range.
         double below = 0, at_speed = 0;
         for (double w : input_speeds) {
             const double slip = ratio * w;
@@ -207,7 +208,7 @@ std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const s
                 const auto s = m.oil_state(T);
                 if (!(clutch::nahme_number(s.beta_T, s.eta, slip * pack.r_outer, s.k) > clutch::film_heating_nahme_limit))
                     break;  // the Nahme number falls as the oil warms
-                if (clutch::open_pack_drag(pack, s, slip).wetted_radius > pack.r_inner) below = T, at_speed = w;
+                if (clutch::open_pack_drag(pack, s, slip).regime != clutch::FilmRegime::broken) below = T, at_speed = w;
             }
         }
         if (below == 0) continue;
