@@ -219,6 +219,19 @@ TEST_CASE("wet clutch drag: where the heated film leaves its range the case says
             CHECK(w.find("degC its oil film heats beyond the range") != std::string::npos);
         }
     CHECK(notes == 5);
+    // A pack without oil_supply is taken as always full (no breakup, no peak): the case says so,
+    // for that pack only (C6 here, clutches[5]).
+    const std::string c6 = "{name: C6, engages: w6, interfaces: 6, r_inner: 52 mm, r_outer: 68 mm, clearance: 0.3 mm, roughness: 1.5 um";
+    test_support::TempConfig cfg(test_support::replace_once(
+        test_support::read_file(test_support::source_path("configs/automatic-6speed.yaml")), c6 + ", oil_supply: 0.3 L/min}", c6 + "}"));
+    int unfed = 0;
+    for (const auto& w : io::load_case(cfg.path).warnings)
+        if (w.find("has no oil_supply") != std::string::npos) {
+            ++unfed;
+            CHECK(w.find("clutches[5]") != std::string::npos);
+            CHECK(w.find("open pack 'C6'") != std::string::npos);
+        }
+    CHECK(unfed == 1);
     // An independent look at C6's 1000 rpm point (slip 1233 rpm): at 0 degC the film is inside
     // the range, at -20 degC outside.
     const auto& m = c.model;

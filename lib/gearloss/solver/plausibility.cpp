@@ -196,6 +196,14 @@ std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const s
         const double ratio = m.layout.clutch_slip_ratio[i];
         if (!(ratio > 0)) continue;  // engaged
         const auto& pack = gb.clutches[i].pack;
+        // Without a supply the gap is taken as always full: the drag then rises with slip speed
+        // forever, without the peak and gradual fall of a pack whose supply can no longer fill it.
+        if (!(pack.oil_supply > 0) && std::any_of(input_speeds.begin(), input_speeds.end(), [](double w) { return w > 0; }))
+            out.push_back({PlausibilityFinding::Severity::note, PlausibilityFinding::Subject::clutch, static_cast<int>(i),
+                           fmt::format("open pack '{}' has no oil_supply: its gaps are taken as always full of oil, so "
+                                       "its drag keeps rising with slip speed, without the peak and fall of a film "
+                                       "that its supply can no longer fill (give oil_supply to model the breakup)",
+                                       pack.name)});
         // The warmest oil temperature (1 K steps) at which, at one of the case's input speeds, the pack
         // still holds oil that drags more than the air (the film is not broken) and whose Nahme number
         // is beyond the range.
