@@ -56,9 +56,9 @@ double roughness_factor(const WetClutchPack& c) {
 // The two-phase region (the model's own assumption; no published form of it was found to cite).
 // When the supply Q_s cannot fill the gap, the full film ends at r_w (Yuan et al. 2007), where
 // its pressure is back at ambient. Beyond it the oil does not vanish: it spreads over the plate
-// as streaks (ligaments bridging the gap), air between them connected to the rim, as flow
-// visualisations of open packs show; Iqbal et al. (2013) likewise split the gap into an oil film
-// and an oil-air mist that still shears. Let the streaks cover a fraction f of every circle
+// as streaks (ligaments bridging the gap), air between them connected to the rim (the picture
+// reported from flow visualisations of open packs); Iqbal et al. (2013) likewise split the gap
+// into an oil film and an oil-air mist that still shears. Let the streaks cover a fraction f of every circle
 // between r_w and r_o (f the same at every radius). Each streak spans the gap and has ambient
 // pressure at both ends (r_w and the rim), so it carries the same radial flow per unit
 // circumference as a full film would: the region passes f Q_cap(r_w, r_o). All the supply
@@ -102,9 +102,9 @@ ClutchDrag two_phase_drag(const WetClutchPack& c, double eta_flow, double rho, d
 double outflow_capacity(const WetClutchPack& c, double eta, double rho, double slip_speed, double a, double b) {
     const double h3 = c.clearance * c.clearance * c.clearance;
     const double k = std::numbers::pi * h3 * rho * slip_speed * slip_speed / (40.0 * eta);
-    // (b^2 - a^2)/ln(b/a) -> 2 a^2 (1 + x + x^2/3 ...) with x = (b - a)/a: its series below 1e-6.
+    // (b^2 - a^2)/ln(b/a) = 2 a^2 (1 + x + x^2/6 + ...) with x = (b - a)/a: its series below 1e-6.
     const double x = (b - a) / a;
-    if (!(x > 1e-6)) return k * 2.0 * a * a * (1.0 + x + x * x / 3.0);
+    if (!(x > 1e-6)) return k * 2.0 * a * a * (1.0 + x + x * x / 6.0);
     return k * (b * b - a * a) / std::log(b / a);
 }
 
