@@ -143,7 +143,9 @@ def _regime_explainer(gl, case, oil_paths):
 def _flips(F, label, table, names, pts, xs, unit, explain=None):
     """Sign changes of P_a - P_b between neighbouring points where a or b steps (5 %). A flip is
     excused where every stepping oil steps most in a mechanism whose named regime changes there
-    (`explain`, _regime_explainer)."""
+    (`explain`, _regime_explainer): in the interval itself or in one of its two neighbours, the
+    intervals whose slopes find_steps takes as the trend (a kink there, e.g. the peak of an open
+    pack's drag, makes the trend predict a change the interval does not have)."""
     def P(p, nm, part="P_total"):
         return table.get((p[0], p[1], p[2], nm, part), float("nan"))
 
@@ -175,8 +177,15 @@ def _flips(F, label, table, names, pts, xs, unit, explain=None):
                 if D[j] * D[j + 1] < 0 and (j in steps[a] or j in steps[b]):
                     s = a if j in steps[a] else b
                     if explain:
-                        why = [explain(o, stepping(o, j), pts[j], pts[j + 1])
-                               for o in (a, b) if j in steps[o]]
+                        def regime_near(o):
+                            part = stepping(o, j)
+                            for k in (j, j - 1, j + 1):
+                                if 0 <= k < len(pts) - 1:
+                                    w = explain(o, part, pts[k], pts[k + 1])
+                                    if w:
+                                        return w if k == j else f"{w} (neighbouring interval)"
+                            return None
+                        why = [regime_near(o) for o in (a, b) if j in steps[o]]
                         if all(why):
                             F.named.append(f"{label}: {a} vs {b}: ranking flips between "
                                            f"{where(pts[j])} and {where(pts[j + 1])}: regime "

@@ -43,9 +43,10 @@ PHYSICS = {
         speed_falls_in=("film_breaking_up",), speed_falls_across=("full_film", "film_broken"),
         why="viscous shear in the open plate gaps (tau = eta omega r / h): falls with viscosity, "
             "rises with slip speed while the film is full, load-free; zero when no pack is open. "
-            "Once the supply cannot fill the gap against the centrifugal outflow the wetted radius "
-            "shrinks and the drag peaks and falls with speed (Yuan et al. 2007; measured by Iqbal "
-            "et al. 2013): a fall is allowed only where `point` names a pack's film breaking up"),
+            "Once the supply cannot fill the gap against the centrifugal outflow the full film "
+            "shrinks (Yuan et al. 2007) and the oil beyond it runs as streaks whose share falls as "
+            "1/omega^2: the drag peaks and falls gradually with speed (measured by Iqbal et al. "
+            "2013): a fall is allowed only where `point` names a pack's film breaking up"),
     "auxiliary": dict(
         warming=-1, speed=+1, load="none", turning=False,
         why="parasitic pump/accessory power: constant or viscous, never rises with warming"),

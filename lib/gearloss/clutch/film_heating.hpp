@@ -27,10 +27,12 @@ inline constexpr double film_heating_nahme_limit = 8.0 * (2.718281828459045 - 1.
 
 // Drag of an open pack with the film's viscous heating: the local shear stress eta dw r / h
 // is reduced by thermal_shear_factor(Na(r)), Na(r) = beta eta (dw r)^2 / k, and integrated
-// over the wetted annulus (times 1 + phi_fs of Patir & Cheng 1979); the wetted radius
-// (Yuan et al. 2007) uses the film's apparent viscosity at the pack's mean radius. The plates
-// are taken at the oil temperature (the supply cools them): hotter plates would lower the
-// drag further, so this is the upper bound of the heated film.
+// over the full film and, times the oil fraction, over the two-phase region beyond it (times
+// 1 + phi_fs of Patir & Cheng 1979); the air between the streaks shears at its own viscosity.
+// The outflow that sets the wetted radius (Yuan et al. 2007) and the oil fraction uses the
+// film's apparent viscosity at the pack's mean radius. The plates are taken at the oil
+// temperature (the supply cools them): hotter plates would lower the drag further, so this is
+// the upper bound of the heated film.
 ClutchDrag open_pack_drag(const WetClutchPack& c, const lubricant::OilState& oil, double slip_speed);
 
 }  // namespace gearloss::clutch

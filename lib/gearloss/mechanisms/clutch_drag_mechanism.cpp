@@ -21,7 +21,8 @@ class ClutchDragMechanism final : public losses::LossMechanism {
 public:
     // Per pack: its drag and, for the point report only, the state of its film (FilmRegime as a
     // number, NaN when engaged): the drag of an open pack peaks and falls with speed once the
-    // supply cannot fill the gap (Yuan et al. 2007), a regime the report names.
+    // supply cannot fill the gap (the film breaks up into streaks beyond the wetted radius of
+    // Yuan et al. 2007), a regime the report names.
     enum : size_t { kPower, kRegime, kQuantities };
     std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<ClutchDragMechanism>(*this); }
     std::string_view name() const override { return "clutch_drag"; }
@@ -62,7 +63,7 @@ public:
             total += drag.power;
             if (d) {
                 d->at(i, kPower) = drag.power;
-                d->at(i, kRegime) = double(film_regime(pack, drag.wetted_radius));
+                d->at(i, kRegime) = double(drag.regime);
             }
         }
         return total;

@@ -224,8 +224,17 @@ std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const s
         const double ratio = m.layout.clutch_slip_ratio[i];
         if (!(ratio > 0)) continue;  // engaged
         const auto& pack = gb.clutches[i].pack;
+        // Without a supply the gap is taken as always full: the drag then rises with slip speed
+        // forever, without the peak and gradual fall of a pack whose supply can no longer fill it.
+        if (!(pack.oil_supply > 0) && std::any_of(input_speeds.begin(), input_speeds.end(), [](double w) { return w > 0; }))
+            out.push_back({PlausibilityFinding::Severity::note, PlausibilityFinding::Subject::clutch, static_cast<int>(i),
+                           fmt::format("open pack '{}' has no oil_supply: its gaps are taken as always full of oil, so "
+                                       "its drag keeps rising with slip speed, without the peak and fall of a film "
+                                       "that its supply can no longer fill (give oil_supply to model the breakup)",
+                                       pack.name)});
         // The warmest oil temperature (1 K steps) at which, at one of the case's input speeds, the pack
-        // still holds an oil film (a broken film drags air only) whose Nahme number is beyond the range.
+        // still holds oil that drags more than the air (the film is not broken) and whose Nahme number
+        // is beyond the range.
         double below = 0, at_speed = 0;
         for (double w : input_speeds) {
             const double slip = ratio * w;
@@ -235,7 +244,7 @@ std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const s
                 const auto s = m.oil_state(T);
                 if (!(clutch::nahme_number(s.beta_T, s.eta, slip * pack.r_outer, s.k) > clutch::film_heating_nahme_limit))
                     break;  // the Nahme number falls as the oil warms
-                if (clutch::open_pack_drag(pack, s, slip).wetted_radius > pack.r_inner) below = T, at_speed = w;
+                if (clutch::open_pack_drag(pack, s, slip).regime != clutch::FilmRegime::broken) below = T, at_speed = w;
             }
         }
         if (below == 0) continue;

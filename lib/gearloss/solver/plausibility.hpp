@@ -44,7 +44,8 @@ std::vector<PlausibilityFinding> check_plausibility(const Model& m, Lubrication 
 // The open clutch packs whose oil film, at one of the input speeds [rad/s] and some oil temperature
 // within the oil's validity, heats beyond the range of the heated-film drag model (Nahme number at
 // the outer radius above clutch::film_heating_nahme_limit while the film is not broken): one note
-// per pack with the oil temperature below which its drag is extrapolated.
+// per pack with the oil temperature below which its drag is extrapolated; and one note per open
+// pack without an oil_supply (its gap is taken as always full: no breakup, no peak).
 std::vector<PlausibilityFinding> check_clutch_film_range(const Model& m, const std::vector<double>& input_speeds);
 
 // The selected churning form against the speed limits of its range (a pitch-line speed, e.g.
