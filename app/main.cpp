@@ -16,7 +16,10 @@ namespace app = gearloss::app;
 int main(int argc, char** argv) {
     // SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE (a reader closed a pipe written to) end a run
     // alike: its loops stop, no output file is written, exit 128 + the signal.
-    for (const int sig : gearloss::io::kInterruptSignals) std::signal(sig, gearloss::io::on_interrupt_signal);
+    // A SIGHUP ignored from the start (`nohup gearloss ...`) stays ignored: the run is to outlive
+    // its terminal.
+    for (const int sig : gearloss::io::kInterruptSignals)
+        if (std::signal(sig, gearloss::io::on_interrupt_signal) == SIG_IGN && sig == SIGHUP) std::signal(sig, SIG_IGN);
     // A file-size limit (or quota) must fail the write (EFBIG) so the partial
     // temporary file is removed, rather than kill the process mid-write.
     std::signal(SIGXFSZ, SIG_IGN);

@@ -72,6 +72,14 @@ refused "diagnose --write-config onto the bearing catalogue (through a link)" my
     bash -c 'ln -sf mycat.yaml cat-link && "$0" diagnose case.yaml rec.csv --write-config cat-link' "$bin"
 cd "$tmp" || exit 1
 
+# ... and cycle --json onto the file a named cycle is read from (the case's cycles/ folder).
+mkdir cyc && cd cyc || exit 1
+cp -r "$src/configs/oils" . && mkdir cycles && cp "$src/configs/cycles/nedc.csv" cycles/
+cp "$src/configs/automatic-6speed.yaml" case.yaml
+refused "cycle --json onto the named cycle's file" cycles/nedc.csv "--json 'cycles/nedc.csv' is the input --cycle nedc \(its file\)" \
+    "$bin" cycle case.yaml --cycle nedc --start-temp 20degC --json cycles/nedc.csv
+cd "$tmp" || exit 1
+
 # 3. The program itself: a copy of the binary, run from here, asked to write onto itself
 #    (as /proc/self/exe and by its path).
 mkdir prog && cp "$bin" prog/gl && cp -r "$src/configs/oils" prog/ && cp "$src/configs/transfer-box.yaml" prog/case.yaml
@@ -171,6 +179,17 @@ for s in HUP:1 QUIT:3 PIPE:13 TERM:15; do
     check "SIG$sig: says it was interrupted" grep -q "interrupted (signal $num" sig.err
     check "SIG$sig: no output or temporary file" test -z "$(ls -A out)"
 done
+
+# A SIGHUP ignored from the start (nohup) stays ignored: the run goes on.
+nohup "$bin" map "$spur" --speed "$speeds" --torque "$spur_torques" -o nohup.csv > /dev/null 2>&1 &
+pid=$!
+sleep 0.5
+kill -HUP $pid 2> /dev/null
+sleep 0.5
+check "nohup: SIGHUP ignored, still running" kill -0 $pid
+kill -TERM $pid 2> /dev/null
+wait $pid 2> /dev/null
+rm -f nohup.csv
 
 # 7. A reader that closes standard output ends a streamed map at once: 4 million points of the
 #    transfer box (minutes of work) piped to head -2 end within a few seconds (1 s is the
