@@ -208,5 +208,24 @@ check "map BIG | head -2: the two lines arrived" test "$(wc -l < head.txt)" -eq 
 check "map BIG | head -2: no summary written" test ! -e pipe.json
 check "map BIG | head -2: no temporary" no_temporary
 
+# The same, timed from the moment the reader closes the pipe (the contract's second; 2 s here
+# for a loaded machine): a reader that takes two lines, then closes.
+cat > close_after_two.py << 'EOF'
+import subprocess, sys, time
+p = subprocess.Popen(sys.argv[1:], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+p.stdout.readline(); p.stdout.readline()
+p.stdout.close()
+t = time.time()
+try:
+    rc = p.wait(timeout=10)
+except subprocess.TimeoutExpired:
+    p.kill(); p.wait(); rc = None
+print(f"{rc} {(time.time() - t) * 1000:.0f}")
+EOF
+read -r rc ms < <(python3 close_after_two.py "$bin" map "$src/configs/transfer-box.yaml" --speed "$big_speeds" \
+    --torque "$big_torques" -o -)
+check "map BIG, reader closes after two lines: exit 141 (got $rc)" test "$rc" = 141
+check "map BIG, reader closes after two lines: ends within 2 s of it (took $ms ms)" test "$ms" -lt 2000
+
 echo "cli_file_safety: $pass passed, $fail failed"
 test $fail -eq 0
