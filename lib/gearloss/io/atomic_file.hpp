@@ -4,10 +4,12 @@
 // leaves the previous file (or none). Details (lib/gearloss/io/output_paths.hpp):
 //  - the temporary file TARGET.tmp.gearloss-XXXXXX is created with O_EXCL (mkostemp) in
 //    the directory of the file finally written, with the target's mode (and owner, as
-//    root) when it exists, else 0666 & ~umask; it is flock'ed while in use;
+//    root) when it exists, else 0666 & ~umask; it is flock'ed from its creation to its
+//    rename, and the next run on the target removes a dead run's unlocked temporary;
 //  - a symbolic link is written through: the link stays, the file it names is replaced;
 //  - "-", /dev/stdout, /dev/fd/N, a character device or a FIFO is written directly,
-//    never replaced, as the text comes (a map streams its rows, at least every 0.2 s); when such a write is not
+//    never replaced, as the text comes (a map streams its rows; a stream gets what is
+//    ready at least every 0.2 s); when such a write is not
 //    committed (error, interrupt), a regular file behind the descriptor (`> out.csv`) is
 //    cut back to where it stood, and a pipe, FIFO or terminal, which cannot be taken back,
 //    is reported as incomplete (incomplete_stream);
