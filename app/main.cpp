@@ -14,12 +14,15 @@
 namespace app = gearloss::app;
 
 int main(int argc, char** argv) {
-    std::signal(SIGINT, gearloss::io::on_interrupt_signal);
-    std::signal(SIGTERM, gearloss::io::on_interrupt_signal);
+    // SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE (a reader closed a pipe written to) end a run
+    // alike: its loops stop, no output file is written, exit 128 + the signal.
+    // A SIGHUP ignored from the start (`nohup gearloss ...`) stays ignored: the run is to outlive
+    // its terminal.
+    for (const int sig : gearloss::io::kInterruptSignals)
+        if (std::signal(sig, gearloss::io::on_interrupt_signal) == SIG_IGN && sig == SIGHUP) std::signal(sig, SIG_IGN);
     // A file-size limit (or quota) must fail the write (EFBIG) so the partial
     // temporary file is removed, rather than kill the process mid-write.
     std::signal(SIGXFSZ, SIG_IGN);
-    std::signal(SIGPIPE, SIG_IGN);  // a closed pipe is EPIPE: stdout ends quietly, files are still written
     app::set_command_line(argc, argv);  // for the sidecar metadata of outputs
 
     CLI::App cli{"gearloss — where the power goes in a gearbox: mesh, churning, bearing and seal losses with the\n"
@@ -31,7 +34,8 @@ int main(int argc, char** argv) {
                  "  gearloss cycle configs/automatic-6speed.yaml --cycle wltc --start-temp -10degC\n"
                  "  gearloss map configs/fzg-c40-paor.yaml --speed 500,1000,1500rpm --torque 100,200Nm --oil-temp 90degC"};
     cli.footer("Exit codes: 0 success, 1 usage error, 2 input error (file:line:column: key: message), 3 output not "
-               "writable, 4 internal error, 130/143 interrupted (no output file written; a pipe stops part-way).\nEvery command: gearloss COMMAND --help");
+               "writable, 4 internal error, 128+signal interrupted by SIGINT/SIGTERM/SIGHUP/SIGQUIT/SIGPIPE or a closed "
+               "output pipe (130/143/129/131/141; no output file written; a pipe stops part-way).\nEvery command: gearloss COMMAND --help");
     cli.set_version_flag("--version", std::string("gearloss ") + GEARLOSS_VERSION);
     cli.require_subcommand(1);
 

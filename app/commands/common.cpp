@@ -10,6 +10,7 @@
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/case_plausibility.hpp"
 #include "gearloss/io/csv_read.hpp"
+#include "gearloss/io/data_dir.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/map/fingerprint.hpp"
 #include "gearloss/map/map_runner.hpp"
@@ -121,6 +122,9 @@ NamedPaths case_inputs(const std::string& config, const NamedPaths& more) {
         // A case that cannot be read or parsed: loading it reports the error with its line;
         // until then the case file itself is the input to protect.
     }
+    // The bearing catalogue gearloss ships, read for any designation (gearloss/io/data_dir.hpp).
+    if (const auto data = io::find_data_dir().dir)
+        inputs.emplace_back("the shipped bearing catalogue", (*data / "bearings" / "catalogue.yaml").string());
     inputs.insert(inputs.end(), more.begin(), more.end());
     return inputs;
 }

@@ -21,7 +21,7 @@ enum Exit : int {
     kUsage = 1,
     kInput = 2,
     kOutput = 3,
-    kInternal = 4,  // 130 / 143 on SIGINT / SIGTERM: io::interrupt_exit_code() (gearloss/io/interrupt.hpp)
+    kInternal = 4,  // 128 + signal on SIGINT/SIGTERM/SIGHUP/SIGQUIT/SIGPIPE: io::interrupt_exit_code() (gearloss/io/interrupt.hpp)
 };
 
 // The case and the options every case command takes (add_common_options): config, --ratio,
@@ -65,13 +65,13 @@ void write_csv_sidecar(const std::string& csv, const io::Case& k, std::string_vi
 // `text` (a CSV, after any '#' lines its header) into `csv`, and its sidecar.
 void write_csv_file(const std::string& csv, const std::string& text, const io::Case& k, map::MetadataRequest r = {});
 // The sidecar a CSV output `csv` of option `option` adds, as an (option, path) pair for
-// io::require_distinct_outputs and io::require_outputs_not_inputs (path empty: none).
+// io::require_safe_outputs (path empty: none).
 std::pair<std::string, std::string> sidecar_output(const std::string& option, const std::string& csv);
 
 // The files a command reads for the case `config`: the case itself and every file it names as
 // the loader resolves them (its oil file, a user bearing catalogue, sweep values:
-// map::named_files), then `more`; for io::require_outputs_not_inputs, so that no output lands
-// on any of them.
+// map::named_files), the bearing catalogue gearloss ships, then `more`; for
+// io::require_safe_outputs, so that no output lands on any of them.
 using NamedPaths = std::vector<std::pair<std::string, std::string>>;
 NamedPaths case_inputs(const std::string& config, const NamedPaths& more = {});
 
@@ -99,7 +99,7 @@ private:
 
 // Runs a parsed command inside an output transaction (its files appear together, or none)
 // and translates what it throws into the exit code and the message on stderr:
-// InputError -> 2, io::IoError -> 3, any other exception -> 4, an interrupt -> 130 / 143.
+// InputError -> 2, io::IoError -> 3, any other exception -> 4, an interrupt -> 128 + the signal (130 SIGINT, 143 SIGTERM, 129 SIGHUP, 131 SIGQUIT, 141 SIGPIPE or a closed output pipe).
 int run_command(const std::function<int()>& body);
 
 }  // namespace gearloss::app

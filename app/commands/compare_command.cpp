@@ -37,8 +37,7 @@ public:
         for (const auto& f : oils_) inputs.emplace_back("--oil", f);
         const std::vector<std::pair<std::string, std::string>> outputs = {
             {"--output", out_}, sidecar_output("--output", out_), {"--json", json_}};
-        io::require_distinct_outputs(outputs);
-        io::require_outputs_not_inputs(outputs, inputs);
+        io::require_safe_outputs(outputs, inputs);
         if (oils_.size() < 2) throw InputError("", 0, 0, "--oil", "compare needs two or more oils (--oil A --oil B ...)");
         io::Case base = load_with_options(common_);  // common_.oil stays empty: the oils are the --oil files
         grid_.apply(base, {"600,700rpm", "150,200Nm"});  // a point list with --speed/--torque: as map

@@ -41,11 +41,6 @@ public:
     }
 
     int run() override {
-        const std::vector<std::pair<std::string, std::string>> outputs = {
-            {"--output", out_}, sidecar_output("--output", out_), {"--json", json_}};
-        io::require_distinct_outputs(outputs);
-        io::require_outputs_not_inputs(outputs,
-                                       case_inputs(config_, {{"--oil", oil_}, {"--cycle", cycle_}}));
         io::Case k = io::load_case(config_);
         map::CaseOverrides no_grid;  // a cycle has no operating grid
         no_grid.grid = false;
@@ -53,9 +48,16 @@ public:
         const auto pt = io::load_powertrain(k, oil_.empty() ? std::nullopt : std::optional<std::string>(oil_));
         // A named cycle: the case's own cycles/ folder first, then the cycles gearloss ships,
         // looked up where the program runs (gearloss/io/data_dir.hpp) and only when needed.
-        const auto dc = io::resolve_cycle(cycle_, {(std::filesystem::path(config_).parent_path() / "cycles").string()}, [&] {
-            return (io::data_dir("--cycle", "'" + cycle_ + "' is a shipped cycle") / "cycles").string();
-        });
+        std::vector<std::string> cycle_files;
+        const auto dc = io::resolve_cycle(
+            cycle_, {(std::filesystem::path(config_).parent_path() / "cycles").string()},
+            [&] { return (io::data_dir("--cycle", "'" + cycle_ + "' is a shipped cycle") / "cycles").string(); },
+            &cycle_files);
+        // Every file read, a named cycle's files (the case's cycles/ folder or the shipped ones)
+        // included, is kept from the outputs, before the simulation.
+        NamedPaths inputs = case_inputs(config_, {{"--oil", oil_}, {"--cycle", cycle_}});
+        for (const auto& f : cycle_files) inputs.emplace_back("--cycle " + cycle_ + " (its file)", f);
+        io::require_safe_outputs({{"--output", out_}, sidecar_output("--output", out_), {"--json", json_}}, inputs);
         io::CycleStudyOptions so;
         so.start_temperature = absolute_temperature(start_temp_, "--start-temp");
         so.ambient = ambient_.empty() ? so.start_temperature : absolute_temperature(ambient_, "--ambient");

@@ -1,6 +1,7 @@
 // gearloss diagnose: recordings against the model, the mismatch located and the missing
 // physics named.
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <unistd.h>
 
@@ -37,14 +38,19 @@ public:
     }
 
     int run() override {
-        const std::vector<std::pair<std::string, std::string>> outputs = {
-            {"--json", json_}, {"--residuals", residuals_}, sidecar_output("--residuals", residuals_),
-            {"--write-config", write_config_}};
-        io::require_distinct_outputs(outputs);
-        io::require_outputs_not_inputs(outputs,
-                                       {{"config", common_.config}, {"--oil", common_.oil}, {"recordings", recordings_}});
         io::Case k = load_with_options(common_);
         const auto rec = diagnosis::read_recordings(recordings_);
+        // Every file read (the case and the files it names, --oil, the recordings and the oil
+        // files of their `oil` column) is kept from the outputs, before the fit.
+        NamedPaths inputs = case_inputs(common_.config, {{"--oil", common_.oil}, {"recordings", recordings_}});
+        const std::filesystem::path dir = std::filesystem::path(recordings_).parent_path();
+        for (const auto& p : rec.points)
+            if (!p.oil.empty())  // relative to the recordings file, as diagnosis::campaign_oils reads it
+                inputs.emplace_back("named in the recordings' oil column (line " + std::to_string(p.line) + ")",
+                                    std::filesystem::path(p.oil).is_absolute() ? p.oil : (dir / p.oil).string());
+        io::require_safe_outputs({{"--json", json_}, {"--residuals", residuals_}, sidecar_output("--residuals", residuals_),
+                                  {"--write-config", write_config_}},
+                                 inputs);
         diagnosis::DiagnoseOptions opt;
         opt.bootstrap = bootstrap_;
         opt.threads = threads_;

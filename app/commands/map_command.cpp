@@ -65,8 +65,8 @@ public:
     }
 
     int run() override {
-        io::require_distinct_outputs(outputs());
-        io::require_outputs_not_inputs(outputs(), {{"config", common_.config}, {"--oil", common_.oil}});
+        // --format vecto's per-gear files are checked once the case names its gears (run_vecto).
+        io::require_safe_outputs(outputs(), case_inputs(common_.config, {{"--oil", common_.oil}}));
         const bool axes_given = spread_axes_option_ && spread_axes_option_->count() > 0;
         if (axes_given && spread_axes_text_.empty())
             throw InputError("", 0, 0, "--spread-axes", "empty: name the axes, e.g. mesh.friction,windage.form");
@@ -116,13 +116,6 @@ private:
         return {{"--output", out_}, sidecar_output("--output", out_), {"--json", json_}};
     }
 
-    // No output onto a file the case names (its oil file, a sweep's oil files).
-    void require_outputs_not_named(const std::vector<std::pair<std::string, std::string>>& named) const {
-        std::vector<std::pair<std::string, std::string>> inputs;
-        for (const auto& [key, file] : named) inputs.emplace_back("named by the case at '" + key + "'", file);
-        io::require_outputs_not_inputs(outputs(), inputs);
-    }
-
     // "mesh.friction,windage.form" -> its axes; an empty name is an error naming the option.
     static std::vector<std::string> split_axes(const std::string& text) {
         std::vector<std::string> out;
@@ -144,7 +137,6 @@ private:
         if (!k.sweep.empty())
             throw InputError(k.file, 0, 0, "--format vecto", "the case has a sweep: a table per variant is not written "
                                                            "(set the variant's values in the case)");
-        require_outputs_not_named(map::named_files({.config = common_.config}));
         grid_.apply(k, kVectoExamples);  // a point list with --speed/--torque becomes a grid, as for csv
         if (!k.grid.is_grid) throw InputError(k.file, 0, 0, "operating", "--format vecto needs a speeds x torques grid");
         std::vector<std::string> ratios;
@@ -152,16 +144,28 @@ private:
         else ratios = k.model.ratio_names();
         if (ratios.size() > 1 && out_ == "-")
             throw InputError("", 0, 0, "--output", "several gears: give -o FILE (written as FILE_<ratio>.vtlm per gear)");
-        map::MapOptions opt;
-        opt.threads = threads_;
+        // The files written, FILE_<ratio>.vtlm per gear and their sidecars, checked before the first table.
+        std::vector<std::string> files;
+        io::NamedFiles outputs;
         for (const auto& ratio : ratios) {
-            if (!ratio.empty()) k.model.select_ratio(ratio);
             std::string file = out_;
             if (ratios.size() > 1) {
                 const bool vtlm = out_.size() > 5 && out_.substr(out_.size() - 5) == ".vtlm";
                 const std::string stem = vtlm ? out_.substr(0, out_.size() - 5) : out_;
                 file = stem + "_" + ratio + ".vtlm";
             }
+            const std::string option = ratios.size() > 1 ? "--output (gear " + ratio + ")" : "--output";
+            outputs.emplace_back(option, file);
+            outputs.push_back(sidecar_output(option, file));
+            files.push_back(file);
+        }
+        io::require_safe_outputs(outputs, case_inputs(common_.config, {{"--oil", common_.oil}}));
+        map::MapOptions opt;
+        opt.threads = threads_;
+        for (size_t g = 0; g < ratios.size(); ++g) {
+            const std::string& ratio = ratios[g];
+            const std::string& file = files[g];
+            if (!ratio.empty()) k.model.select_ratio(ratio);
             io::AtomicFile f(file);
             f.write(map::vecto_provenance(k));  // '#' lines, skipped by VECTO's reader
             std::string header;
@@ -281,7 +285,6 @@ private:
         const auto sweep = std::make_shared<io::Sweep>(common_.config, ratio);
         auto [document, sweep_block] = sweep->as_written();
         named_ = map::named_files({.config = common_.config, .parsed = {{"", document}, {"sweep", sweep_block}}});
-        require_outputs_not_named(named_);
         io::Case k = with_options(sweep->variant(0), common_);
         grid_.apply_checked(k, kMapExamples, spread_ ? map::kMaxGridPoints : map::kMaxStreamedPoints);
         const auto oil_temp = common_.oil_temp.empty() ? std::nullopt : std::optional<double>(k.model.thermal.oil_temperature);

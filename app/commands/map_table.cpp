@@ -55,13 +55,9 @@ int run_table_format(const TableRequest& q) {
                              ": the case has a sweep; a table per variant is not written (set the variant's values in the case)");
     }
     {
-        std::vector<std::pair<std::string, std::string>> inputs;
-        for (const auto& [key, file] : map::named_files({.config = q.common.config}))
-            inputs.emplace_back("named by the case at '" + key + "'", file);
-        std::vector<std::pair<std::string, std::string>> outputs{{"--output", q.out}, {"--json", q.json}};
+        io::NamedFiles outputs{{"--output", q.out}, {"--json", q.json}};
         if (!co2mpas) outputs.push_back(sidecar_output("--output", q.out));
-        io::require_distinct_outputs(outputs);
-        io::require_outputs_not_inputs(outputs, inputs);
+        io::require_safe_outputs(outputs, case_inputs(q.common.config, {{"--oil", q.common.oil}}));
     }
     q.grid.apply_checked(k, kTableExamples, map::kMaxTablePoints);
     std::vector<std::string> ratios;

@@ -25,7 +25,7 @@ public:
             inputs.emplace_back("shards", f);
             inputs.emplace_back("shards (metadata)", map::sidecar_path(f));
         }
-        io::require_outputs_not_inputs({{"--output", out_}, sidecar_output("--output", out_)}, inputs);
+        io::require_safe_outputs({{"--output", out_}, sidecar_output("--output", out_)}, inputs);
         io::AtomicFile f(out_);
         std::string header;
         map::merge_shards(shards_, [&](std::string_view s) {

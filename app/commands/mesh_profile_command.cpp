@@ -24,8 +24,8 @@ public:
     }
 
     int run() override {
-        io::require_outputs_not_inputs({{"--output", out_}, sidecar_output("--output", out_)},
-                                       case_inputs(common_.config, {{"--oil", common_.oil}}));
+        io::require_safe_outputs({{"--output", out_}, sidecar_output("--output", out_)},
+                                 case_inputs(common_.config, {{"--oil", common_.oil}}));
         io::Case k = load_with_options(common_);
         const double w = point_speed(speed_, "1600rpm");
         const double T = point_torque(torque_, "720Nm");

@@ -23,7 +23,7 @@ public:
     }
 
     int run() override {
-        io::require_outputs_not_inputs({{"--json", json_}}, case_inputs(common_.config, {{"--oil", common_.oil}}));
+        io::require_safe_outputs({{"--json", json_}}, case_inputs(common_.config, {{"--oil", common_.oil}}));
         io::Case k = load_with_options(common_);
         const double w = point_speed(speed_, "800rpm");
         const double T = point_torque(torque_, "250Nm");

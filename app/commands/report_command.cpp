@@ -38,7 +38,7 @@ public:
     int run() override {
         NamedPaths inputs = case_inputs(common_.config);
         for (const auto& f : oils_) inputs.emplace_back("--oil", f);
-        io::require_outputs_not_inputs({{"--output", out_}}, inputs);
+        io::require_safe_outputs({{"--output", out_}}, inputs);
         const bool axes_given = spread_axes_option_ && spread_axes_option_->count() > 0;
         if (axes_given && spread_axes_text_.empty())
             throw InputError("", 0, 0, "--spread-axes", "empty: name the axes, e.g. mesh.friction,windage.form");

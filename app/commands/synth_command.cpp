@@ -25,8 +25,8 @@ public:
     }
 
     int run() override {
-        io::require_outputs_not_inputs({{"--output", out_}, sidecar_output("--output", out_)},
-                                       case_inputs(common_.config, {{"--oil", common_.oil}}));
+        io::require_safe_outputs({{"--output", out_}, sidecar_output("--output", out_)},
+                                 case_inputs(common_.config, {{"--oil", common_.oil}}));
         io::Case k = load_with_options(common_);
         grid_.apply_checked(k, {"600,700rpm", "150,200Nm"});  // a point list with --speed/--torque: as map
         diagnosis::SynthOptions so;

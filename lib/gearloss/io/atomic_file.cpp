@@ -2,21 +2,25 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <climits>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <fcntl.h>
+#include <thread>
 #include <poll.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <tuple>
 #include <unistd.h>
+
+#include "gearloss/io/interrupt.hpp"
 
 namespace gearloss::io {
 
 namespace {
 
-std::atomic<bool> g_stdout_closed{false};
 std::string g_incomplete_stream;  // set by ~AtomicFile, on the thread that owns the file (the main one)
 
 // A completed temporary file waiting for its rename.
@@ -45,11 +49,17 @@ bool is_regular(int fd) {
     return ::fstat(fd, &s) == 0 && S_ISREG(s.st_mode);
 }
 
-// Writes all of [p, p+n) to fd. Returns false when the reader closed the pipe (EPIPE:
-// SIGPIPE is ignored by the CLI). On a pipe, FIFO or terminal it waits with poll() in
-// short steps and writes at most PIPE_BUF bytes at a time, so an interrupt is seen even
-// when the reader stalls. Throws IoError on any other error or on an interrupt.
-bool write_all(int fd, const char* p, size_t n, bool waitable, const std::string& label) {
+// A reader closed the pipe `label` writes to (EPIPE): the run ends as on SIGPIPE.
+[[noreturn]] void reader_closed(const std::string& label) {
+    on_reader_closed();
+    throw IoError("the reader closed the pipe of the output " + label);
+}
+
+// Writes all of [p, p+n) to fd. On a pipe, FIFO or terminal it waits with poll() in short
+// steps and writes at most PIPE_BUF bytes at a time, so an interrupt is seen even when the
+// reader stalls. Throws IoError on any error (a closed pipe: reader_closed) or on an
+// interrupt.
+void write_all(int fd, const char* p, size_t n, bool waitable, const std::string& label) {
     while (n > 0) {
         interrupted_check(label);
         size_t chunk = std::min(n, size_t(1) << 20);
@@ -67,13 +77,12 @@ bool write_all(int fd, const char* p, size_t n, bool waitable, const std::string
                 waitable = true;
                 continue;
             }
-            if (errno == EPIPE) return false;
+            if (errno == EPIPE) reader_closed(label);
             throw IoError("cannot write " + label + ": " + why(errno));
         }
         p += w;
         n -= static_cast<size_t>(w);
     }
-    return true;
 }
 
 void fsync_directory(const std::string& dir) {
@@ -82,6 +91,46 @@ void fsync_directory(const std::string& dir) {
     ::fsync(d);  // durability of the rename; some file systems refuse it, harmlessly
     ::close(d);
 }
+
+// Locks (flock) on the directories a group of renames goes into, taken in one order
+// (device, inode) so that two runs never wait for each other in a circle. Runs that publish
+// onto the same files then do so one after the other, and the files left are all from the
+// last of them: a CSV and its sidecar always come from one run. A directory that cannot be
+// opened for reading is renamed into without its lock.
+class DirectoryLocks {
+public:
+    explicit DirectoryLocks(const std::vector<Pending>& list) {
+        std::vector<std::tuple<dev_t, ino_t, int>> dirs;
+        for (const auto& p : list) {
+            const int d = ::open(p.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+            struct stat s {};
+            if (d < 0) continue;
+            if (::fstat(d, &s) != 0) {
+                ::close(d);
+                continue;
+            }
+            dirs.emplace_back(s.st_dev, s.st_ino, d);
+        }
+        std::sort(dirs.begin(), dirs.end());
+        for (size_t i = 0; i < dirs.size(); ++i) {
+            const auto [dev, ino, d] = dirs[i];
+            if (i > 0 && std::get<0>(dirs[i - 1]) == dev && std::get<1>(dirs[i - 1]) == ino) {
+                ::close(d);
+                continue;
+            }
+            while (::flock(d, LOCK_EX) != 0 && errno == EINTR) {}
+            fds_.push_back(d);
+        }
+    }
+    ~DirectoryLocks() {
+        for (int d : fds_) ::close(d);  // closing releases the lock
+    }
+    DirectoryLocks(const DirectoryLocks&) = delete;
+    DirectoryLocks& operator=(const DirectoryLocks&) = delete;
+
+private:
+    std::vector<int> fds_;
+};
 
 void rename_into_place(Pending& p) {
     const std::string target = (p.dir == "/" ? "/" : p.dir + "/") + p.name;
@@ -93,7 +142,6 @@ void rename_into_place(Pending& p) {
     }
     fsync_directory(p.dir);
     ::close(p.fd);  // releases the lock only now: the file has its final name
-    remove_stale_temporaries(p.dir, p.name);
 }
 
 void discard(std::vector<Pending>& list) {
@@ -106,6 +154,43 @@ void discard(std::vector<Pending>& list) {
 
 }  // namespace
 
+// While a pipe, FIFO or socket receives a streamed output, a thread waits for its reader to
+// go (poll() reports POLLERR on a pipe without readers, POLLHUP on a socket shut by its
+// peer): the run then ends as on SIGPIPE at once, not at the next write, which a map may make
+// only after minutes of computing (a megabyte of rows is buffered between writes).
+class ReaderWatch {
+public:
+    explicit ReaderWatch(int fd) : fd_(fd), thread_([this] { run(); }) {}
+    ~ReaderWatch() {
+        stop_.store(true, std::memory_order_relaxed);
+        thread_.join();
+    }
+    ReaderWatch(const ReaderWatch&) = delete;
+    ReaderWatch& operator=(const ReaderWatch&) = delete;
+
+    // A descriptor worth watching: a pipe, FIFO or socket (a terminal has SIGHUP).
+    static bool watchable(int fd) {
+        struct stat s {};
+        return ::fstat(fd, &s) == 0 && (S_ISFIFO(s.st_mode) || S_ISSOCK(s.st_mode));
+    }
+
+private:
+    void run() {
+        while (!stop_.load(std::memory_order_relaxed)) {
+            pollfd pfd{fd_, 0, 0};  // no event asked: POLLERR and POLLHUP are always reported
+            const int r = ::poll(&pfd, 1, 100);
+            if (r > 0 && (pfd.revents & (POLLERR | POLLHUP)) && !stop_.load(std::memory_order_relaxed)) {
+                on_reader_closed();
+                return;
+            }
+            if (r < 0 && errno != EINTR) return;
+        }
+    }
+    int fd_;
+    std::atomic<bool> stop_{false};
+    std::thread thread_;
+};
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), label_("'" + path_ + "'") {
     target_ = resolve_output(path_);
     switch (target_.kind) {
@@ -114,11 +199,11 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), label_("'" + 
         if (fd_ == 1) {
             label_ = "to standard output";
             std::fflush(stdout);  // keep the order of text printed through stdio (errors: see finish_stdout)
-            closed_by_reader_ = g_stdout_closed;
         }
         struct stat s {};
         if (::fstat(fd_, &s) != 0) throw IoError("cannot write " + label_ + ": " + why(errno));
         waitable_ = !S_ISREG(s.st_mode);
+        if (ReaderWatch::watchable(fd_)) watch_ = std::make_unique<ReaderWatch>(fd_);
         if (S_ISREG(s.st_mode)) {  // `> out.csv` (or `>>`): where to cut back an abandoned output
             const int flags = ::fcntl(fd_, F_GETFL);
             rewind_to_ = flags >= 0 && (flags & O_APPEND) ? static_cast<long long>(s.st_size)
@@ -163,16 +248,16 @@ void AtomicFile::open_direct() {
     }
     if (fifo) ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
     waitable_ = true;
+    if (ReaderWatch::watchable(fd_)) watch_ = std::make_unique<ReaderWatch>(fd_);
 }
 
 void AtomicFile::create_temporary() {
-    std::string tmpl = (target_.dir == "/" ? "/" : target_.dir + "/") + temp_prefix(target_.name) + "XXXXXX";
-    fd_ = ::mkostemp(tmpl.data(), O_CLOEXEC);  // O_CREAT | O_EXCL, mode 0600: never follows a planted link
+    std::string tmpl;
+    fd_ = create_locked_temporary(target_.dir, target_.name, tmpl);  // locked: "in use" until renamed or removed
     if (fd_ < 0)
         throw IoError("cannot write " + label_ + ": cannot create a temporary file in '" + target_.dir + "': " + why(errno));
     own_fd_ = true;
     tmp_ = tmpl;
-    ::flock(fd_, LOCK_EX | LOCK_NB);  // "in use": remove_stale_temporaries leaves it alone
     mode_t mode = 0666 & ~current_umask();
     if (target_.kind == OutputTarget::Kind::regular) {
         const struct stat& st = target_.st;
@@ -195,6 +280,7 @@ void AtomicFile::create_temporary() {
 }
 
 AtomicFile::~AtomicFile() {
+    watch_.reset();
     if (!committed_ && wrote_ && tmp_.empty() && fd_ >= 0) {
         // A direct output abandoned part-way: a regular file is cut back (a shell's `> out.csv`
         // then holds what it held before); a stream cannot be, and the messages say so.
@@ -208,24 +294,28 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::write(std::string_view s) {
-    if (closed_by_reader_) return;
     interrupted_check(label_);
     buf_.append(s);
-    if (buf_.size() >= (size_t(1) << 20)) flush_buffer();
+    // A stream (pipe, FIFO, terminal) also gets what is ready every 0.2 s: its reader sees the
+    // rows as they come (`map ... -o - | head -2` gets its lines at once, not after a megabyte).
+    const auto now = std::chrono::steady_clock::now();
+    if (buf_.size() >= (size_t(1) << 20) || (waitable_ && now - last_flush_ >= std::chrono::milliseconds(200))) {
+        flush_buffer();
+        last_flush_ = now;
+    }
 }
 
 void AtomicFile::flush_buffer() {
-    wrote_ = wrote_ || (!closed_by_reader_ && !buf_.empty());
-    if (!closed_by_reader_ && !buf_.empty() && !write_all(fd_, buf_.data(), buf_.size(), waitable_, label_)) {
-        closed_by_reader_ = true;
-        if (target_.kind == OutputTarget::Kind::descriptor && fd_ == 1) g_stdout_closed = true;
-    }
+    if (buf_.empty()) return;
+    wrote_ = true;
+    write_all(fd_, buf_.data(), buf_.size(), waitable_, label_);
     buf_.clear();
 }
 
 void AtomicFile::commit() {
     if (committed_) return;
     flush_buffer();
+    watch_.reset();  // every byte went out: a reader leaving now loses nothing
     if (tmp_.empty()) {  // written directly
         if (own_fd_) {
             const int fd = fd_;
@@ -241,8 +331,12 @@ void AtomicFile::commit() {
     fd_ = -1;
     committed_ = true;  // the temporary file now belongs to the transaction or is renamed
     auto& tx = transaction();
-    if (tx.active) tx.pending.push_back(std::move(p));
-    else rename_into_place(p);
+    if (tx.active) {
+        tx.pending.push_back(std::move(p));
+    } else {
+        const DirectoryLocks locks({p});
+        rename_into_place(p);
+    }
 }
 
 OutputTransaction::OutputTransaction() { transaction().active = true; }
@@ -260,6 +354,7 @@ void OutputTransaction::publish() {
     std::vector<Pending> list = std::move(tx.pending);
     tx.pending.clear();
     tx.active = false;
+    const DirectoryLocks locks(list);
     for (size_t i = 0; i < list.size(); ++i) {
         try {
             rename_into_place(list[i]);
@@ -271,8 +366,6 @@ void OutputTransaction::publish() {
     }
 }
 
-bool stdout_closed() { return g_stdout_closed; }
-
 std::string incomplete_stream() { return g_incomplete_stream; }
 
 void finish_stdout() {
@@ -280,21 +373,15 @@ void finish_stdout() {
     const int e = errno;
     if (flushed && !std::ferror(stdout)) return;
     std::clearerr(stdout);
-    // An earlier stdio write may have failed: a pipe without a reader is a quiet end.
+    // An earlier stdio write may have failed: a pipe without a reader ends the run as SIGPIPE.
     pollfd pfd{STDOUT_FILENO, POLLOUT, 0};
-    if ((!flushed && e == EPIPE) || g_stdout_closed || (::poll(&pfd, 1, 0) == 1 && (pfd.revents & POLLERR))) {
-        g_stdout_closed = true;
-        return;
-    }
+    if ((!flushed && e == EPIPE) || (::poll(&pfd, 1, 0) == 1 && (pfd.revents & POLLERR))) reader_closed("to standard output");
     throw IoError("cannot write to standard output: " + (flushed ? std::string("write error") : why(e)));
 }
 
 void write_stdout(std::string_view text) {
-    if (g_stdout_closed) return;
     finish_stdout();
-    if (g_stdout_closed) return;
-    if (!write_all(STDOUT_FILENO, text.data(), text.size(), !is_regular(STDOUT_FILENO), "to standard output"))
-        g_stdout_closed = true;
+    write_all(STDOUT_FILENO, text.data(), text.size(), !is_regular(STDOUT_FILENO), "to standard output");
 }
 
 }  // namespace gearloss::io

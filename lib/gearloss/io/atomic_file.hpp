@@ -4,16 +4,23 @@
 // leaves the previous file (or none). Details (lib/gearloss/io/output_paths.hpp):
 //  - the temporary file TARGET.tmp.gearloss-XXXXXX is created with O_EXCL (mkostemp) in
 //    the directory of the file finally written, with the target's mode (and owner, as
-//    root) when it exists, else 0666 & ~umask; it is flock'ed while in use;
+//    root) when it exists, else 0666 & ~umask; it is flock'ed from its creation to its
+//    rename, and the next run on the target removes a dead run's unlocked temporary;
 //  - a symbolic link is written through: the link stays, the file it names is replaced;
 //  - "-", /dev/stdout, /dev/fd/N, a character device or a FIFO is written directly,
-//    never replaced, as the text comes (a map streams its rows); when such a write is not
+//    never replaced, as the text comes (a map streams its rows; a stream gets what is
+//    ready at least every 0.2 s); when such a write is not
 //    committed (error, interrupt), a regular file behind the descriptor (`> out.csv`) is
 //    cut back to where it stood, and a pipe, FIFO or terminal, which cannot be taken back,
 //    is reported as incomplete (incomplete_stream);
 //  - every write, flush, fsync, close and rename is checked (IoError, exit 3); a reader
-//    that closed its pipe (EPIPE, with SIGPIPE ignored) ends that stream quietly;
-//  - an interrupt (g_interrupted) stops the writing (IoError) and nothing is renamed.
+//    that closed its pipe (EPIPE, or seen by a watch while a pipe, FIFO or socket is
+//    written) ends the run as SIGPIPE does (gearloss/io/interrupt.hpp: on_reader_closed);
+//  - an interrupt (g_interrupted) stops the writing (IoError) and nothing is renamed;
+//  - the renames of one run hold an flock on each target directory, so two runs writing
+//    the same files leave all the files of one of them (a CSV and its sidecar agree).
+#include <chrono>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,6 +30,8 @@
 #include "gearloss/io/output_paths.hpp"
 
 namespace gearloss::io {
+
+class ReaderWatch;
 
 class AtomicFile {
 public:
@@ -44,7 +53,9 @@ private:
     std::string path_, label_;  // as given; "'path'" or "to standard output" for messages
     OutputTarget target_;
     int fd_ = -1;
-    bool own_fd_ = false, waitable_ = false, closed_by_reader_ = false, committed_ = false;
+    bool own_fd_ = false, waitable_ = false, committed_ = false;
+    std::unique_ptr<ReaderWatch> watch_;  // a pipe, FIFO or socket: its reader's leaving ends the run
+    std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
     std::string tmp_;           // temporary file, empty when written directly
     std::string buf_;
     long long rewind_to_ = -1;  // a regular file written through a descriptor: its offset before
@@ -69,12 +80,10 @@ public:
 };
 
 // Text on standard output, checked: IoError on a write error (e.g. ENOSPC on /dev/full);
-// a closed pipe (EPIPE) ends standard output quietly and later text is dropped.
+// a closed pipe (EPIPE) ends the run as SIGPIPE (on_reader_closed, then IoError).
 void write_stdout(std::string_view text);
 // Flushes stdio's stdout, checked as write_stdout.
 void finish_stdout();
-// A reader closed the pipe on standard output.
-bool stdout_closed();
 
 // IoError (exit 3) and the interrupt flag (set by the signal handler: long loops stop and
 // outputs are discarded) are core's; the io names stay.

@@ -95,12 +95,15 @@ std::vector<std::string> cycle_names() {
 }
 
 DriveCycle resolve_cycle(const std::string& name_or_file, const std::vector<std::string>& dirs,
-                         const std::function<std::string()>& shipped) {
+                         const std::function<std::string()>& shipped, std::vector<std::string>* files_read) {
     const auto it = named().find(name_or_file);
     if (it == named().end()) {
         std::error_code ec;
         // Any existing path is read as a file: a FIFO, a device or a directory is then refused by name.
-        if (fs::exists(fs::status(name_or_file, ec))) return load_cycle_csv(name_or_file);
+        if (fs::exists(fs::status(name_or_file, ec))) {
+            if (files_read) files_read->push_back(name_or_file);
+            return load_cycle_csv(name_or_file);
+        }
         std::string names;
         for (const auto& n : cycle_names()) names += (names.empty() ? "" : ", ") + n;
         throw InputError("", 0, 0, "--cycle", "'" + excerpt(name_or_file) + "' is neither a cycle file nor one of: " + names);
@@ -126,6 +129,7 @@ DriveCycle resolve_cycle(const std::string& name_or_file, const std::vector<std:
             throw InputError("", 0, 0, "--cycle", "cycle file '" + it->second[k] + ".csv' not found in " +
                                                       (searched.empty() ? std::string("any folder") : searched));
         }
+        if (files_read) files_read->push_back(found);
         DriveCycle part = load_cycle_csv(found);
         out = k == 0 ? part : cycle::concatenate(out, part, name_or_file);
     }

@@ -15,9 +15,11 @@ cycle::DriveCycle load_cycle_csv(const std::string& file);
 // A name (nedc, wltc, wltc-class3b, artemis, artemis-urban, artemis-rural,
 // artemis-motorway-130, artemis-motorway-150) resolved in `dirs` (the first folder holding
 // its file), then in the folder `shipped` returns (called only when a file of the cycle is in
-// none of `dirs`; it may throw), or a CSV file path.
+// none of `dirs`; it may throw), or a CSV file path. `files_read`, when given, receives the
+// path of every file read (so that no output of the run lands on one).
 cycle::DriveCycle resolve_cycle(const std::string& name_or_file, const std::vector<std::string>& dirs,
-                                const std::function<std::string()>& shipped = {});
+                                const std::function<std::string()>& shipped = {},
+                                std::vector<std::string>* files_read = nullptr);
 // The names resolve_cycle knows.
 std::vector<std::string> cycle_names();
 

@@ -7,7 +7,6 @@
 #include <climits>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <dirent.h>
 #include <fcntl.h>
 #include <fstream>
@@ -111,7 +110,6 @@ void remove_stale_temporaries(const std::string& dir, const std::string& name) {
     const std::string prefix = temp_prefix(name);
     DIR* d = ::opendir(dir.c_str());
     if (!d) return;
-    const std::time_t now = std::time(nullptr);
     while (const dirent* e = ::readdir(d)) {
         const std::string n = e->d_name;
         if (n.size() != prefix.size() + 6 || n.compare(0, prefix.size(), prefix) != 0) continue;
@@ -123,72 +121,108 @@ void remove_stale_temporaries(const std::string& dir, const std::string& name) {
         const int fd = ::open(full.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
         if (fd < 0) continue;
         struct stat s {}, l {};
+        // Unlocked: its writer is gone (the lock, not the age, decides). Still the same file
+        // under that name once locked: then it is removed while this run holds its lock.
         if (::fstat(fd, &s) == 0 && S_ISREG(s.st_mode) && (::geteuid() == 0 || s.st_uid == ::geteuid()) &&
-            now - s.st_mtime > kStaleTempSeconds && ::flock(fd, LOCK_EX | LOCK_NB) == 0 && ::lstat(full.c_str(), &l) == 0 &&
-            l.st_dev == s.st_dev && l.st_ino == s.st_ino)
+            ::flock(fd, LOCK_EX | LOCK_NB) == 0 && ::lstat(full.c_str(), &l) == 0 && l.st_dev == s.st_dev &&
+            l.st_ino == s.st_ino)
             ::unlink(full.c_str());
         ::close(fd);
     }
     ::closedir(d);
 }
 
-void require_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) {
-    struct Id {
-        std::string option, path;
-        bool inode = false, shareable = false;
-        dev_t dev = 0;
-        ino_t ino = 0;
-        std::string key;
-    };
-    std::vector<Id> ids;
-    for (const auto& [option, path] : outputs) {
-        if (path.empty()) continue;
-        Id id;
-        id.option = option;
-        id.path = path;
-        try {
-            const OutputTarget t = resolve_output(path);
-            struct stat s {};
-            if (t.kind == OutputTarget::Kind::descriptor ? ::fstat(t.fd, &s) == 0
-                                                         : t.kind != OutputTarget::Kind::absent && ((s = t.st), true)) {
-                id.inode = true;
-                id.dev = s.st_dev;
-                id.ino = s.st_ino;
-                id.shareable = S_ISCHR(s.st_mode);
-            } else if (t.kind == OutputTarget::Kind::descriptor) {
-                id.key = "fd:" + std::to_string(t.fd);
-            } else {
-                char* real = ::realpath(t.dir.c_str(), nullptr);
-                id.key = (real ? std::string(real) : t.dir) + "/" + t.name;
-                std::free(real);
-            }
-        } catch (const IoError&) {
-            id.key = path;  // not writable: reported when written
-        }
-        for (const Id& o : ids) {
-            const bool same = id.inode ? o.inode && o.dev == id.dev && o.ino == id.ino : !o.inode && o.key == id.key;
-            if (same && !id.shareable)
-                throw InputError("", 0, 0, o.option,
-                                 o.option + " and " + option + " name the same file" +
-                                     (o.path == path ? " '" + path + "'" : " ('" + o.path + "' and '" + path + "')") +
-                                     "; give two different files");
-        }
-        ids.push_back(std::move(id));
+int create_locked_temporary(const std::string& dir, const std::string& name, std::string& path) {
+    remove_stale_temporaries(dir, name);
+    const std::string base = (dir == "/" ? "/" : dir + "/") + temp_prefix(name) + "XXXXXX";
+    for (int attempt = 0;; ++attempt) {
+        path = base;
+        const int fd = ::mkostemp(path.data(), O_CLOEXEC);  // O_CREAT | O_EXCL, mode 0600: never follows a planted link
+        if (fd < 0) return -1;
+        // Blocking: a cleaner holds the lock only while it checks and unlinks.
+        while (::flock(fd, LOCK_EX) != 0 && errno == EINTR) {}
+        struct stat s {}, l {};
+        if (attempt >= 100 ||
+            (::fstat(fd, &s) == 0 && s.st_nlink > 0 && ::lstat(path.c_str(), &l) == 0 && l.st_dev == s.st_dev &&
+             l.st_ino == s.st_ino))
+            return fd;
+        ::close(fd);  // removed by another run's cleaner before it was locked: make another
     }
 }
 
-void require_outputs_not_inputs(const std::vector<std::pair<std::string, std::string>>& outputs,
-                                const std::vector<std::pair<std::string, std::string>>& inputs) {
-    for (const auto& [in_option, in_path] : inputs) {
+namespace {
+
+// What a path leads to, for comparing files: st_dev/st_ino when it exists (or the open
+// descriptor it names), else a key made of its real directory and name.
+struct FileIdentity {
+    bool inode = false, shareable = false;
+    dev_t dev = 0;
+    ino_t ino = 0;
+    std::string key;
+    bool same(const FileIdentity& o) const { return inode ? o.inode && o.dev == dev && o.ino == ino : !o.inode && o.key == key; }
+};
+
+FileIdentity output_identity(const std::string& path) {
+    FileIdentity id;
+    try {
+        const OutputTarget t = resolve_output(path);
+        struct stat s {};
+        if (t.kind == OutputTarget::Kind::descriptor ? ::fstat(t.fd, &s) == 0
+                                                     : t.kind != OutputTarget::Kind::absent && ((s = t.st), true)) {
+            id.inode = true;
+            id.dev = s.st_dev;
+            id.ino = s.st_ino;
+            id.shareable = S_ISCHR(s.st_mode);
+        } else if (t.kind == OutputTarget::Kind::descriptor) {
+            id.key = "fd:" + std::to_string(t.fd);
+        } else {
+            char* real = ::realpath(t.dir.c_str(), nullptr);
+            id.key = (real ? std::string(real) : t.dir) + "/" + t.name;
+            std::free(real);
+        }
+    } catch (const IoError&) {
+        id.key = path;  // not writable: reported when written
+    }
+    return id;
+}
+
+std::string quoted(const std::string& path) { return "'" + excerpt(path, 200) + "'"; }
+
+}  // namespace
+
+void require_safe_outputs(const NamedFiles& outputs, const NamedFiles& inputs) {
+    std::vector<std::pair<size_t, FileIdentity>> seen;  // (index in outputs, identity)
+    for (size_t i = 0; i < outputs.size(); ++i) {
+        const auto& [option, path] = outputs[i];
+        if (path.empty()) continue;
+        const FileIdentity id = output_identity(path);
+        for (const auto& [j, o] : seen) {
+            if (!o.same(id) || id.shareable) continue;
+            const auto& [o_option, o_path] = outputs[j];
+            throw InputError("", 0, 0, o_option,
+                             o_option + " and " + option + " name the same file" +
+                                 (o_path == path ? " " + quoted(path) : " (" + quoted(o_path) + " and " + quoted(path) + ")") +
+                                 "; give two different files");
+        }
+        seen.emplace_back(i, id);
+    }
+    // The inputs, then the program itself: a regular file an output leads to is refused.
+    NamedFiles read = inputs;
+    read.emplace_back("the running program", "/proc/self/exe");
+    for (const auto& [in_option, in_path] : read) {
         struct stat in {};
         if (in_path.empty() || in_path == "-" || ::stat(in_path.c_str(), &in) != 0 || !S_ISREG(in.st_mode)) continue;
-        for (const auto& [option, path] : outputs) {
-            if (path.empty() || path == "-") continue;
-            struct stat out {};
-            if (::stat(path.c_str(), &out) != 0 || out.st_dev != in.st_dev || out.st_ino != in.st_ino) continue;
+        for (const auto& [j, o] : seen) {
+            if (!o.inode || o.dev != in.st_dev || o.ino != in.st_ino) continue;
+            const auto& [option, path] = outputs[j];
+            std::string what = "the input " + in_option + " " + quoted(in_path);
+            if (in_path == "/proc/self/exe") {
+                char exe[PATH_MAX + 1] = {};
+                const ssize_t n = ::readlink("/proc/self/exe", exe, PATH_MAX);
+                what = "the running program" + (n > 0 ? " " + quoted(std::string(exe, static_cast<size_t>(n))) : std::string());
+            }
             throw InputError("", 0, 0, option,
-                             option + " '" + excerpt(path, 200) + "' is the input " + in_option + " '" + excerpt(in_path, 200) +
-                                 "'; write the output to another file");
+                             option + " " + quoted(path) + " is " + what + "; write the output to another file");
         }
     }
 }

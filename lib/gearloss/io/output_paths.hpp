@@ -34,23 +34,36 @@ OutputTarget resolve_output(const std::string& path);
 inline constexpr const char* kTempMarker = ".tmp.gearloss-";
 std::string temp_prefix(const std::string& name);
 
-// Removes the temporary files of the output DIR/NAME left by a killed run: named as
-// above, regular, owned by the caller (any owner for root), last modified more than
-// kStaleTempSeconds ago and not locked (a running writer holds an flock on its own).
-inline constexpr int kStaleTempSeconds = 300;
+// Removes the temporary files of the output DIR/NAME left by a dead run: named as above,
+// regular, owned by the caller (any owner for root) and not locked, whatever their age. A
+// running writer holds an flock on its temporary from its creation to its rename
+// (create_locked_temporary), and the kernel drops that lock the moment the process ends,
+// however it ends (kill -9, a signal without a handler): an unlocked temporary has no
+// writer. The age says nothing: a writer may run for hours, a dead run's file is seconds old.
 void remove_stale_temporaries(const std::string& dir, const std::string& name);
 
-// The outputs of one command, as (option, path) pairs (empty paths are skipped): two of
-// them leading to the same file (after links, compared by st_dev/st_ino when the file
-// exists; "-" and /dev/stdout are the same) throw InputError (exit 2) naming both
-// options. A character device (terminal, /dev/null) may take several outputs.
-void require_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs);
+// Creates DIR/temp_prefix(NAME)XXXXXX with O_EXCL (mode 0600), locks it (flock, waiting
+// for a cleaner that holds it for a moment) and checks it still has its name (a cleaner
+// of another run may have removed it in the instant before the lock): then it is made
+// again. The target's stale temporaries are removed first. Returns the descriptor and sets
+// `path`; -1 with errno set when the directory refuses the file.
+int create_locked_temporary(const std::string& dir, const std::string& name, std::string& path);
 
-// An output that is one of the command's input files (same file after links) throws
-// InputError (exit 2) naming both: `map case.yaml -o case.yaml` must not replace the case.
-// Pairs are (option, path); empty paths and inputs that do not exist are skipped.
-void require_outputs_not_inputs(const std::vector<std::pair<std::string, std::string>>& outputs,
-                                const std::vector<std::pair<std::string, std::string>>& inputs);
+// The files of one run, as (option or key, path) pairs; empty paths are skipped.
+using NamedFiles = std::vector<std::pair<std::string, std::string>>;
+
+// The one check of a run's files, made before anything is computed or written; each
+// failure is an InputError (exit 2) naming both paths and both options or keys:
+//  - two outputs leading to the same file (after links, by st_dev/st_ino when the file
+//    exists, else by the real directory and name; "-" and /dev/stdout are the same); a
+//    character device (terminal, /dev/null) may take several outputs;
+//  - an output that is one of the inputs (`map case.yaml -o case.yaml`), compared by
+//    st_dev/st_ino after links; inputs that do not exist or are not regular files are
+//    skipped;
+//  - an output that is the running program (the file /proc/self/exe leads to).
+// The caller lists every output with its derived names (sidecars, per-gear files) and
+// every input with the files they name (app/commands/common.hpp: case_inputs).
+void require_safe_outputs(const NamedFiles& outputs, const NamedFiles& inputs);
 
 // The process umask, read without changing it.
 mode_t current_umask();
