@@ -268,10 +268,13 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         row.engine_torque = T_eng;
         // A cycle the vehicle cannot drive (a gear far too low for the speed, a demand beyond the
         // engine) is an error at its row, not a result.
-        if (w_eng > veh.engine.max_speed * (1.0 + 1e-9))
-            fail("cycle", fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): engine speed {:.0f} rpm above the engine's "
-                                      "max_speed {:.0f} rpm; the vehicle cannot drive this row (check the speed and gear)",
-                                      cycle.time[i], v * 3.6, gear, w_eng * 30 / 3.14159265358979323846,
+        // The gearbox input turns with the engine (a locked or slipping clutch, or the turbine of a
+        // converter, which is never faster than its pump).
+        if (w_in > veh.engine.max_speed * (1.0 + 1e-9))
+            fail("cycle", fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): gearbox input speed {:.0f} rpm above the "
+                                      "engine's max_speed {:.0f} rpm; the vehicle cannot drive this row (check the speed "
+                                      "and gear)",
+                                      cycle.time[i], v * 3.6, gear, w_in * 30 / 3.14159265358979323846,
                                       veh.engine.max_speed * 30 / 3.14159265358979323846));
         if (veh.engine.max_torque && T_eng > *veh.engine.max_torque * (1.0 + 1e-9))
             fail("cycle", fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): engine torque {:.0f} N m above the engine's "

@@ -104,10 +104,10 @@ void Loader::load_gears() {
         s.z = zt.as_int();
         if (s.z < 5) zt.fail(fmt::format("number of teeth must be at least 5, got {}", s.z));
         s.mn = n.positive_quantity("module", dim::length, "3.5 mm");
-        // ISO 54 runs from 0.05 mm (fine pitch) to 100 mm; outside it the unit is wrong, and the
-        // gear pair would fail later with a message about the train instead of the module.
+        // Gear modules run from 0.05 mm (fine pitch) to 100 mm; outside that the unit is wrong, and
+        // the gear pair would fail later with a message about the train instead of the module.
         if (!(s.mn >= 0.05e-3 && s.mn <= 100e-3))
-            n.at("module").fail(fmt::format("module '{}' is outside 0.05..100 mm (ISO 54); check the unit (e.g. '3.5 mm')",
+            n.at("module").fail(fmt::format("module '{}' is outside 0.05..100 mm; check the unit (e.g. '3.5 mm')",
                                             excerpt(n.at("module").as_string())));
         const std::string key = "gears." + s.name + ".";
         const auto unless_given = [&](const char* k, const std::string& value, const char* why) {

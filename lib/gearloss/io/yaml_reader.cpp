@@ -146,9 +146,13 @@ private:
         for (unsigned char c : value)
             if ((c < 0x20 && c != '\t' && c != '\n') || c == 0x7F)
                 fail(m, fmt::format("a control character (U+{:04X}) in a value; write printable UTF-8 text", c));
-        std::string text = value;
-        std::replace_if(text.begin(), text.end(), [](char c) { return c == '\t' || c == '\n'; }, ' ');
-        if (!is_printable_utf8(text)) fail(m, "a value that is not printable UTF-8 text (a control character or bytes that are not UTF-8)");
+        // C1 controls (U+0080..U+009F, C2 80..C2 9F in UTF-8); bytes that are not UTF-8 at all are
+        // refused where the value is read as a name or a title, with its key.
+        for (std::size_t i = 0; i + 1 < value.size(); ++i)
+            if (static_cast<unsigned char>(value[i]) == 0xC2 && static_cast<unsigned char>(value[i + 1]) >= 0x80 &&
+                static_cast<unsigned char>(value[i + 1]) <= 0x9F)
+                fail(m, fmt::format("a control character (U+{:04X}) in a value; write printable UTF-8 text",
+                                    static_cast<unsigned char>(value[i + 1])));
     }
     // A node of `count` nodes and `height` levels at the current position.
     void add(const YAML::Mark& m, std::uint64_t count, std::size_t height) {

@@ -370,7 +370,9 @@ std::optional<std::string> torque_fault(double T) {
 
 std::optional<std::string> ambient_fault(double T) {
     if (!finite(T)) return "ambient temperature is " + show(T);
-    if (!(T >= kMinAmbient_K && T <= kMaxAmbient_K))
+    // The bounds as written in degC: -100 degC is 173.14999999999998 K after the offset.
+    constexpr double rounding = 1e-9;
+    if (!(T >= kMinAmbient_K - rounding && T <= kMaxAmbient_K + rounding))
         return fmt::format("ambient temperature {} outside the stated range -100..300 degC", degC(T));
     return std::nullopt;
 }
