@@ -58,6 +58,10 @@ check "--speed 1000,5rpm: rows 1000 and 5 rpm" \
 # Out-of-data values: oil at -100 degC (viscosity capped at 1e7 cSt, zero film, 'ok'), Ra 1e-300 um.
 expect "--oil-temp -100degC" 2 "^gearloss: error: --oil-temp: .*below the data of oil" \
     "$bin" point "$tb" --speed 800rpm --torque 200Nm --oil-temp -100degC
+expect "--format table --oil-temps -100,20degC" 2 "^gearloss: error: --oil-temps: .*below the data of oil" \
+    "$bin" map "$tb" --format table --oil-temps -100,20degC -o "$tmp/table.csv"
+expect "cycle --start-temp -90degC" 2 "below the data of oil" \
+    "$bin" cycle "$tmp/man.yaml" --cycle nedc --start-temp -90degC
 sed 's/Ra: 0.2 um/Ra: 1e-300 um/' "$spur" > "$tmp/ra.yaml"
 expect "Ra: 1e-300 um" 2 "ra.yaml:[0-9]+:[0-9]+: gears\[0\]\.Ra: .*below 0.001 um" "$bin" check "$tmp/ra.yaml"
 # A shaft with a gear and no bearing, and a case without bearings: a warning, not silence.

@@ -145,17 +145,6 @@ void check_oil_temperature(Case& c, const std::string& option) {
         else c.warnings.push_back(InputError::format("", 0, 0, option.empty() ? "thermal.oil_temperature" : option, what));
     }
     if (m.thermal.mode != solver::ThermalMode::fixed) return;
-    // Below the oil's data its viscosity law runs past 1e7 mm^2/s, where lubricant::Oil caps it (a
-    // solid, not a lubricant: no film and no churning law holds); a result there would be nonsense.
-    constexpr double capped_nu_mm2s = 1e7;  // the cap of lubricant::Oil::nu_mm2s
-    if (m.oil.nu_mm2s(m.thermal.oil_temperature) >= capped_nu_mm2s) {
-        const std::string what = fmt::format(
-            "fixed oil temperature {:.4g} degC is below the data of oil '{}': its viscosity law gives more than {:g} "
-            "mm^2/s there (the oil is solid); give a temperature the oil's viscosity data covers",
-            m.thermal.oil_temperature - 273.15, m.oil.name, capped_nu_mm2s);
-        if (option.empty() && !c.oil_temperature_key.empty()) throw InputError(c.oil_temperature_key + ": " + what);
-        throw InputError("", 0, 0, option.empty() ? "thermal.oil_temperature" : option, what);
-    }
     if (!(m.thermal.oil_temperature > m.oil.max_temperature)) return;
     const std::string what = fmt::format("warning: fixed oil temperature {:.1f} degC is above the permissible {:.1f} degC "
                                          "of oil '{}' (its 'max_temperature')",
