@@ -3,6 +3,7 @@
 // the pieces they share are in commands/common.hpp and commands/grid_overrides.hpp.
 #include <CLI/CLI.hpp>
 #include <csignal>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -60,11 +61,15 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return cli.exit(e);
     } catch (const CLI::ParseError& e) {
-        cli.exit(e);
+        std::fprintf(stderr, "gearloss: usage error: %s (see gearloss --help)\n", app::usage_error_line(e).c_str());
         return app::kUsage;
     }
 
     for (auto& e : table)
-        if (e.sub->parsed()) return app::run_command([&] { return e.command->run(); });
+        if (e.sub->parsed())
+            return app::run_command([&] {
+                app::check_option_values(*e.sub);
+                return e.command->run();
+            });
     return app::kOk;  // not reached: require_subcommand(1)
 }

@@ -2,6 +2,7 @@
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/config.hpp"
+#include "gearloss/model/validate.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;
@@ -128,4 +129,100 @@ TEST_CASE("value lists from the command line", "[config]") {
     CHECK(t[1] == Catch::Detail::Approx(200));
     CHECK_THROWS_WITH(io::parse_value_list("600,700kg", units::dim::angular_speed, "--speed", "600rpm"),
                       Catch::Contains("--speed"));
+}
+
+// Issue 37, items 3, 5 and 6: values read as they are written, at the key that is wrong.
+TEST_CASE("angles need their unit, and the key at fault is blamed", "[config][units37]") {
+    // A bare number was read as radians: 'angle: 60' = 3438 deg, 'helix_angle: 0.3' = 17.2 deg.
+    expect_error({"gears: [w4, w2], angle: 60 deg", "gears: [w4, w2], angle: 60", "name: m24", "meshes[1].angle",
+                  "no angle unit"});
+    expect_error({"face_width: 35 mm,   helix_angle: 20 deg, hand: right, material: 15CrNi6, Ra: 0.5 um}",
+                  "face_width: 35 mm,   helix_angle: 0.3, hand: right, material: 15CrNi6, Ra: 0.5 um}", "name: w1",
+                  "gears[0].helix_angle", "no angle unit"});
+    // An angle unit where a plain number is meant, and an angle whose units cancel.
+    expect_error({"gears: [w4, w2], angle: 60 deg", "gears: [w4, w2], angle: 60 deg/rad", "name: m24",
+                  "meshes[1].angle", "not an angle"});
+    // A module of 1e-9 mm: the module is out of range (it was "not a single-degree-of-freedom train").
+    expect_error({"module: 3.5 mm, profile_shift: 0.381", "module: 1e-9 mm, profile_shift: 0.381", "name: w1",
+                  "gears[0].module", "outside 0.05..100 mm"});
+    // An addendum coefficient of 5 is blamed on itself (it was blamed on the profile shift).
+    expect_error({"helix_angle: 20 deg, hand: right, material: 15CrNi6, Ra: 0.5 um}",
+                  "helix_angle: 20 deg, hand: right, material: 15CrNi6, Ra: 0.5 um, addendum_coefficient: 5}", "name: w1",
+                  "gears[0].addendum_coefficient", "addendum coefficient 5 outside"});
+    // Ra 1e-300 um gave lambda 7e299 and 'ok'.
+    expect_error({"material: 15CrNi6, Ra: 0.5 um}\n  - {name: w2", "material: 15CrNi6, Ra: 1e-300 um}\n  - {name: w2",
+                  "name: w1", "gears[0].Ra", "below 0.001 um"});
+    // -273.15 degC is absolute zero, not "not a temperature".
+    expect_error({"ambient: 25 degC", "ambient: -273.15 degC", "ambient: -273.15", "thermal.ambient", "absolute zero"});
+    // A heat capacity per degree Celsius is a heat capacity per kelvin (it was "unknown unit 'degC'").
+    const std::string tb = base("manual-6speed.yaml");
+    TempConfig per_degC(test_support::replace_once(tb, "    oil: 3 kJ/K\n", "    oil: 3 kJ/degC\n"));
+    TempConfig per_K(tb);
+    CHECK(io::load_case(per_degC.path).model.thermal.network.C_oil == 3000.0);
+    CHECK(io::load_case(per_K.path).model.thermal.network.C_oil == 3000.0);
+}
+
+TEST_CASE("YAML tags and control characters are errors at their line", "[config][units37]") {
+    // yaml-cpp dropped a tag without a word: '!unit 3.5 mm' read as 3.5 mm, '!!binary' as its text.
+    expect_error({"module: 3.5 mm, profile_shift: 0.381", "module: !unit 3.5 mm, profile_shift: 0.381", "name: w1", "",
+                  "YAML tag"});
+    expect_error({"name: Transfer gearbox", "name: !!binary VHJhbnNmZXI=", "name: !!binary", "", "YAML tag"});
+    // A NUL and an ESC written as escapes inside a quoted value (a designation, a file name).
+    expect_error({"oil: oils/75W90-A.yaml", "oil: \"oils/75W90-A.yaml\\0.txt\"", "oil: \"oils", "", "control character"});
+    expect_error({"name: Transfer gearbox", "name: \"Transfer \\e[31m gearbox\"", "name: \"Transfer", "",
+                  "control character"});
+}
+
+TEST_CASE("oil tables: a temperature twice or out of order is an error at its line", "[config][units37]") {
+    // One temperature twice in the piezoviscosity table divided by zero: alpha_p(40 degC) = -nan.
+    const std::string oil = test_support::read_file(test_support::source_path("configs/oils/75W90-A.yaml"));
+    const auto expect_oil_error = [](const std::string& text, const std::string& line_of, const std::string& message) {
+        TempConfig cfg(text);
+        try {
+            (void)io::load_oil_file(cfg.path);
+            FAIL("no error raised");
+        } catch (const InputError& e) {
+            INFO(e.what());
+            CHECK(e.line == test_support::line_of(text, line_of));
+            CHECK_THAT(e.message, Catch::Contains(message));
+        }
+    };
+    expect_oil_error(test_support::replace_once(oil, "[70 degC, 1.194e-8 1/Pa]", "[40 degC, 1.194e-8 1/Pa]"),
+                     "[40 degC, 1.194e-8 1/Pa]", "listed twice");
+    expect_oil_error(test_support::replace_once(oil, "[70 degC, 1.194e-8 1/Pa]", "[30 degC, 1.194e-8 1/Pa]"),
+                     "[30 degC, 1.194e-8 1/Pa]", "ascending order");
+    expect_oil_error(test_support::replace_once(oil, "[70 degC, 36.7 cSt]", "[40 degC, 36.7 cSt]"),
+                     "[40 degC, 36.7 cSt]", "listed twice");
+    expect_oil_error(test_support::replace_once(oil, "[70 degC, 36.7 cSt]", "[120 degC, 36.7 cSt]"),
+                     "[100 degC, 16.37 cSt]", "ascending order");
+}
+
+TEST_CASE("value lists: one unit rule, kinds checked, the option named", "[config][units37]") {
+    using units::dim::angular_speed;
+    using units::dim::torque;
+    // "1000rpm,5" mixes an item with a unit and one without (5 rad? 5 rpm?).
+    CHECK_THROWS_WITH(io::parse_value_list("1000rpm,5", angular_speed, "--speed", "600rpm"),
+                      Catch::Contains("--speed: ") && Catch::Contains("mixes items"));
+    CHECK_THROWS_WITH(io::parse_value_list("600rpm,700,800rpm", angular_speed, "--speed", "600rpm"),
+                      Catch::Contains("mixes items"));
+    // A comma separates items; the unit of the last applies to the bare ones (documented).
+    CHECK(io::parse_value_list("1000,5rpm", angular_speed, "--speed", "600rpm").size() == 2);
+    // 200 Wh has the dimension of a torque (720 000 N m); 1000 rpm/rev that of a speed (159 rpm).
+    CHECK_THROWS_WITH(io::parse_value_list("200 Wh", torque, "--torque", "250Nm"), Catch::Contains("not a torque"));
+    CHECK_THROWS_WITH(io::parse_value_list("200 J", torque, "--torque", "250Nm"), Catch::Contains("not a torque"));
+    CHECK_THROWS_WITH(io::parse_value_list("1000 rpm/rev", angular_speed, "--speed", "600rpm"),
+                      Catch::Contains("not a rotational speed"));
+    // The message starts with the option, not with "<input>".
+    try {
+        (void)io::parse_value_list("200 Wh", torque, "--torque", "250Nm");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).rfind("--torque: ", 0) == 0);
+    }
+}
+
+TEST_CASE("the stated ambient range includes its ends as written in degC", "[config][units37]") {
+    // -100 degC is 173.14999999999998 K after the offset: "-100 degC is outside -100..300 degC".
+    CHECK_FALSE(solver::ambient_fault(-100.0 + 273.15));
+    CHECK_FALSE(solver::ambient_fault(300.0 + 273.15));
+    CHECK(solver::ambient_fault(-100.01 + 273.15));
 }

@@ -34,3 +34,37 @@ TEST_CASE("bad quantities are rejected with a reason", "[units]") {
     CHECK_THROWS(parse_quantity(""));
     CHECK_THROWS(parse_quantity("nan mm"));
 }
+
+TEST_CASE("kinds beyond the dimension: angles, torques, speeds, temperatures", "[units][units37]") {
+    constexpr double pi = std::numbers::pi;
+    const auto value = [](const std::string& s, const Dimension& d, Kind k = Kind::plain) {
+        return checked_value(parse_quantity(s), d, s, k);
+    };
+    // An angle is written with its unit: 60 deg = pi/3; '60' alone is refused (not 60 rad).
+    CHECK(value("60 deg", dim::angle, Kind::angle) == Approx(pi / 3));
+    CHECK(value("0.5 rev", dim::angle, Kind::angle) == Approx(pi));
+    CHECK_THROWS_WITH(value("60", dim::angle, Kind::angle), Catch::Contains("no angle unit"));
+    CHECK_THROWS_WITH(value("2 deg*rad", dim::angle, Kind::angle), Catch::Contains("not an angle"));
+    // An angle unit where a plain ratio is meant.
+    CHECK_THROWS_WITH(value("5 deg", dim::none), Catch::Contains("angle unit"));
+    CHECK(value("5 %", dim::none) == Approx(0.05));
+    // Energy and power units are never a torque; N*m, Nm and kNm are.
+    CHECK(value("0.2 kNm", dim::torque) == Approx(200));
+    CHECK(value("250 N*m", dim::torque) == Approx(250));
+    for (const char* s : {"200 Wh", "200 J", "1 kW*s"}) CHECK_THROWS_WITH(value(s, dim::torque), Catch::Contains("not a torque"));
+    // rpm/rev: the angles cancel; rad^2/s has two. 1000 rev/min = 104.72 rad/s is fine.
+    CHECK(value("1000 rev/min", dim::angular_speed) == Approx(1000 * pi / 30));
+    CHECK_THROWS_WITH(value("1000 rpm/rev", dim::angular_speed), Catch::Contains("cancel"));
+    CHECK_THROWS_WITH(value("1 rad^2/s", dim::angular_speed), Catch::Contains("not a rotational speed"));
+    // A missing unit on a dimensioned value.
+    CHECK_THROWS_WITH(value("3.5", dim::length), Catch::Contains("has no unit"));
+    // degC inside an expression is a kelvin-sized difference: 3 kJ/degC = 3000 J/K; degF 5/9 K.
+    CHECK(value("3 kJ/degC", dim::heat_capacity) == Approx(3000));
+    CHECK(value("9 W/degF", make_dim(2, 1, -3, -1)) == Approx(16.2));
+    // Temperatures: '70C' is 70 degC (documented, as the recordings' oil_temp_C); absolute zero
+    // and below are named as such.
+    CHECK(absolute_temperature(parse_quantity("70C"), "70C") == Approx(343.15));
+    CHECK_THROWS_WITH(absolute_temperature(parse_quantity("-273.15degC"), "-273.15degC"), Catch::Contains("absolute zero"));
+    CHECK_THROWS_WITH(absolute_temperature(parse_quantity("-300degC"), "-300degC"), Catch::Contains("below absolute zero"));
+    CHECK_THROWS_WITH(absolute_temperature(parse_quantity("70"), "70"), Catch::Contains("not a temperature"));
+}

@@ -1,5 +1,6 @@
 #include "commands/common.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -27,16 +28,9 @@ void add_common_options(CLI::App& sub, CommonOptions& c) {
 void apply_case_options(io::Case& k, const CommonOptions& c) {
     if (!c.oil.empty()) io::replace_oil_file(k, c.oil);
     if (!c.oil_temp.empty()) {
-        units::Quantity q;
-        try {
-            q = units::parse_quantity(c.oil_temp);
-        } catch (const units::UnitError& e) {
-            throw InputError("", 0, 0, "--oil-temp", e.message + " (expected e.g. '70degC')");
-        }
-        if (!q.absolute_temperature || q.value <= 0)
-            throw InputError("", 0, 0, "--oil-temp", "'" + io::excerpt(c.oil_temp) + "' is not a temperature (e.g. '70degC')");
+        const double t = absolute_temperature(c.oil_temp, "--oil-temp", "70degC");
         k.model.thermal.mode = solver::ThermalMode::fixed;
-        k.model.thermal.oil_temperature = q.value;
+        k.model.thermal.oil_temperature = t;
     }
     map::validate_case(k, {.oil_temp = c.oil_temp, .oil = c.oil, .grid = false});  // gearloss/model/validate.hpp
 }
@@ -54,16 +48,12 @@ io::Case with_options(io::Case k, const CommonOptions& c, bool warn_on_stderr) {
     return k;
 }
 
-double absolute_temperature(const std::string& text, const char* what) {
-    units::Quantity q;
+double absolute_temperature(const std::string& text, const char* what, const char* example) {
     try {
-        q = units::parse_quantity(text);
+        return units::absolute_temperature(units::parse_quantity(text), text);
     } catch (const units::UnitError& e) {
-        throw InputError("", 0, 0, what, e.message + " (expected e.g. '-10degC')");
+        throw InputError("", 0, 0, what, e.message + " (expected e.g. '" + example + "')");
     }
-    if (!q.absolute_temperature || !(q.value > 0))
-        throw InputError("", 0, 0, what, "'" + io::excerpt(text) + "' is not a temperature (e.g. '-10degC')");
-    return q.value;
 }
 
 double single_value(const std::string& text, const units::Dimension& d, const char* what, const char* example) {
@@ -90,6 +80,30 @@ double temperature_difference(const std::string& text, const char* what) {
     } catch (const units::UnitError& e) {
         throw InputError("", 0, 0, what, "'" + io::excerpt(text) + "': " + e.message + " (expected e.g. '0.4K')");
     }
+}
+
+void check_option_values(const CLI::App& sub) {
+    for (const CLI::Option* o : sub.get_options()) {
+        if (o->count() == 0 || o->get_expected_min() == 0) continue;  // not given, or a flag
+        std::string name = o->get_name(false, true);
+        if (name.empty()) name = o->get_name();
+        for (const std::string& v : o->results()) {
+            // "--shard ''" would otherwise read as "not given" and do the whole job.
+            if (v.empty()) throw InputError("", 0, 0, name, "an empty value; give one or leave the option out (see --help)");
+            if (!io::is_printable_utf8(v))
+                throw InputError("", 0, 0, name,
+                                 "'" + io::excerpt(v) + "' contains a control character or bytes that are not UTF-8");
+        }
+    }
+}
+
+std::string usage_error_line(const CLI::Error& e) {
+    // CLI11 names an option in its own words ("Value 0 not in range [1 - 1024]"), on a line of
+    // its own followed by a second one; one line, with what is expected.
+    std::string m = e.what();
+    std::replace(m.begin(), m.end(), '\n', ' ');
+    while (!m.empty() && m.back() == ' ') m.pop_back();
+    return m;
 }
 
 namespace {

@@ -33,6 +33,13 @@ struct CommonOptions {
     std::string oil;
 };
 
+// Every option given to the subcommand has a value that is not empty ("--shard ''" is not
+// "no --shard") and is printable text; else an InputError naming the option.
+void check_option_values(const CLI::App& sub);
+
+// A CLI11 parse error on one line ("--threads: Value 0 not in range [1 - 1024]").
+std::string usage_error_line(const CLI::Error& e);
+
 // config, --ratio, --oil-temp and --oil with their help texts.
 void add_common_options(CLI::App& sub, CommonOptions& c);
 
@@ -46,7 +53,7 @@ io::Case load_with_options(const CommonOptions& c, bool warn_on_stderr = true);
 io::Case with_options(io::Case k, const CommonOptions& c, bool warn_on_stderr = true);
 
 // "-10degC", "263.15 K": an absolute temperature [K]; InputError naming `what` otherwise.
-double absolute_temperature(const std::string& text, const char* what);
+double absolute_temperature(const std::string& text, const char* what, const char* example = "-10degC");
 // One value of dimension `d` ("800rpm"); InputError naming `what` otherwise.
 double single_value(const std::string& text, const units::Dimension& d, const char* what, const char* example);
 // "0.4K", "0.4 degC": a temperature difference (the unit's offset removed).

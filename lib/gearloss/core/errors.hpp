@@ -35,10 +35,10 @@ struct Error : std::runtime_error {
     std::string message;  // without the location
     SourceLocation where() const { return {file, line, column}; }
 
-    // "file:line:col: key: message"; the parts that are known ("<input>" for a key without a
-    // file, e.g. a command-line option); the bare message when nothing is.
+    // "file:line:col: key: message"; the parts that are known ("--speed: message" for a
+    // command-line option, which has no file); the bare message when nothing is.
     static std::string format(const std::string& f, int l, int c, const std::string& k, const std::string& m) {
-        if (f.empty() && l <= 0 && k.empty()) return m;
+        if (f.empty() && l <= 0) return k.empty() ? m : k + ": " + m;
         std::string s = f.empty() ? std::string("<input>") : f;
         if (l > 0) s.append(":").append(std::to_string(l));
         if (c > 0) s.append(":").append(std::to_string(c));

@@ -266,6 +266,20 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         }
         row.engine_speed = w_eng;
         row.engine_torque = T_eng;
+        // A cycle the vehicle cannot drive (a gear far too low for the speed, a demand beyond the
+        // engine) is an error at its row, not a result.
+        // The gearbox input turns with the engine (a locked or slipping clutch, or the turbine of a
+        // converter, which is never faster than its pump).
+        if (w_in > veh.engine.max_speed * (1.0 + 1e-9))
+            fail("cycle", fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): gearbox input speed {:.0f} rpm above the "
+                                      "engine's max_speed {:.0f} rpm; the vehicle cannot drive this row (check the speed "
+                                      "and gear)",
+                                      cycle.time[i], v * 3.6, gear, w_in * 30 / 3.14159265358979323846,
+                                      veh.engine.max_speed * 30 / 3.14159265358979323846));
+        if (veh.engine.max_torque && T_eng > *veh.engine.max_torque * (1.0 + 1e-9))
+            fail("cycle", fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): engine torque {:.0f} N m above the engine's "
+                                      "max_torque {:.0f} N m; the vehicle cannot drive this row",
+                                      cycle.time[i], v * 3.6, gear, T_eng, *veh.engine.max_torque));
         if (veh.engine.fuel_map) {
             const bool fuel_cut = T_eng < 0 && w_eng > 1.05 * veh.engine.idle_speed;
             row.fuel_rate = fuel_cut ? 0.0 : veh.engine.fuel_map->rate_at(w_eng, std::max(T_eng, 0.0));
@@ -282,6 +296,13 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
             res.trace.push_back(row);
         }
         integrate(pt, load, ambient, x, cycle.time[i], cycle.time[i + 1]);
+        // The oil driven beyond its data (or the model's search range) makes every later row nonsense.
+        if (auto f = solver::oil_temperature_fault(pt.thermal_model().oil, x[kOil]))
+            fail("cycle", fmt::format("at t = {:g} s: oil temperature {}", cycle.time[i + 1], *f));
+        if (const double T_max = pt.thermal_model().thermal.equilibrium.T_max; x[kOil] > T_max)
+            fail("cycle", fmt::format("at t = {:g} s the oil reaches {}, above thermal.max_oil_temperature {}: the cycle "
+                                      "overheats the gearbox beyond what the model covers",
+                                      cycle.time[i + 1], celsius(x[kOil]), celsius(T_max)));
     }
     if (keep_trace) {
         TraceRow last;

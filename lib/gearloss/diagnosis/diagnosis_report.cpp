@@ -46,8 +46,12 @@ std::string diagnosis_text(const Diagnosis& d) {
         } else if (!f.parameter.form.empty()) {
             s += fmt::format("  {} = {} (the case: {})\n", f.parameter.name, f.parameter.form, f.parameter.case_form);
         } else {
-            s += fmt::format("  {} = {} +/- {}\n", f.parameter.name, fmt_value(f.parameter.value, f.parameter.unit),
-                             fmt_value(f.parameter.uncertainty, f.parameter.unit));
+            // The uncertainty is not finite when the fit's curvature is flat or negative there (the
+            // parameter is not determined by the data): said in words, never "+/- nan".
+            s += fmt::format("  {} = {} {}\n", f.parameter.name, fmt_value(f.parameter.value, f.parameter.unit),
+                             std::isfinite(f.parameter.uncertainty)
+                                 ? "+/- " + fmt_value(f.parameter.uncertainty, f.parameter.unit)
+                                 : std::string("(uncertainty not determined: the recordings do not constrain it)"));
         }
         s += fmt::format("  evidence: delta BIC {:.1f}, cross-validated log-likelihood gain {:.1f}, chosen in {:.0f} % of {} "
                          "bootstrap resamples\n",

@@ -109,7 +109,7 @@ std::string describe_fit(const CentreDistanceFit& f) {
 PairGeometry pair_geometry(const GearSpec& g1, const GearSpec& g2, std::optional<double> a_w_given) {
     using std::cos, std::sin, std::tan, std::sqrt, std::abs;
     if (abs(g1.mn - g2.mn) > 1e-9 * g1.mn)
-        throw GeometryError(fmt::format("normal modules differ ({} mm vs {} mm)", g1.mn * 1e3, g2.mn * 1e3));
+        throw GeometryError(fmt::format("normal modules differ ({:.6g} mm vs {:.6g} mm)", g1.mn * 1e3, g2.mn * 1e3));
     if (abs(g1.alpha_n - g2.alpha_n) > 1e-9) throw GeometryError("normal pressure angles differ");
     if (abs(g1.beta - g2.beta) > 1e-9) throw GeometryError("helix angles differ");
     if (g1.internal) throw GeometryError(fmt::format("gear '{}' is internal: name the external gear first in the mesh", g1.name));

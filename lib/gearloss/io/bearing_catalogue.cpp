@@ -89,7 +89,7 @@ void BearingCatalogue::load_file(const std::string& path, const std::string& sho
             !(std::count(cols.begin(), cols.end(), "B") || std::count(cols.begin(), cols.end(), "T")))
             s.at("columns").fail("columns start with 'designation' and include d, D and B (or T)");
         std::optional<double> angle;
-        if (auto a = s.get("contact_angle")) angle = a->as_quantity(units::dim::angle, "40 deg");
+        if (auto a = s.get("contact_angle")) angle = a->as_angle("40 deg");
         const std::string ratings = s.has("ratings") ? s.at("ratings").as_string() : "";
         const std::string verified = s.has("verified") ? s.at("verified").as_string() : "not stated";
         for (const auto& row : s.at("bearings").items()) {

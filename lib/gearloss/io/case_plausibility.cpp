@@ -10,6 +10,45 @@
 
 namespace gearloss::io {
 
+namespace {
+// A shaft that carries a gear (not a planet: its pins sit on the carrier) but has no support
+// bearing turns without bearing losses and with nothing to take its mesh forces: the case
+// has left its bearings out. A warning at the shaft (or at 'gears' when no bearing is given).
+void warn_unsupported_shafts(const YamlNode& root, Case& c) {
+    const auto& gb = c.model.gearbox;
+    const auto shaft_node = [&](size_t s) -> std::optional<YamlNode> {
+        if (auto sh = root.get("shafts"); sh && sh->is_sequence()) {
+            const auto items = sh->items();
+            if (s < items.size()) return items[s];
+        }
+        return std::nullopt;
+    };
+    if (gb.bearings.empty() && !gb.gears.empty()) {
+        c.warnings.push_back(root.at("gears").located(
+            "warning: the case has no bearings: no bearing losses are counted and no shaft is supported (add a "
+            "'bearings' list)"));
+        return;
+    }
+    for (size_t s = 0; s < gb.shafts.size(); ++s) {
+        if (gb.shafts[s].fixed) continue;
+        std::string carried;
+        for (const auto& g : gb.gears)
+            if (g.shaft == static_cast<int>(s) && g.carrier < 0)
+                carried += (carried.empty() ? "'" : ", '") + g.spec.name + "'";
+        if (carried.empty()) continue;
+        const bool supported = std::any_of(gb.bearings.begin(), gb.bearings.end(), [&](const gearbox::Bearing& b) {
+            return b.shaft == static_cast<int>(s) && b.under_gear < 0;
+        });
+        if (supported) continue;
+        const std::string what = fmt::format("warning: shaft '{}' carries gear(s) {} but no bearing: its bearing losses "
+                                             "are not counted (add its bearings under 'bearings')",
+                                             gb.shafts[s].name, carried);
+        const auto n = shaft_node(s);
+        c.warnings.push_back((n ? *n : root.at("bearings")).located(what));
+    }
+}
+}  // namespace
+
 void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication lubrication) {
     const YamlNode housing = root.at("housing");
     // The housing box is known when the heat path is a housing surface with its height and length.
@@ -93,6 +132,7 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
         if (f.severity == S::error) where.fail(f.message);
         c.warnings.push_back(where.located((f.severity == S::note ? "note: " : "warning: ") + f.message));
     }
+    warn_unsupported_shafts(root, c);
 }
 
 void check_oil_temperature(Case& c, const std::string& option) {
@@ -105,7 +145,8 @@ void check_oil_temperature(Case& c, const std::string& option) {
         if (option.empty() && !c.oil_temperature_key.empty()) c.warnings.push_back(c.oil_temperature_key + ": " + what);
         else c.warnings.push_back(InputError::format("", 0, 0, option.empty() ? "thermal.oil_temperature" : option, what));
     }
-    if (m.thermal.mode != solver::ThermalMode::fixed || !(m.thermal.oil_temperature > m.oil.max_temperature)) return;
+    if (m.thermal.mode != solver::ThermalMode::fixed) return;
+    if (!(m.thermal.oil_temperature > m.oil.max_temperature)) return;
     const std::string what = fmt::format("warning: fixed oil temperature {:.1f} degC is above the permissible {:.1f} degC "
                                          "of oil '{}' (its 'max_temperature')",
                                          m.thermal.oil_temperature - 273.15, m.oil.max_temperature - 273.15, m.oil.name);

@@ -53,22 +53,22 @@ std::vector<double> parse_value_list(const std::string& text, const units::Dimen
         }
     const size_t u = unit_start(parts.back());
     const std::string unit = u == std::string::npos ? "" : parts.back().substr(u);
+    // A comma always separates items (there is no decimal comma: "1000,5rpm" is 1000 and 5 rpm),
+    // and a unit is given on every item or on the last one only: "600rpm,700,800rpm" is refused.
+    const bool some_bare = std::any_of(parts.begin(), parts.end(), [](const std::string& p) {
+        return !p.empty() && unit_start(p) == std::string::npos;
+    });
+    for (size_t i = 0; some_bare && i + 1 < parts.size(); ++i)
+        if (unit_start(parts[i]) != std::string::npos)
+            throw InputError("", 0, 0, what,
+                             "'" + excerpt(text) + "' mixes items with and without a unit; give the unit on every item "
+                             "or on the last one only (e.g. '" + example + "')");
     std::vector<double> out;
     for (const auto& p : parts) {
-        if (p.empty()) throw InputError("", 0, 0, what, "empty item in '" + text + "' (expected e.g. '" + example + "')");
+        if (p.empty()) throw InputError("", 0, 0, what, "empty item in '" + excerpt(text) + "' (expected e.g. '" + example + "')");
         const std::string q = unit_start(p) == std::string::npos ? p + " " + unit : p;
-        units::Quantity v;
         try {
-            v = units::parse_quantity(q);
-        } catch (const units::UnitError& e) {
-            throw InputError("", 0, 0, what, e.message + " (expected e.g. '" + example + "')");
-        }
-        if (v.dim != d || v.absolute_temperature)
-            throw InputError("", 0, 0, what,
-                             "'" + p + "' has dimension " + units::to_string(v.dim) + ", expected " + units::to_string(d) +
-                                 " (e.g. '" + example + "')");
-        try {
-            out.push_back(units::as_rotational_speed(v, q));
+            out.push_back(units::checked_value(units::parse_quantity(q), d, q));
         } catch (const units::UnitError& e) {
             throw InputError("", 0, 0, what, e.message + " (expected e.g. '" + example + "')");
         }

@@ -128,7 +128,7 @@ void Loader::load_bearings() {
         if (auto v = pick("D", dim::length, "80 mm", cat ? std::optional<double>(cat->D) : std::nullopt, 1e-3, "mm")) s.D = *v;
         else s.D = n.positive_quantity("D", dim::length, "80 mm");
         if (s.d >= s.D)
-            (n.has("D") ? n.at("D") : n).fail(fmt::format("outer diameter D = {} mm must exceed bore d = {} mm", s.D * 1e3, s.d * 1e3));
+            (n.has("D") ? n.at("D") : n).fail(fmt::format("outer diameter D = {:.6g} mm must exceed bore d = {:.6g} mm", s.D * 1e3, s.d * 1e3));
         const std::string key = "bearings." + b.name + ".";
         if (auto v = pick("B", dim::length, "21 mm", cat ? std::optional<double>(cat->B) : std::nullopt, 1e-3, "mm")) {
             s.B = *v;

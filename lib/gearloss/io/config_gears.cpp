@@ -104,6 +104,11 @@ void Loader::load_gears() {
         s.z = zt.as_int();
         if (s.z < 5) zt.fail(fmt::format("number of teeth must be at least 5, got {}", s.z));
         s.mn = n.positive_quantity("module", dim::length, "3.5 mm");
+        // Gear modules run from 0.05 mm (fine pitch) to 100 mm; outside that the unit is wrong, and
+        // the gear pair would fail later with a message about the train instead of the module.
+        if (!(s.mn >= 0.05e-3 && s.mn <= 100e-3))
+            n.at("module").fail(fmt::format("module '{}' is outside 0.05..100 mm; check the unit (e.g. '3.5 mm')",
+                                            excerpt(n.at("module").as_string())));
         const std::string key = "gears." + s.name + ".";
         const auto unless_given = [&](const char* k, const std::string& value, const char* why) {
             if (!n.has(k)) assume(assumed, n, key + k, value, why);
@@ -111,18 +116,28 @@ void Loader::load_gears() {
         s.x = n.has("profile_shift") ? n.at("profile_shift").as_number() : 0.0;
         if (!(s.x > -1.5 && s.x < 2.5)) n.at("profile_shift").fail("profile shift coefficient outside -1.5..2.5");
         s.b = n.positive_quantity("face_width", dim::length, "35 mm");
-        s.alpha_n = n.has("pressure_angle") ? n.quantity("pressure_angle", dim::angle, "20 deg") : 20.0 * deg;
+        s.alpha_n = n.has("pressure_angle") ? n.at("pressure_angle").as_angle("20 deg") : 20.0 * deg;
         if (!(s.alpha_n > 10 * deg && s.alpha_n < 35 * deg))
             n.at("pressure_angle").fail("pressure angle outside 10..35 deg");
-        s.beta = n.has("helix_angle") ? n.quantity("helix_angle", dim::angle, "20 deg") : 0.0;
+        s.beta = n.has("helix_angle") ? n.at("helix_angle").as_angle("20 deg") : 0.0;
         if (!(s.beta >= 0 && s.beta < 45 * deg)) n.at("helix_angle").fail("helix angle outside 0..45 deg (give the hand separately)");
         if (s.beta > 0) {
             s.hand = n.at("hand").as_enum<geometry::Hand>({{"right", geometry::Hand::right}, {"left", geometry::Hand::left}});
         } else {
             s.hand = geometry::Hand::spur;
         }
-        if (n.has("addendum_coefficient")) s.ha_star = n.at("addendum_coefficient").as_number();
-        if (n.has("dedendum_coefficient")) s.hf_star = n.at("dedendum_coefficient").as_number();
+        // Basic-rack coefficients: ISO 53 has 1.0 and 1.25; stub and high-contact-ratio racks stay
+        // within these bounds. Checked here so that a wrong one is blamed, not the profile shift.
+        if (n.has("addendum_coefficient")) {
+            s.ha_star = n.at("addendum_coefficient").as_number();
+            if (!(s.ha_star >= 0.5 && s.ha_star <= 1.6))
+                n.at("addendum_coefficient").fail(fmt::format("addendum coefficient {:g} outside 0.5..1.6 (ISO 53: 1.0)", s.ha_star));
+        }
+        if (n.has("dedendum_coefficient")) {
+            s.hf_star = n.at("dedendum_coefficient").as_number();
+            if (!(s.hf_star >= 0.8 && s.hf_star <= 2.0))
+                n.at("dedendum_coefficient").fail(fmt::format("dedendum coefficient {:g} outside 0.8..2.0 (ISO 53: 1.25)", s.hf_star));
+        }
         if (n.has("tip_diameter") && n.has("tip_alteration_factor"))
             n.at("tip_alteration_factor").fail("give either 'tip_diameter' or 'tip_alteration_factor', not both");
         if (n.has("tip_diameter")) s.tip_diameter = n.positive_quantity("tip_diameter", dim::length, "82.46 mm");
@@ -155,6 +170,14 @@ void Loader::load_gears() {
             assume(assumed, n, key + "Rq", "1.25 Ra", "Gaussian surface: Rq = 1.25 Ra");
         if (n.has("Rq")) s.Rq = n.positive_quantity("Rq", dim::length, "0.6 um");
         if (s.Ra > 50e-6) n.at("Ra").fail("roughness above 50 um; check the unit");
+        // The lambda ratio divides by the roughness: below the finest superfinished flanks (Ra of a few
+        // hundredths of a micrometre) it would call any film a full film, 1e-300 um a lambda of 1e299.
+        for (const char* k : {"Ra", "Rq"})
+            if (n.has(k) && (k[1] == 'a' ? s.Ra : s.Rq.value_or(s.Ra)) < 1e-9)
+                n.at(k).fail(fmt::format("roughness '{}' is below 0.001 um (1 nm), smoother than any gear flank; check "
+                                         "the unit (e.g. '0.5 um')",
+                                         excerpt(n.at(k).as_string())));
+        if (s.Rq && *s.Rq > 60e-6) n.at("Rq").fail("roughness above 60 um; check the unit");
         if (auto m = n.get("mount"))
             g.free = m->as_enum<bool>({{"fixed", false}, {"free", true}});
         if (auto im = n.get("immersion")) {
@@ -184,7 +207,7 @@ void Loader::load_meshes() {
             (n.has("name") ? n.at("name") : n.at("gears"))
                 .fail("duplicate mesh name '" + m.name + "'" +
                       (n.has("name") ? "" : " (the default name, from its gears; give the mesh a 'name')"));
-        m.angle = n.has("angle") ? n.quantity("angle", dim::angle, "30 deg") : 0.0;
+        m.angle = n.has("angle") ? n.at("angle").as_angle("30 deg") : 0.0;
         m.centre_distance = n.opt_quantity("centre_distance", dim::length, "95 mm");
         if (m.centre_distance && *m.centre_distance <= 0) n.at("centre_distance").fail("must be positive");
         try {
@@ -212,7 +235,7 @@ Eigen::Vector3d load_gravity(const YamlNode& n) {
         return g.normalized();
     }
     // An angle in the plane of the mesh angles (0 deg along +x, 90 deg up): -90 deg is straight down.
-    const double a = n.as_quantity(dim::angle, "-90 deg");
+    const double a = n.as_angle("-90 deg");
     if (!std::isfinite(a)) n.fail("the direction of gravity must be a finite angle");
     return {std::cos(a), std::sin(a), 0.0};
 }

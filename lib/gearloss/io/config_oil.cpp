@@ -1,6 +1,7 @@
 // Case loader: the oil (`oil:` inline or an oil file) -> lubricant::Oil (docs/config.md).
 #include <algorithm>
 #include <fmt/format.h>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -44,6 +45,19 @@ lubricant::BearingFrictionPair parse_pair(const YamlNode& n) {
 
 }  // namespace
 
+namespace {
+// A table over temperature (viscosity points, piezoviscosity): each temperature above the one
+// before, as written, so that no two entries share an abscissa; blamed on the later entry.
+void require_ascending(const YamlNode& before, double T_before, const YamlNode& at, double T) {
+    if (T == T_before)
+        at.fail(fmt::format("temperature '{}' is listed twice (also at line {}); each temperature once",
+                            excerpt(at.as_string()), before.location().line));
+    if (T < T_before)
+        at.fail(fmt::format("temperature '{}' is below the one before it ('{}'); list the temperatures in ascending order",
+                            excerpt(at.as_string()), excerpt(before.as_string())));
+}
+}  // namespace
+
 lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
     using detail::assume;
     using detail::number_text;
@@ -78,19 +92,19 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
     } else {
         const auto pts = v.at("points").items();
         std::vector<std::pair<double, double>> tv;
+        std::optional<YamlNode> previous;
         for (const auto& p : pts) {
             const auto pair = p.items();
             if (pair.size() != 2) p.fail("each point is [temperature, kinematic viscosity], e.g. [40 degC, 112.35 cSt]");
             const double T = pair[0].as_temperature();
             const double nu = pair[1].as_quantity(dim::kinematic_viscosity, "112.35 cSt");
             if (!(nu > 0)) pair[1].fail("viscosity must be positive");
+            if (previous) require_ascending(*previous, tv.back().first, pair[0], T);
+            if (!tv.empty() && !(nu * 1e6 < tv.back().second))
+                pair[1].fail("viscosity must fall as temperature rises (" + excerpt(pair[1].as_string()) +
+                             " is not below the point before)");
             tv.emplace_back(T, nu * 1e6);
-        }
-        std::sort(tv.begin(), tv.end());
-        for (size_t i = 1; i < tv.size(); ++i) {
-            if (tv[i].first == tv[i - 1].first) v.at("points").fail("two points at the same temperature");
-            if (tv[i].second >= tv[i - 1].second)
-                v.at("points").fail("viscosity must fall as temperature rises");
+            previous = pair[0];
         }
         std::string law = tv.size() == 3 ? "vogel" : "astm_d341";
         if (auto l = v.get("law")) law = l->as_enum<std::string>({{"vogel", "vogel"}, {"astm_d341", "astm_d341"}});
@@ -147,16 +161,19 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
         if (pz->is_scalar()) {
             if (pz->as_string() != "gold") pz->fail("use 'gold' or a list of [temperature, coefficient] pairs");
         } else {
+            std::optional<YamlNode> previous;
             for (const auto& p : pz->items()) {
                 const auto pair = p.items();
                 if (pair.size() != 2) p.fail("each entry is [temperature, coefficient], e.g. [40 degC, 1.387e-8 1/Pa]");
                 const double T = pair[0].as_temperature();
                 const double a = pair[1].as_quantity(dim::per_pascal, "1.387e-8 1/Pa");
                 if (!(a > 1e-10 && a < 1e-6)) pair[1].fail("pressure-viscosity coefficient outside 1e-10..1e-6 1/Pa");
+                // The table is interpolated between neighbours: a temperature listed twice divides by zero.
+                if (previous) require_ascending(*previous, oil.piezo_table.back().T_K, pair[0], T);
                 oil.piezo_table.push_back({T, a});
+                previous = pair[0];
             }
-            std::sort(oil.piezo_table.begin(), oil.piezo_table.end(),
-                      [](const auto& a, const auto& b) { return a.T_K < b.T_K; });
+            if (oil.piezo_table.empty()) pz->fail("an empty table; give [temperature, coefficient] pairs or 'gold'");
         }
     }
     if (auto x = n.get("X_L")) {

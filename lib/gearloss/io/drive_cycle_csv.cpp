@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <map>
 
@@ -9,6 +10,10 @@
 #include "gearloss/io/csv_read.hpp"
 
 namespace gearloss::io {
+
+namespace {
+constexpr double kMaxCycleAcceleration = 9.81;  // m/s^2: 1 g
+}  // namespace
 
 namespace fs = std::filesystem;
 using cycle::DriveCycle;
@@ -58,11 +63,28 @@ DriveCycle load_cycle_csv(const std::string& file) {
         if (v < 0 || v > 500) throw InputError(file, ln, iv + 1, "speed_kmh", "speed must be in [0, 500] km/h");
         if (!c.time.empty() && !(t > c.time.back()))
             throw InputError(file, ln, it + 1, "time_s", "time must increase from row to row");
+        // A road vehicle neither gains nor loses speed faster than about 1 g (tyre grip); beyond it
+        // the rows are not a drive (0 and 200 km/h alternating every second is 56 m/s^2).
+        if (!c.time.empty()) {
+            const double accel = (v / 3.6 - c.speed.back()) / (t - c.time.back());
+            if (std::abs(accel) > kMaxCycleAcceleration)
+                throw InputError(file, ln, iv + 1, "speed_kmh",
+                                 fmt::format("{} from {:.4g} to {:.4g} km/h in {:.4g} s is {:.3g} m/s^2, beyond 1 g "
+                                             "(9.81 m/s^2): not a road drive; check the speeds and times",
+                                             accel > 0 ? "accelerating" : "braking", c.speed.back() * 3.6, v,
+                                             t - c.time.back(), std::abs(accel)));
+        }
         c.time.push_back(t);
         c.speed.push_back(v / 3.6);
         if (ig >= 0) {
             const double g = csv_cell_number(cells[ig], file, ln, ig + 1, "gear", sep);
             if (g < 0 || g > 20 || g != std::floor(g)) throw InputError(file, ln, ig + 1, "gear", "gear must be 0-20");
+            // Neutral while the wheels turn leaves the output shaft turning the gearbox, which the
+            // model cannot represent (it would count no loss at all).
+            if (g == 0 && v > 0)
+                throw InputError(file, ln, ig + 1, "gear",
+                                 fmt::format("gear 0 (neutral) at {:.4g} km/h: give the gear engaged while moving "
+                                             "(0 only at standstill)", v));
             c.gear.push_back(static_cast<int>(g));
         }
     }

@@ -138,10 +138,19 @@ void load_vehicle(const YamlNode& n, Case& c) {
             sh->fail("need 0 < downshift < upshift");
     }
     if (auto e = n.get("engine")) {
-        e->allow_keys({"idle_speed", "overrun_torque", "fuel_map", "fuel_density", "lower_heating_value", "note"});
+        e->allow_keys({"idle_speed", "max_speed", "max_torque", "overrun_torque", "fuel_map", "fuel_density",
+                       "lower_heating_value", "note"});
         auto& en = v.engine;
         if (auto x = e->get("idle_speed")) en.idle_speed = x->as_quantity(dim::angular_speed, "800 rpm");
         if (!(en.idle_speed > 0)) e->at("idle_speed").fail("must be positive");
+        if (auto x = e->get("max_speed")) {
+            en.max_speed = x->as_quantity(dim::angular_speed, "6500 rpm");
+            if (!(en.max_speed > en.idle_speed)) x->fail("must be above the idle speed");
+        }
+        if (auto x = e->get("max_torque")) {
+            en.max_torque = x->as_quantity(dim::torque, "350 N*m");
+            if (!(*en.max_torque > 0)) x->fail("must be positive");
+        }
         if (auto x = e->get("overrun_torque")) en.overrun_torque = x->as_quantity(dim::torque, "25 N*m");
         if (en.overrun_torque < 0) e->at("overrun_torque").fail("must not be negative (a drag torque magnitude)");
         if (auto x = e->get("fuel_density")) en.fuel_density = x->as_quantity(dim::density, "745 kg/m^3");

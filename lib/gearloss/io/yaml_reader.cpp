@@ -12,6 +12,8 @@
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/parser.h>
 
+#include <fmt/format.h>
+
 #include "gearloss/io/csv_read.hpp"
 
 namespace gearloss::io::detail {
@@ -91,18 +93,24 @@ public:
     void OnDocumentStart(const YAML::Mark&) override {}
     void OnDocumentEnd() override {}
     void OnNull(const YAML::Mark& m, YAML::anchor_t a) override { leaf(m, a); }
-    void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t a, const std::string&) override { leaf(m, a); }
+    void OnScalar(const YAML::Mark& m, const std::string& tag, YAML::anchor_t a, const std::string& value) override {
+        check_tag(m, tag);
+        check_text(m, value);
+        leaf(m, a);
+    }
     void OnAlias(const YAML::Mark& m, YAML::anchor_t a) override {
         const auto it = anchors_.find(a);
         if (it == anchors_.end() || !it->second.complete)
             fail(m, "an alias refers to a node that contains it (a cycle)");
         add(m, it->second.count, it->second.height);
     }
-    void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t a, YAML::EmitterStyle::value) override {
+    void OnSequenceStart(const YAML::Mark& m, const std::string& tag, YAML::anchor_t a, YAML::EmitterStyle::value) override {
+        check_tag(m, tag);
         open(m, a);
     }
     void OnSequenceEnd() override { close(); }
-    void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t a, YAML::EmitterStyle::value) override {
+    void OnMapStart(const YAML::Mark& m, const std::string& tag, YAML::anchor_t a, YAML::EmitterStyle::value) override {
+        check_tag(m, tag);
         open(m, a);
     }
     void OnMapEnd() override { close(); }
@@ -125,6 +133,26 @@ private:
 
     [[noreturn]] void fail(const YAML::Mark& m, const std::string& what) const {
         throw InputError(file_, line_of(m), column_of(m), "", what);
+    }
+    // A tag ("!!binary", "!unit") would change what a value means, and gearloss reads every value
+    // by its key: refused rather than dropped. "?" and "!" are the untagged plain and quoted nodes.
+    void check_tag(const YAML::Mark& m, const std::string& tag) const {
+        if (tag.empty() || tag == "?" || tag == "!") return;
+        fail(m, "a YAML tag ('" + excerpt(tag) + "') is not read by gearloss; write the value without it");
+    }
+    // A value with a control character (a NUL or ESC written as an escape in a quoted string)
+    // would be cut short in a path or print raw in a message. A tab and a line break are text.
+    void check_text(const YAML::Mark& m, const std::string& value) const {
+        for (unsigned char c : value)
+            if ((c < 0x20 && c != '\t' && c != '\n') || c == 0x7F)
+                fail(m, fmt::format("a control character (U+{:04X}) in a value; write printable UTF-8 text", c));
+        // C1 controls (U+0080..U+009F, C2 80..C2 9F in UTF-8); bytes that are not UTF-8 at all are
+        // refused where the value is read as a name or a title, with its key.
+        for (std::size_t i = 0; i + 1 < value.size(); ++i)
+            if (static_cast<unsigned char>(value[i]) == 0xC2 && static_cast<unsigned char>(value[i + 1]) >= 0x80 &&
+                static_cast<unsigned char>(value[i + 1]) <= 0x9F)
+                fail(m, fmt::format("a control character (U+{:04X}) in a value; write printable UTF-8 text",
+                                    static_cast<unsigned char>(value[i + 1])));
     }
     // A node of `count` nodes and `height` levels at the current position.
     void add(const YAML::Mark& m, std::uint64_t count, std::size_t height) {
@@ -440,23 +468,15 @@ bool YamlNode::as_bool() const {
 }
 
 double YamlNode::as_quantity(const units::Dimension& expected, const char* example) const {
+    return as_kind(expected, units::Kind::plain, example);
+}
+
+double YamlNode::as_angle(const char* example) const { return as_kind(units::dim::angle, units::Kind::angle, example); }
+
+double YamlNode::as_kind(const units::Dimension& expected, units::Kind kind, const char* example) const {
     const std::string s = as_string();
-    units::Quantity q;
     try {
-        q = units::parse_quantity(s);
-    } catch (const units::UnitError& e) {
-        fail(e.message + std::string(" (expected e.g. '") + example + "')");
-    }
-    if (q.dim != expected) {
-        if (q.dim == units::dim::none && expected != units::dim::none)
-            fail("'" + excerpt(s) + "' has no unit; write it with a unit, e.g. '" + example + "'");
-        fail("'" + excerpt(s) + "' has dimension " + units::to_string(q.dim) + ", expected " + units::to_string(expected) +
-             " (e.g. '" + example + "')");
-    }
-    if (q.absolute_temperature)
-        fail("'" + excerpt(s) + "' is a temperature; a temperature difference or rate was expected (e.g. '" + example + "')");
-    try {
-        return units::as_rotational_speed(q, s);
+        return units::checked_value(units::parse_quantity(s), expected, s, kind);
     } catch (const units::UnitError& e) {
         fail(e.message + std::string(" (expected e.g. '") + example + "')");
     }
@@ -464,15 +484,11 @@ double YamlNode::as_quantity(const units::Dimension& expected, const char* examp
 
 double YamlNode::as_temperature() const {
     const std::string s = as_string();
-    units::Quantity q;
     try {
-        q = units::parse_quantity(s);
+        return units::absolute_temperature(units::parse_quantity(s), s);
     } catch (const units::UnitError& e) {
         fail(e.message + " (expected e.g. '40 degC')");
     }
-    if (!q.absolute_temperature) fail("'" + excerpt(s) + "' is not a temperature; write e.g. '40 degC' or '313.15 K'");
-    if (!(q.value > 0.0)) fail("'" + excerpt(s) + "' is below absolute zero");
-    return q.value;
 }
 
 double YamlNode::positive_quantity(const std::string& key, const units::Dimension& d, const char* example) const {

@@ -69,6 +69,8 @@ public:
     bool as_bool() const;
     // Quantity with a unit of the expected dimension, converted to SI.
     double as_quantity(const units::Dimension& expected, const char* example) const;
+    // An angle, written with its unit ("20 deg", "0.35 rad"); a bare number is an error.
+    double as_angle(const char* example) const;
     // Temperature: "40 degC" / "313.15 K" (absolute).
     double as_temperature() const;
     template <class E>
@@ -94,6 +96,7 @@ public:
     double positive_quantity(const std::string& key, const units::Dimension& d, const char* example) const;
 
 private:
+    double as_kind(const units::Dimension& expected, units::Kind kind, const char* example) const;
     std::string key_name(const YAML::Node& key) const;
     YAML::Node node_;
     std::string file_;

@@ -9,6 +9,7 @@
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/csv_format.hpp"
+#include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/json_text.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/map/vecto.hpp"
@@ -52,21 +53,20 @@ std::vector<double> parse_temperature_list(const std::string& text, const char* 
     const size_t u = unit_start(items.back());
     const std::string unit = u == std::string::npos ? "" : items.back().substr(u);
     if (unit.empty())
-        throw InputError("", 0, 0, what, fmt::format("'{}': give a unit on the last item (e.g. '{}')", text, kExample));
+        throw InputError("", 0, 0, what, fmt::format("'{}': give a unit on the last item (e.g. '{}')", io::excerpt(text), kExample));
     std::vector<double> out;
     for (const auto& item : items) {
-        if (item.empty()) throw InputError("", 0, 0, what, fmt::format("empty item in '{}' (expected e.g. '{}')", text, kExample));
+        if (item.empty()) throw InputError("", 0, 0, what, fmt::format("empty item in '{}' (expected e.g. '{}')", io::excerpt(text), kExample));
         const std::string q = unit_start(item) == std::string::npos ? item + " " + unit : item;
         units::Quantity v;
         try {
             v = units::parse_quantity(q);
+            v.value = units::absolute_temperature(v, item);
         } catch (const units::UnitError& e) {
             throw InputError("", 0, 0, what, e.message + fmt::format(" (expected e.g. '{}')", kExample));
         }
-        if (!v.absolute_temperature || !std::isfinite(v.value) || v.value <= 0)
-            throw InputError("", 0, 0, what, fmt::format("'{}' is not a temperature (expected e.g. '{}')", item, kExample));
         if (!out.empty() && v.value <= out.back())
-            throw InputError("", 0, 0, what, fmt::format("'{}': the temperatures must be strictly ascending", text));
+            throw InputError("", 0, 0, what, fmt::format("'{}': the temperatures must be strictly ascending", io::excerpt(text)));
         out.push_back(v.value);
     }
     return out;

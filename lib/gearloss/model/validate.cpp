@@ -350,6 +350,13 @@ std::optional<std::string> oil_temperature_fault(const lubricant::Oil& oil, doub
     if (!(T < v.T_max))
         return fmt::format("{} is at or above the validity of oil '{}' ({} at {})", degC(T), oil.name, v.max_reason,
                            degC(v.T_max));
+    // Colder, the viscosity law runs past the cap of lubricant::Oil::nu_mm2s (1e7 mm^2/s): the oil
+    // is a solid there, below its data, and a film, a churning loss or a drag computed from the
+    // capped value would be nonsense labelled ok.
+    constexpr double capped_nu_mm2s = 1e7;
+    if (oil.nu_mm2s(T) >= capped_nu_mm2s)
+        return fmt::format("{} is below the data of oil '{}' (its viscosity law gives more than {:g} mm^2/s there: a "
+                           "solid)", degC(T), oil.name, capped_nu_mm2s);
     return std::nullopt;
 }
 
@@ -370,7 +377,9 @@ std::optional<std::string> torque_fault(double T) {
 
 std::optional<std::string> ambient_fault(double T) {
     if (!finite(T)) return "ambient temperature is " + show(T);
-    if (!(T >= kMinAmbient_K && T <= kMaxAmbient_K))
+    // The bounds as written in degC: -100 degC is 173.14999999999998 K after the offset.
+    constexpr double rounding = 1e-9;
+    if (!(T >= kMinAmbient_K - rounding && T <= kMaxAmbient_K + rounding))
         return fmt::format("ambient temperature {} outside the stated range -100..300 degC", degC(T));
     return std::nullopt;
 }

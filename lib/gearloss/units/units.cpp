@@ -59,10 +59,12 @@ namespace {
 struct Unit {
     double scale;
     Dimension d;
-    // What the expression names besides its dimension, for rotational speeds
-    // (radians are dimensionless, so "Hz" and "rad/s" share the dimension 1/s):
-    bool angle = false;      // rad, deg, rev, rpm: the angle is explicit
-    bool rotation = false;   // Hz or a time unit other than the second (1/min, min^-1): revolutions per time
+    // What the expression names besides its dimension (radians are dimensionless, so "Hz" and
+    // "rad/s" share the dimension 1/s, and a torque shares the dimension of an energy):
+    int angle = 0;              // power of the angle units: rad, deg, rev, rpm 1; rad/s 1; rpm/rev 0
+    bool rotation = false;      // Hz or a time unit other than the second (1/min, min^-1): revolutions per time
+    bool energy = false;        // J, Wh, W and their multiples: an energy or a power, never a torque
+    bool angle_named = false;   // an angle unit appears (rpm/rev: its angles cancel, but it names them)
 };
 
 const std::map<std::string, Unit, std::less<>>& unit_table() {
@@ -76,20 +78,26 @@ const std::map<std::string, Unit, std::less<>>& unit_table() {
         // mass
         {"kg", {1.0, mass}}, {"g", {1e-3, mass}}, {"t", {1e3, mass}},
         // time
-        {"s", {1.0, time}}, {"ms", {1e-3, time}}, {"min", {60.0, time, false, true}}, {"h", {3600.0, time, false, true}},
+        {"s", {1.0, time}}, {"ms", {1e-3, time}}, {"min", {60.0, time, 0, true}}, {"h", {3600.0, time, 0, true}},
         // temperature (as a unit inside expressions: kelvin; degC as a scale is a difference)
         {"K", {1.0, temperature}},
+        // degC and degF inside an expression (kJ/degC, W/(m^2*degC)) are temperature differences:
+        // a kelvin and 5/9 of a kelvin; alone they are absolute temperatures (parse_unit)
+        {"degC", {1.0, temperature}}, {"°C", {1.0, temperature}}, {"degF", {5.0 / 9.0, temperature}},
+        {"°F", {5.0 / 9.0, temperature}},
         // angle
-        {"rad", {1.0, none, true}}, {"deg", {pi / 180.0, none, true}}, {"rev", {2.0 * pi, none, true}},
+        {"rad", {1.0, none, 1, false, false, true}}, {"deg", {pi / 180.0, none, 1, false, false, true}},
+        {"rev", {2.0 * pi, none, 1, false, false, true}},
         // rotational speed; Hz is a frequency: as a rotational speed it counts revolutions (DIN 1301)
-        {"rpm", {2.0 * pi / 60.0, angular_speed, true}}, {"Hz", {1.0, angular_speed, false, true}},
-        {"kHz", {1e3, angular_speed, false, true}},
+        {"rpm", {2.0 * pi / 60.0, angular_speed, 1, false, false, true}}, {"Hz", {1.0, angular_speed, 0, true}},
+        {"kHz", {1e3, angular_speed, 0, true}},
         // force, torque, pressure, energy, power
         {"N", {1.0, force}}, {"Nm", {1.0, torque}}, {"kNm", {1e3, torque}}, {"kN", {1e3, force}}, {"MN", {1e6, force}},
         {"Pa", {1.0, pressure}}, {"kPa", {1e3, pressure}}, {"MPa", {1e6, pressure}}, {"GPa", {1e9, pressure}},
         {"bar", {1e5, pressure}},
-        {"J", {1.0, energy}}, {"kJ", {1e3, energy}}, {"MJ", {1e6, energy}}, {"Wh", {3600.0, energy}}, {"kWh", {3.6e6, energy}},
-        {"W", {1.0, power}}, {"kW", {1e3, power}}, {"MW", {1e6, power}},
+        {"J", {1.0, energy, 0, false, true}}, {"kJ", {1e3, energy, 0, false, true}}, {"MJ", {1e6, energy, 0, false, true}},
+        {"Wh", {3600.0, energy, 0, false, true}}, {"kWh", {3.6e6, energy, 0, false, true}},
+        {"W", {1.0, power, 0, false, true}}, {"kW", {1e3, power, 0, false, true}}, {"MW", {1e6, power, 0, false, true}},
         // volume
         {"L", {1e-3, volume}}, {"l", {1e-3, volume}}, {"mL", {1e-6, volume}}, {"ml", {1e-6, volume}},
         // viscosity
@@ -161,10 +169,16 @@ private:
     [[noreturn]] void fail(const std::string& what) const {
         throw UnitError("cannot read unit '" + excerpt(s_) + "': " + what);
     }
+    // u*v (sign +1) or u/v (sign -1): the scales, dimensions and angle powers combine, the names accumulate.
+    static Unit combine(const Unit& u, const Unit& v, int sign) {
+        return {sign > 0 ? u.scale * v.scale : u.scale / v.scale, add(u.d, v.d, sign), u.angle + sign * v.angle,
+                u.rotation || v.rotation, u.energy || v.energy, u.angle_named || v.angle_named};
+    }
     // The result of combining two units: every base exponent within +-kMaxExponent.
     Unit checked(const Unit& u) const {
         for (int e : u.d.e)
             if (e > kMaxExponent || e < -kMaxExponent) fail("exponent out of range");
+        if (u.angle > kMaxExponent || u.angle < -kMaxExponent) fail("exponent out of range");
         return u;
     }
     void skip_ws() {
@@ -179,11 +193,11 @@ private:
             if (c == '*' || c == '.') {
                 ++pos_;
                 Unit v = factor();
-                u = checked({u.scale * v.scale, add(u.d, v.d, +1), u.angle || v.angle, u.rotation || v.rotation});
+                u = checked(combine(u, v, +1));
             } else if (c == '/') {
                 ++pos_;
                 Unit v = factor();
-                u = checked({u.scale / v.scale, add(u.d, v.d, -1), u.angle || v.angle, u.rotation || v.rotation});
+                u = checked(combine(u, v, -1));
             } else {
                 break;
             }
@@ -207,7 +221,7 @@ private:
             if (pos_ - start > 2) fail("exponent out of range");
             int p = std::stoi(std::string(s_.substr(start, pos_ - start))) * sign;
             if (p > 6 || p < -6) fail("exponent out of range");
-            u = checked({std::pow(u.scale, p), mul(u.d, p), u.angle, u.rotation});
+            u = checked({std::pow(u.scale, p), mul(u.d, p), u.angle * p, u.rotation, u.energy, u.angle_named});
         } else {
             // "m2" / "m3" shorthand for squared / cubed units
             size_t start = pos_;
@@ -216,7 +230,7 @@ private:
                 if (pos_ - start > 2) fail("exponent out of range");
                 int p = std::stoi(std::string(s_.substr(start, pos_ - start)));
                 if (p > 6) fail("exponent out of range");
-                u = checked({std::pow(u.scale, p), mul(u.d, p), u.angle, u.rotation});
+                u = checked({std::pow(u.scale, p), mul(u.d, p), u.angle * p, u.rotation, u.energy, u.angle_named});
             }
         }
         return u;
@@ -265,8 +279,9 @@ std::string_view trim(std::string_view s) {
 
 UnitFactor parse_unit(std::string_view expr) {
     expr = trim(expr);
-    if (expr == "degC" || expr == "°C" || expr == "C")
-        return {1.0, 273.15, dim::temperature, true};
+    // "C" alone is degrees Celsius as well (recordings headers write oil_temp_C; "70C" on the
+    // command line), as docs/config.md states; inside an expression it is unknown (no coulomb).
+    if (expr == "degC" || expr == "°C" || expr == "C") return {1.0, 273.15, dim::temperature, true};
     if (expr == "degF" || expr == "°F")
         return {5.0 / 9.0, 273.15 - 32.0 * 5.0 / 9.0, dim::temperature, true};
     if (expr == "K") return {1.0, 0.0, dim::temperature, true};
@@ -276,7 +291,7 @@ UnitFactor parse_unit(std::string_view expr) {
     // overflows or underflows would turn every value into inf, 0 or NaN.
     if (!std::isnormal(u.scale))
         throw UnitError("cannot read unit '" + excerpt(expr) + "': its scale to SI units is out of range");
-    return {u.scale, 0.0, u.d, false, u.angle, u.rotation};
+    return {u.scale, 0.0, u.d, false, u.angle == 1, u.rotation, u.angle, u.angle_named, u.energy};
 }
 
 Quantity parse_quantity(std::string_view text) {
@@ -301,12 +316,21 @@ Quantity parse_quantity(std::string_view text) {
     q.absolute_temperature = f.affine;
     q.explicit_angle = f.angle;
     q.rotation = f.rotation;
+    q.angle_power = f.angle_power;
+    q.angle_named = f.angle_named;
+    q.energy_named = f.energy_named;
+    q.unitless = rest.empty();
     return q;
 }
 
 double as_rotational_speed(const Quantity& q, std::string_view text) {
     if (q.dim != dim::angular_speed) return q.value;
     if (q.explicit_angle) return q.value;                     // rpm, rev/min, rad/s, deg/s
+    // "1000 rpm/rev" is 1000/min with the angle divided out: no longer a speed of rotation as written.
+    if (q.angle_named)
+        throw UnitError("'" + excerpt(trim(text)) + "' is not a rotational speed: its angle units " +
+                        (q.angle_power == 0 ? "cancel" : "do not reduce to one angle per time") +
+                        "; write e.g. '1000 rpm', '1000 rev/min', '100 rad/s' or '10 Hz'");
     if (q.rotation) return 2.0 * std::numbers::pi * q.value;  // Hz, 1/min, min^-1: revolutions per time
     // "1/s" is the angular velocity in rad/s to some and revolutions per second (DIN 1301) to others.
     throw UnitError("'" + excerpt(trim(text)) +
@@ -314,6 +338,40 @@ double as_rotational_speed(const Quantity& q, std::string_view text) {
                     "'rpm' or '1/min' for revolutions per time");
 }
 
+double absolute_temperature(const Quantity& q, std::string_view text) {
+    const std::string s = excerpt(trim(text));
+    if (!q.absolute_temperature)
+        throw UnitError("'" + s + "' is not a temperature" + (q.unitless ? " (no unit)" : "") +
+                        "; write it in degC, degF or K alone, e.g. '40 degC' or '313.15 K'");
+    if (q.value == 0.0) throw UnitError("'" + s + "' is absolute zero; an oil or air temperature is above 0 K (-273.15 degC)");
+    if (!(q.value > 0.0)) throw UnitError("'" + s + "' is below absolute zero (0 K = -273.15 degC)");
+    return q.value;
+}
 
+double checked_value(const Quantity& q, const Dimension& expected, std::string_view text, Kind kind) {
+    const std::string s = excerpt(trim(text));
+    if (q.dim != expected) {
+        if (q.unitless)
+            throw UnitError("'" + s + "' has no unit; a value of dimension " + to_string(expected) +
+                            " needs one (a missing unit is an error, not a default)");
+        throw UnitError("'" + s + "' has dimension " + to_string(q.dim) + ", expected " + to_string(expected));
+    }
+    if (q.absolute_temperature)
+        throw UnitError("'" + s + "' is an absolute temperature; a temperature difference or rate was expected");
+    if (kind == Kind::angle) {
+        if (!q.angle_named)
+            throw UnitError("'" + s + "' has no angle unit; write the angle with one, e.g. in deg or rad (a bare " +
+                            "number is not taken as radians)");
+        if (q.angle_power != 1) throw UnitError("'" + s + "' is not an angle: its angle units do not reduce to one angle");
+        return q.value;
+    }
+    if (expected == dim::angular_speed) return as_rotational_speed(q, text);
+    if (q.angle_named)
+        throw UnitError("'" + s + "' is written with an angle unit; a value of dimension " + to_string(expected) +
+                        " was expected, without one");
+    if (expected == dim::torque && q.energy_named)
+        throw UnitError("'" + s + "' is an energy (J, Wh or W*s), not a torque; write a torque in N*m, Nm or kNm");
+    return q.value;
+}
 
 }  // namespace gearloss::units

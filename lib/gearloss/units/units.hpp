@@ -30,8 +30,12 @@ struct Quantity {
     double value = 0.0;  // SI
     Dimension dim;
     bool absolute_temperature = false;  // parsed from degC/degF/K alone
-    bool explicit_angle = false;        // the unit names an angle (rad, deg, rev, rpm)
+    bool explicit_angle = false;        // the unit carries one angle (rad, deg, rev, rpm, rad/s; not rpm/rev)
     bool rotation = false;              // the unit names a frequency (Hz) or a time other than the second (1/min)
+    int angle_power = 0;                // power of the angle units in the expression (rad/s: 1, rad^2: 2, rpm/rev: 0)
+    bool angle_named = false;           // an angle unit appears at all (rpm/rev: true, though the angles cancel)
+    bool energy_named = false;          // an energy or power unit appears (J, Wh, W): the value is not a torque
+    bool unitless = false;              // a number alone
 };
 
 // Parses "<number> <unit expression>". Throws UnitError with a message that
@@ -48,6 +52,9 @@ struct UnitFactor {
     bool affine = false;
     bool angle = false;     // see Quantity::explicit_angle
     bool rotation = false;  // see Quantity::rotation
+    int angle_power = 0;    // see Quantity::angle_power
+    bool angle_named = false;
+    bool energy_named = false;
 };
 UnitFactor parse_unit(std::string_view expr);
 
@@ -57,6 +64,24 @@ UnitFactor parse_unit(std::string_view expr);
 // revolutions per time; a bare 1/s is ambiguous (rad/s or rev/s) and throws.
 // Other dimensions: the SI value unchanged.
 double as_rotational_speed(const Quantity& q, std::string_view text);
+
+// What a value is meant to be beyond its dimension: radians are dimensionless and a
+// torque has the dimension of an energy, so the dimension alone cannot tell them apart.
+enum class Kind {
+    plain,  // the dimension says it all (a torque refuses J, Wh and W; no angle unit)
+    angle,  // an angle: dimensionless, but written with exactly one angle unit (rad, deg, rev)
+};
+
+// The SI value of `q` (written as `text`) where a quantity of dimension `expected` and kind
+// `kind` is meant. Throws UnitError saying what was wrong (no unit, a wrong dimension, an
+// absolute temperature where a difference is meant, an energy for a torque, an angle that
+// is missing, repeated or cancelled, an ambiguous rotational speed); the caller adds where
+// it was written and an example. Rotational speeds as as_rotational_speed.
+double checked_value(const Quantity& q, const Dimension& expected, std::string_view text, Kind kind = Kind::plain);
+
+// The absolute temperature [K] of `q` (written as `text`): written in degC, degF or K alone
+// and above absolute zero; else UnitError saying which of the two it is not.
+double absolute_temperature(const Quantity& q, std::string_view text);
 
 // A unit that cannot be read; the caller knows where it was written and rethrows located.
 struct UnitError : InputError {

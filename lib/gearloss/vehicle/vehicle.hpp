@@ -19,6 +19,9 @@ struct FuelMap {
 struct Engine {
     double idle_speed = 83.776;       // rad/s (800 rpm)
     double overrun_torque = 25.0;     // drag torque available for engine braking [N m] (fuel cut)
+    // Limits a drive cycle may not exceed (a cycle beyond them is an error at its row):
+    double max_speed = 733.04;        // rad/s (7000 rpm, a passenger-car petrol engine's red line)
+    std::optional<double> max_torque; // N m; unchecked when not given
     std::optional<FuelMap> fuel_map;
     double fuel_density = 745.0;      // kg/m^3 (petrol)
     double lower_heating_value = 43e6;  // J/kg

@@ -1,0 +1,165 @@
+#!/usr/bin/env bash
+# End-to-end regression cases of the second hostile-input review (issue 37, items 3, 5, 6):
+# values read as they are written (units and kinds), nonsense refused at the row or key that
+# holds it, messages that name the option or key at fault, and no nan/inf in any output of
+# any command, for the inputs that are accepted as much as for those that are refused.
+# Usage: cli_values_units_nan.sh GEARLOSS_BINARY SOURCE_DIR
+# Every file is made inside the private mktemp -d directory (cli_common.sh).
+set -u
+source "$(dirname "$0")/cli_common.sh" "$@"
+cp -r "$src/configs/oils" "$tmp/oils"
+cp "$src/configs/spur-seed000.yaml" "$tmp/spur.yaml"
+cp "$src/configs/transfer-box.yaml" "$tmp/tb.yaml"
+cp "$src/configs/manual-6speed.yaml" "$tmp/man.yaml"
+spur=$tmp/spur.yaml
+tb=$tmp/tb.yaml
+T="timeout -k 5 120"
+
+# no_nonfinite FILE...: no nan/inf printed as a number (a quoted input in a message is a word).
+no_nonfinite() { ! cat "$@" | sed "s/'[^']*'//g" | grep -qiwE -- '[-+]?(nan|inf|infinity)'; }
+
+# expect NAME CODE PATTERN COMMAND...: exit CODE, PATTERN (grep -E) in stderr, the message on
+# one line, and no nan/inf in stdout or stderr.
+expect() {
+    local name=$1 code=$2 pattern=$3
+    shift 3
+    $T "$@" > "$tmp/out" 2> "$tmp/err"
+    local rc=$?
+    check "$name: exit $code (got $rc)" test $rc -eq "$code"
+    [ -n "$pattern" ] && check "$name: message /$pattern/" grep -qE -- "$pattern" "$tmp/err"
+    [ "$code" -ne 0 ] && check "$name: one line" test "$(grep -cv '^gearloss: warning\|^gearloss: note' "$tmp/err")" -le 1
+    check "$name: no nan/inf" no_nonfinite "$tmp/out" "$tmp/err"
+}
+
+# ---------------------------------------------------------------------------------------
+# 3. Units and kinds.
+sed 's/angle: 0 deg/angle: 60/' "$spur" > "$tmp/angle.yaml"
+expect "angle: 60 (no unit; was 60 rad)" 2 "angle.yaml:[0-9]+:[0-9]+: meshes\[0\]\.angle: .*no angle unit" \
+    "$bin" check "$tmp/angle.yaml"
+sed 's/helix_angle: 20 deg, hand: right, material: 15CrNi6, Ra: 0.5 um}/helix_angle: 0.3, hand: right, material: 15CrNi6, Ra: 0.5 um}/' "$tb" > "$tmp/helix.yaml"
+expect "helix_angle: 0.3 (was 17.2 deg)" 2 "helix.yaml:[0-9]+:[0-9]+: gears\[0\]\.helix_angle: .*no angle unit" \
+    "$bin" check "$tmp/helix.yaml"
+expect "--torque '200 Wh'" 2 "^gearloss: error: --torque: .*not a torque" \
+    "$bin" point "$tb" --speed 800rpm --torque '200 Wh' --oil-temp 70degC
+expect "--torque '200 J'" 2 "^gearloss: error: --torque: .*not a torque" \
+    "$bin" point "$tb" --speed 800rpm --torque '200 J' --oil-temp 70degC
+expect "--speed '1000 rpm/rev'" 2 "^gearloss: error: --speed: .*not a rotational speed" \
+    "$bin" point "$tb" --speed '1000 rpm/rev' --torque 200Nm --oil-temp 70degC
+expect "--speed 1000rpm,5 (mixed)" 2 "^gearloss: error: --speed: .*mixes items" \
+    "$bin" map "$tb" --speed 1000rpm,5 --torque 200Nm --oil-temp 70degC -o "$tmp/mixed.csv"
+# Documented spellings: '70C' is 70 degC; '1000,5rpm' is two speeds (a comma separates items).
+"$bin" point "$tb" --speed 800rpm --torque 200Nm --oil-temp 70C > "$tmp/70C.txt" 2> /dev/null
+"$bin" point "$tb" --speed 800rpm --torque 200Nm --oil-temp 70degC > "$tmp/70degC.txt" 2> /dev/null
+check "--oil-temp 70C = 70degC (documented)" cmp -s "$tmp/70C.txt" "$tmp/70degC.txt"
+"$bin" map "$tb" --speed 1000,5rpm --torque 200Nm --oil-temp 70degC -o "$tmp/two.csv" 2> /dev/null
+check "--speed 1000,5rpm: rows 1000 and 5 rpm" \
+    bash -c "[ \"\$(cut -d, -f1 '$tmp/two.csv' | tail -n +2 | tr '\n' ' ')\" = '1000 5 ' ]"
+
+# Out-of-data values: oil at -100 degC (viscosity capped at 1e7 cSt, zero film, 'ok'), Ra 1e-300 um.
+expect "--oil-temp -100degC" 2 "^gearloss: error: --oil-temp: .*below the data of oil" \
+    "$bin" point "$tb" --speed 800rpm --torque 200Nm --oil-temp -100degC
+expect "--format table --oil-temps -100,20degC" 2 "^gearloss: error: --oil-temps: .*below the data of oil" \
+    "$bin" map "$tb" --format table --oil-temps -100,20degC -o "$tmp/table.csv"
+expect "cycle --start-temp -90degC" 2 "below the data of oil" \
+    "$bin" cycle "$tmp/man.yaml" --cycle nedc --start-temp -90degC
+sed 's/Ra: 0.2 um/Ra: 1e-300 um/' "$spur" > "$tmp/ra.yaml"
+expect "Ra: 1e-300 um" 2 "ra.yaml:[0-9]+:[0-9]+: gears\[0\]\.Ra: .*below 0.001 um" "$bin" check "$tmp/ra.yaml"
+# A shaft with a gear and no bearing, and a case without bearings: a warning, not silence.
+grep -v 'name: out_[ab],' "$spur" > "$tmp/nobear.yaml"
+expect "gear shaft without bearings" 0 "" "$bin" check "$tmp/nobear.yaml"
+check "gear shaft without bearings: warned at the shaft" grep -q "shaft 'output' carries gear(s) 'wheel' but no bearing" "$tmp/out"
+grep -v 'name: \(in\|out\)_[ab],\|^bearings:' "$spur" > "$tmp/nobearings.yaml"
+expect "case without bearings" 0 "" "$bin" point "$tmp/nobearings.yaml" --speed 800rpm --torque 100Nm --oil-temp 70degC
+check "case without bearings: warned" grep -q "the case has no bearings" "$tmp/err"
+
+# Drive cycles the vehicle cannot drive: an error at the row.
+{ echo time_s,speed_kmh; for t in $(seq 0 19); do echo "$t,$(( t % 2 * 200 ))"; done; } > "$tmp/alt.csv"
+expect "cycle 0/200 km/h every second" 2 "alt.csv:3:2: speed_kmh: .*beyond 1 g" \
+    "$bin" cycle "$tmp/man.yaml" --cycle "$tmp/alt.csv" --start-temp 20degC
+printf 'time_s,speed_kmh,gear\n0,0,0\n1,5,0\n2,8,1\n' > "$tmp/neutral.csv"
+expect "cycle in gear 0 at 5 km/h" 2 "neutral.csv:3:3: gear: gear 0 \(neutral\) at 5 km/h" \
+    "$bin" cycle "$tmp/man.yaml" --cycle "$tmp/neutral.csv" --start-temp 20degC
+printf 'time_s,speed_kmh,gear\n0,0,1\n10,50,1\n20,100,1\n30,150,1\n40,200,1\n' > "$tmp/first.csv"
+expect "cycle in gear 1 to 200 km/h" 2 "cycle: at t = [0-9]+ s .*input speed [0-9]+ rpm above the engine's max_speed" \
+    "$bin" cycle "$tmp/man.yaml" --cycle "$tmp/first.csv" --start-temp 20degC
+
+# Strings and YAML: a NUL or ESC escape in a value, a tag; an empty option.
+sed 's/name: pinion/name: "pin\\0ion"/' "$spur" > "$tmp/nul.yaml"
+expect "NUL in a name" 2 "nul.yaml:[0-9]+:[0-9]+: a control character \(U\+0000\)" "$bin" check "$tmp/nul.yaml"
+sed 's|oil: oils/|oil: "oils/\\e[31m|' "$spur" > "$tmp/esc.yaml"
+expect "ESC in a path" 2 "esc.yaml:[0-9]+:[0-9]+: a control character \(U\+001B\)" "$bin" check "$tmp/esc.yaml"
+sed 's/module: 4 mm/module: !unit 4 mm/' "$spur" > "$tmp/tag.yaml"
+expect "a !unit tag" 2 "tag.yaml:[0-9]+:[0-9]+: a YAML tag" "$bin" check "$tmp/tag.yaml"
+sed 's/^name: .*/name: !!binary aGVsbG8=/' "$spur" > "$tmp/bin.yaml"
+expect "a !!binary tag" 2 "bin.yaml:[0-9]+:[0-9]+: a YAML tag" "$bin" check "$tmp/bin.yaml"
+expect "--shard ''" 2 "^gearloss: error: --shard: an empty value" "$bin" map "$spur" --shard '' -o "$tmp/shard.csv"
+check "--shard '': nothing written" test ! -e "$tmp/shard.csv"
+expect "an ESC in --oil" 2 "^gearloss: error: --oil: .*control character" "$bin" check "$spur" --oil "$(printf 'oils/\033[31mx.yaml')"
+
+# ---------------------------------------------------------------------------------------
+# 5. Oil tables: one temperature twice gave alpha_p(40) = -nan in check and report, and 'ok'.
+sed 's/- \[70 degC, 1.194e-8 1\/Pa\]/- [40 degC, 1.194e-8 1\/Pa]/' "$tmp/oils/75W90-A.yaml" > "$tmp/oils/twice.yaml"
+expect "piezoviscosity with 40 degC twice" 2 \
+    "twice.yaml:$(grep -n '\[40 degC, 1.194e-8' "$tmp/oils/twice.yaml" | cut -d: -f1):[0-9]+: .*listed twice" \
+    "$bin" check "$tb" --oil "$tmp/oils/twice.yaml"
+sed 's/- \[70 degC, 36.7 cSt\]/- [100 degC, 36.7 cSt]/' "$tmp/oils/75W90-A.yaml" > "$tmp/oils/visc.yaml"
+expect "viscosity points with 100 degC twice" 2 "visc.yaml:[0-9]+:[0-9]+: .*listed twice" \
+    "$bin" check "$tb" --oil "$tmp/oils/visc.yaml"
+
+# ---------------------------------------------------------------------------------------
+# 6. Messages: the real problem, the right key, the option named, short numbers, one line.
+expect "--oil-temp -273.15degC" 2 "^gearloss: error: --oil-temp: .*is absolute zero" \
+    "$bin" point "$tb" --speed 800rpm --torque 200Nm --oil-temp -273.15degC
+sed 's/heat_capacity: 8 kJ\/K/heat_capacity: 8 kJ\/degC/' "$spur" > "$tmp/hc.yaml"
+expect "heat_capacity: 8 kJ/degC" 0 "" "$bin" check "$tmp/hc.yaml"
+sed 's/module: 4 mm/module: 1e-9 mm/' "$spur" > "$tmp/mod.yaml"
+expect "module 1e-9 mm" 2 "mod.yaml:[0-9]+:[0-9]+: gears\[0\]\.module: .*outside 0.05..100 mm" "$bin" check "$tmp/mod.yaml"
+sed 's/face_width: 20 mm, Ra: 0.2 um, immersion/face_width: 20 mm, addendum_coefficient: 5, Ra: 0.2 um, immersion/' \
+    "$spur" > "$tmp/add.yaml"
+expect "addendum_coefficient: 5" 2 "add.yaml:[0-9]+:[0-9]+: gears\[0\]\.addendum_coefficient: " "$bin" check "$tmp/add.yaml"
+sed '0,/module: 4 mm/s//module: 4.5 mm/' "$spur" > "$tmp/mods.yaml"
+expect "modules 4.5 and 4 mm" 2 "normal modules differ \(4.5 mm vs 4 mm\)" "$bin" check "$tmp/mods.yaml"
+expect "--torque '250 kg'" 2 "^gearloss: error: --torque: " \
+    "$bin" point "$tb" --speed 800rpm --torque '250 kg' --oil-temp 70degC
+check "--torque '250 kg': no <input>" bash -c "! grep -q '<input>' '$tmp/err'"
+expect "--threads 0" 1 "^gearloss: usage error: --threads: .*1 to 1024" "$bin" map "$spur" --threads 0 -o "$tmp/t.csv"
+expect "--threads abc" 1 "^gearloss: usage error: --threads: " "$bin" map "$spur" --threads abc -o "$tmp/t.csv"
+
+# ---------------------------------------------------------------------------------------
+# Every output of every command, for inputs that are accepted though hostile: no nan/inf.
+# Oil recorded colder than the ambient (diagnose printed "+/- nan"), a cold oil at the edge of
+# its data, the lowest and highest speeds and torques of the stated range.
+"$bin" synth "$spur" -o "$tmp/rec.csv" 2> /dev/null
+awk -F, 'NR == 1 { print; next } { $4 = 10; print }' OFS=, "$tmp/rec.csv" > "$tmp/cold.csv"
+runs=(
+    "map|$spur --speed 1,10,6000rpm --torque 0,1,2000Nm -o $tmp/o/map.csv --json $tmp/o/map.json"
+    "map|$spur --detail --oil-temp -20degC --speed 1,6000rpm --torque 0,500Nm -o $tmp/o/cold.csv"
+    "check|$spur --json"
+    "check|$tb --oil-temp -30degC"
+    "point|$spur --speed 1rpm --torque 0Nm --json $tmp/o/point.json"
+    "point|$spur --speed 6000rpm --torque 2000Nm --oil-temp 150degC"
+    "report|$spur --speed 100,3000rpm --torque 10,400Nm --no-spread -o $tmp/o/report.html"
+    "compare|$tb --oil $src/configs/oils/75W90-A.yaml --oil $src/configs/oils/75W140-A.yaml --speed 10,3000rpm --torque 0,500Nm --detail -o $tmp/o/compare.csv --json $tmp/o/compare.json"
+    "cycle|$tmp/man.yaml --cycle nedc --start-temp -30degC -o $tmp/o/cycle.csv --json $tmp/o/cycle.json"
+    "diagnose|$spur $tmp/cold.csv --bootstrap 4 --json $tmp/o/diagnose.json --residuals $tmp/o/residuals.csv"
+    "mesh-profile|$spur --mesh m --speed 800rpm --torque 200Nm --oil-temp 70degC"
+)
+mkdir -p "$tmp/o"
+i=0
+for r in "${runs[@]}"; do
+    i=$((i + 1))
+    cmd=${r%%|*}
+    # shellcheck disable=SC2086
+    $T "$bin" $cmd ${r#*|} > "$tmp/o/stdout_$i.txt" 2> "$tmp/o/stderr_$i.txt"
+    rc=$?
+    check "scan $cmd #$i: exit 0 (got $rc)" test $rc -eq 0
+done
+check "diagnose of oil colder than the ambient: no '+/- nan'" bash -c "! grep -q '+/- nan' '$tmp/o/stdout_10.txt'"
+for f in "$tmp"/o/*; do
+    check "no nan/inf in $(basename "$f")" no_nonfinite "$f"
+done
+check "the scan covered every output (CSV, sidecars, JSON, HTML)" \
+    test "$(ls "$tmp"/o/*.meta.json 2> /dev/null | wc -l)" -ge 3 -a -s "$tmp/o/report.html" -a -s "$tmp/o/diagnose.json"
+
+echo "$pass passed, $fail failed"
+test $fail -eq 0
