@@ -241,8 +241,10 @@ def draw_run(rng, t):
         for opt, ext in (("--json", ".json"), ("--write-config", ".yaml"), ("--residuals", ".csv")):
             if rng.random() < 0.4:
                 o = out_path(ext); outs.append(o); argv += [opt, o]
+                if ext == ".csv":
+                    outs.append(o + ".meta.json")  # every CSV written to a file has its sidecar
     elif cmd == "synth":
-        o = out_path(".csv"); outs.append(o)
+        o = out_path(".csv"); outs += [o, o + ".meta.json"]
         argv += [case, "-o", o, "--seed", str(rng.randrange(100))] + grid()
         if rng.random() < 0.5:
             argv += ["--effect", rng.choice(["windage=30W", "torque_sensor_gain=1.03", "bogus=1", "windage=nan W",
@@ -251,7 +253,7 @@ def draw_run(rng, t):
         o = out_path(".csv"); outs += [o, o + ".meta.json"]
         argv += [rng.choice(inputs), rng.choice(inputs), "-o", o]
     elif cmd == "mesh-profile":
-        o = out_path(".csv"); outs.append(o)
+        o = out_path(".csv"); outs += [o, o + ".meta.json"]
         argv += [c + "spur-seed000.yaml", "--mesh", rng.choice(["m1", "mesh", ""]), "--speed",
                  rng.choice(CLI_SPEEDS), "--torque", rng.choice(CLI_TORQUES), "-o", o]
     return argv, outs, mutated, files_read(t, argv)
