@@ -46,8 +46,12 @@ std::string diagnosis_text(const Diagnosis& d) {
         } else if (!f.parameter.form.empty()) {
             s += fmt::format("  {} = {} (the case: {})\n", f.parameter.name, f.parameter.form, f.parameter.case_form);
         } else {
-            s += fmt::format("  {} = {} +/- {}\n", f.parameter.name, fmt_value(f.parameter.value, f.parameter.unit),
-                             fmt_value(f.parameter.uncertainty, f.parameter.unit));
+            // The uncertainty is 1/sqrt of the likelihood's curvature: none where it is flat or
+            // bent the wrong way (an optimum on a bound), and then said so, never "+/- nan".
+            s += fmt::format("  {} = {} {}\n", f.parameter.name, fmt_value(f.parameter.value, f.parameter.unit),
+                             std::isfinite(f.parameter.uncertainty)
+                                 ? "+/- " + fmt_value(f.parameter.uncertainty, f.parameter.unit)
+                                 : std::string("(uncertainty not determined: the likelihood has no curvature there)"));
         }
         s += fmt::format("  evidence: delta BIC {:.1f}, cross-validated log-likelihood gain {:.1f}, chosen in {:.0f} % of {} "
                          "bootstrap resamples\n",
@@ -97,6 +101,7 @@ std::string diagnosis_json(const Diagnosis& d) {
     j["location"] = d.location;
     j["remaining"] = d.remaining;
     j["points"] = d.points;
+    if (d.fit_points < d.points) j["fit_points"] = d.fit_points;  // a large campaign fitted on part of its points
     j["rmse_before"] = d.rmse_before;
     j["rmse_after"] = d.rmse_after;
     j["cv_rmse_after"] = d.cv_rmse_after;
