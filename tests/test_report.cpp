@@ -106,3 +106,32 @@ TEST_CASE("report: the page names no external resource", "[report]") {
     CHECK(page.find("<link") == std::string::npos);
     CHECK(page.find("oil k &#8722; reference") != std::string::npos);
 }
+
+TEST_CASE("report: a grid beyond 64 x 64 points is down-sampled evenly, ends kept, and the page says so", "[report]") {
+    // 100 speeds x 50 torques = 5000 points > 4096: 64 speeds (indices round(k 99 / 63), the
+    // first 500 and last 3470 rpm kept) x all 50 torques = 3200 points.
+    std::vector<double> sp, tq;
+    for (int i = 0; i < 100; ++i) sp.push_back(500 + 30 * i);
+    for (int i = 0; i < 50; ++i) tq.push_back(20 + 6 * i);
+    report::ReportRequest q;
+    q.config = test_support::source_path("configs/transfer-box.yaml");
+    q.spread = false;
+    q.prepare = [&](io::Case c, const std::string&) {
+        c.grid = test_support::rpm_grid(sp, tq);
+        c.model.thermal.mode = solver::ThermalMode::fixed;
+        c.model.thermal.oil_temperature = 353.15;
+        return c;
+    };
+    q.command_line = {"gearloss", "report", "x.yaml", "-o", "r.html"};
+    const auto d = report::collect_report(q);
+    REQUIRE(d.reference_map.results.size() == 64 * 50);
+    const auto& g = d.reference.grid;
+    REQUIRE(g.speeds.size() == 64);
+    CHECK(g.speeds.front() * 30 / M_PI == Approx(500));
+    CHECK(g.speeds.back() * 30 / M_PI == Approx(3470));
+    CHECK(g.torques.size() == 50);
+    bool noted = false;
+    for (const auto& n : d.sweep_notes) noted |= n.find("5000 points (100 speeds x 50 torques)") != std::string::npos;
+    CHECK(noted);
+    CHECK(report::html_report(d).find("computes every point") != std::string::npos);
+}

@@ -93,9 +93,10 @@ public:
             block.is_grid = false;
             for (size_t i = b0; i < b1; ++i) block.points.push_back(grid.at(i));
             for (size_t k = 0; k < cases.size(); ++k) {
-                mo.progress = [&, k, b0, b1](size_t done, size_t) {
-                    progress(b0 * cases.size() + k * (b1 - b0) + done, cases.size() * n);
-                };
+                if (progress)  // a terminal only
+                    mo.progress = [&, k, b0, b1](size_t done, size_t) {
+                        progress(b0 * cases.size() + k * (b1 - b0) + done, cases.size() * n);
+                    };
                 part[k] = map::run_map(cases[k].model, block, mo);
                 io::throw_if_interrupted();  // not the next oil
             }
