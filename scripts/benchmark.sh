@@ -285,6 +285,33 @@ rc = p.wait()
 print(f"diagnose, 10^5 rows: exit {rc} {1e3 * (time.perf_counter() - t0):.0f} ms after SIGTERM at 3 s (target < 1 s)")
 PY
 
+# Memory of compare, report and cycle on large inputs (issue 37: <= 100 MB): compare of two oils on
+# 10^7 points (3163 x 3163, ~2 x 40 s of solving; the CSV streams), report of a 10^5-point grid (shown
+# on 64 x 64 points), and a cycle of 10^6 one-second steps (WLTC repeated) with its -o time series.
+if [ -x /usr/bin/time ]; then
+    sp=$(python3 -c "print(','.join(f'{300+i*2700/3162:.4f}' for i in range(3163)))")rpm
+    tq=$(python3 -c "print(','.join(f'{10+i*390/3162:.4f}' for i in range(3163)))")Nm
+    peak_of "compare of two oils, 10^7 points" 10004569 build/app/gearloss compare configs/transfer-box.yaml \
+        --oil configs/oils/75W90-A.yaml --oil configs/oils/75W140-A.yaml --speed "$sp" --torque "$tq" --threads 2 -o "$tmp/cmp.csv"
+    rm -f "$tmp/cmp.csv"
+    sp=$(python3 -c "print(','.join(f'{300+i*2700/315:.4f}' for i in range(316)))")rpm
+    tq=$(python3 -c "print(','.join(f'{10+i*390/315:.4f}' for i in range(316)))")Nm
+    peak_of "report of a 10^5-point grid" 99856 build/app/gearloss report configs/transfer-box.yaml --speed "$sp" \
+        --torque "$tq" --threads 2 -o "$tmp/report.html"
+    echo "report of a 10^5-point grid: page $(($(stat -c %s "$tmp/report.html") / 1024)) kB"
+    python3 - "$tmp/cyc1e6.csv" <<'PY'
+import sys
+rows = [l.strip().split(",")[1] for l in open("configs/cycles/wltc-class3b.csv")][1:]
+with open(sys.argv[1], "w") as f:
+    f.write("time_s,speed_kmh\n")
+    for i in range(10**6):
+        f.write(f"{i},{rows[i % len(rows)]}\n")
+PY
+    peak_of "cycle of 10^6 steps with -o" 1000000 build/app/gearloss cycle configs/manual-6speed.yaml \
+        --cycle "$tmp/cyc1e6.csv" --start-temp 20degC -o "$tmp/trace.csv"
+    rm -f "$tmp/trace.csv" "$tmp/report.html"
+fi
+
 # Drive cycle: one WLTC run (1800 steps) of each shipped transmission from -10 degC, timed
 # inside gearloss (`--stats`: the simulation of the run from the start temperature alone),
 # best and median of 11 runs (target < 50 ms).
