@@ -107,9 +107,9 @@ TEST_CASE("report: the page names no external resource", "[report]") {
     CHECK(page.find("oil k &#8722; reference") != std::string::npos);
 }
 
-TEST_CASE("report: a grid beyond 64 x 64 points is down-sampled evenly, ends kept, and the page says so", "[report]") {
-    // 100 speeds x 50 torques = 5000 points > 4096: 64 speeds (indices round(k 99 / 63), the
-    // first 500 and last 3470 rpm kept) x all 50 torques = 3200 points.
+TEST_CASE("report: a grid beyond 32 x 32 points is down-sampled evenly, ends kept, and the page says so", "[report]") {
+    // 100 speeds x 50 torques = 5000 points > 1024: 32 speeds (indices round(k 99 / 31), the
+    // first 500 and last 3470 rpm kept) x 32 torques (round(k 49 / 31): 20 and 314 N m kept).
     std::vector<double> sp, tq;
     for (int i = 0; i < 100; ++i) sp.push_back(500 + 30 * i);
     for (int i = 0; i < 50; ++i) tq.push_back(20 + 6 * i);
@@ -124,12 +124,15 @@ TEST_CASE("report: a grid beyond 64 x 64 points is down-sampled evenly, ends kep
     };
     q.command_line = {"gearloss", "report", "x.yaml", "-o", "r.html"};
     const auto d = report::collect_report(q);
-    REQUIRE(d.reference_map.results.size() == 64 * 50);
+    REQUIRE(d.reference_map.results.size() == 32 * 32);
     const auto& g = d.reference.grid;
-    REQUIRE(g.speeds.size() == 64);
+    REQUIRE(g.speeds.size() == 32);
     CHECK(g.speeds.front() * 30 / M_PI == Approx(500));
+    CHECK(g.speeds[1] * 30 / M_PI == Approx(500 + 30 * 3));  // round(99 / 31) = 3
     CHECK(g.speeds.back() * 30 / M_PI == Approx(3470));
-    CHECK(g.torques.size() == 50);
+    REQUIRE(g.torques.size() == 32);
+    CHECK(g.torques.front() == Approx(20));
+    CHECK(g.torques.back() == Approx(314));
     bool noted = false;
     for (const auto& n : d.sweep_notes) noted |= n.find("5000 points (100 speeds x 50 torques)") != std::string::npos;
     CHECK(noted);
