@@ -5,7 +5,8 @@
 # rows are solved, formatted and written together, streamed block by block). Reported: best and median points/s, and the speed-up. Then the whole
 # process (CSV included) on a 300 x 300 map, the peak memory of 10^5-, 10^6- and 10^7-point
 # maps, a shard of a 10^9-point job and a streamed merge, the local thermal-EHL map, the time of `gearloss diagnose`
-# on 30-, 300- and 1000-point campaigns and a raw log (medians, wall clock including start-up),
+# on 30-, 300- and 1000-point campaigns and a raw log (medians, wall clock including start-up), its time,
+# memory and SIGTERM latency on 10^4 and 10^5 rows,
 # and WLTC cycles.
 # Usage: scripts/benchmark.sh [REPS]
 #        scripts/benchmark.sh --against OLD_GEARLOSS [REPS]
@@ -253,6 +254,64 @@ for name, what, runs, target in (("30", "30-point campaign", 5, 1.0), ("300", "3
     goal = f"; target < {target:g} s" if target else ""
     print(f"diagnose, {what}: median {statistics.median(times):.2f} s (min {min(times):.2f}, max {max(times):.2f}{goal})")
 PY
+
+# Scale of diagnose (issue 37): steady campaigns of 10^4 (100 x 100) and 10^5 (400 x 250) rows with a
+# concealed windage, wall clock and peak memory (targets on 2 cores: 10^4 rows < 10 s, 10^5 rows
+# < 60 s, < 200 MB; beyond 1000 usable points the selection works on 1000 of them, the residuals cover
+# all), and the time from SIGTERM (sent 3 s into the 10^5-row run) to the exit (target < 1 s).
+build/app/gearloss synth configs/transfer-box.yaml --speed "$(python3 -c "print(','.join(str(400 + 8 * i) for i in range(100)))")rpm" \
+    --torque "$(python3 -c "print(','.join(str(20 + 3 * i) for i in range(100)))")Nm" --effect windage=25W --seed 7 -o "$tmp/rec1e4.csv"
+build/app/gearloss synth configs/transfer-box.yaml --speed "$(python3 -c "print(','.join(str(400 + 2 * i) for i in range(400)))")rpm" \
+    --torque "$(python3 -c "print(','.join(str(20 + 1.2 * i) for i in range(250)))")Nm" --effect windage=25W --seed 7 -o "$tmp/rec1e5.csv"
+python3 - "$tmp" <<'PY'
+import re, signal, subprocess, sys, time
+d = sys.argv[1]
+for rows, target in (("1e4", 10), ("1e5", 60)):
+    t0 = time.perf_counter()
+    p = subprocess.run(["/usr/bin/time", "-v", "build/app/gearloss", "diagnose", "configs/transfer-box.yaml",
+                        f"{d}/rec{rows}.csv", "--threads", "2"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                       text=True, check=True)
+    wall = time.perf_counter() - t0
+    rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", p.stderr).group(1)) / 1024
+    cpu = sum(float(re.search(rf"{k} time \(seconds\): ([0-9.]+)", p.stderr).group(1)) for k in ("User", "System"))
+    print(f"diagnose, {float(rows):.0f} rows: {wall:.1f} s wall ({cpu:.1f} s CPU), peak {rss:.0f} MiB "
+          f"(targets < {target} s, < 200 MiB)")
+p = subprocess.Popen(["build/app/gearloss", "diagnose", "configs/transfer-box.yaml", f"{d}/rec1e5.csv", "--threads", "2"],
+                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+time.sleep(3)
+t0 = time.perf_counter()
+p.send_signal(signal.SIGTERM)
+rc = p.wait()
+print(f"diagnose, 10^5 rows: exit {rc} {1e3 * (time.perf_counter() - t0):.0f} ms after SIGTERM at 3 s (target < 1 s)")
+PY
+
+# Memory of compare, report and cycle on large inputs (issue 37: <= 100 MB): compare of two oils on
+# 10^7 points (3162 x 3162, ~2 x 40 s of solving; the CSV streams), report of a 10^5-point grid (shown
+# on 32 x 32 points; --no-spread: the spread adds 270 form combinations x 1024 points of solving, not
+# memory), and a cycle of 10^6 one-second steps (WLTC repeated) with its -o time series.
+if [ -x /usr/bin/time ]; then
+    sp=$(python3 -c "print(','.join(f'{300+i*2700/3161:.4f}' for i in range(3162)))")rpm
+    tq=$(python3 -c "print(','.join(f'{10+i*390/3161:.4f}' for i in range(3162)))")Nm
+    peak_of "compare of two oils, 10^7 points" 9998244 build/app/gearloss compare configs/transfer-box.yaml \
+        --oil configs/oils/75W90-A.yaml --oil configs/oils/75W140-A.yaml --speed "$sp" --torque "$tq" --threads 2 -o "$tmp/cmp.csv"
+    rm -f "$tmp/cmp.csv"
+    sp=$(python3 -c "print(','.join(f'{300+i*2700/315:.4f}' for i in range(316)))")rpm
+    tq=$(python3 -c "print(','.join(f'{10+i*390/315:.4f}' for i in range(316)))")Nm
+    peak_of "report of a 10^5-point grid" 99856 build/app/gearloss report configs/transfer-box.yaml --speed "$sp" \
+        --torque "$tq" --threads 2 --no-spread -o "$tmp/report.html"
+    echo "report of a 10^5-point grid: page $(($(stat -c %s "$tmp/report.html") / 1024)) kB"
+    python3 - "$tmp/cyc1e6.csv" <<'PY'
+import sys
+rows = [l.strip().split(",")[1] for l in open("configs/cycles/wltc-class3b.csv")][1:]
+with open(sys.argv[1], "w") as f:
+    f.write("time_s,speed_kmh\n")
+    for i in range(10**6):
+        f.write(f"{i},{rows[i % len(rows)]}\n")
+PY
+    peak_of "cycle of 10^6 steps with -o" 1000000 build/app/gearloss cycle configs/manual-6speed.yaml \
+        --cycle "$tmp/cyc1e6.csv" --start-temp 20degC -o "$tmp/trace.csv"
+    rm -f "$tmp/trace.csv" "$tmp/report.html"
+fi
 
 # Drive cycle: one WLTC run (1800 steps) of each shipped transmission from -10 degC, timed
 # inside gearloss (`--stats`: the simulation of the run from the start temperature alone),

@@ -106,3 +106,35 @@ TEST_CASE("report: the page names no external resource", "[report]") {
     CHECK(page.find("<link") == std::string::npos);
     CHECK(page.find("oil k &#8722; reference") != std::string::npos);
 }
+
+TEST_CASE("report: a grid beyond 32 x 32 points is down-sampled evenly, ends kept, and the page says so", "[report]") {
+    // 100 speeds x 50 torques = 5000 points > 1024: 32 speeds (indices round(k 99 / 31), the
+    // first 500 and last 3470 rpm kept) x 32 torques (round(k 49 / 31): 20 and 314 N m kept).
+    std::vector<double> sp, tq;
+    for (int i = 0; i < 100; ++i) sp.push_back(500 + 30 * i);
+    for (int i = 0; i < 50; ++i) tq.push_back(20 + 6 * i);
+    report::ReportRequest q;
+    q.config = test_support::source_path("configs/transfer-box.yaml");
+    q.spread = false;
+    q.prepare = [&](io::Case c, const std::string&) {
+        c.grid = test_support::rpm_grid(sp, tq);
+        c.model.thermal.mode = solver::ThermalMode::fixed;
+        c.model.thermal.oil_temperature = 353.15;
+        return c;
+    };
+    q.command_line = {"gearloss", "report", "x.yaml", "-o", "r.html"};
+    const auto d = report::collect_report(q);
+    REQUIRE(d.reference_map.results.size() == 32 * 32);
+    const auto& g = d.reference.grid;
+    REQUIRE(g.speeds.size() == 32);
+    CHECK(g.speeds.front() * 30 / M_PI == Approx(500));
+    CHECK(g.speeds[1] * 30 / M_PI == Approx(500 + 30 * 3));  // round(99 / 31) = 3
+    CHECK(g.speeds.back() * 30 / M_PI == Approx(3470));
+    REQUIRE(g.torques.size() == 32);
+    CHECK(g.torques.front() == Approx(20));
+    CHECK(g.torques.back() == Approx(314));
+    bool noted = false;
+    for (const auto& n : d.sweep_notes) noted |= n.find("5000 points (100 speeds x 50 torques)") != std::string::npos;
+    CHECK(noted);
+    CHECK(report::html_report(d).find("computes every point") != std::string::npos);
+}

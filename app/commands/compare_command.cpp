@@ -1,4 +1,6 @@
 // gearloss compare: the same map for two or more oils and their differences per point (oil k - oil A).
+#include <fmt/format.h>
+
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "commands/grid_overrides.hpp"
@@ -11,6 +13,11 @@
 
 namespace gearloss::app {
 namespace {
+
+// compare streams its CSV a block of points at a time (per oil: ~0.5 kB a point).
+constexpr size_t kComparePointsPerBlock = 16384;
+// compare --json holds every point of every oil (and writes each): at most this many points.
+constexpr size_t kMaxJsonPoints = 1'000'000;
 
 class CompareCommand final : public Command {
 public:
@@ -49,15 +56,22 @@ public:
             o.oil = oils_[i];
             map::validate_case(cases[i], o);
         }
+        // The CSV is streamed: the oils are solved a block of points at a time (each point is
+        // solved on its own, so the rows are those of whole maps), memory holds one block per
+        // oil. --json lists every point of every oil: those maps are held, up to kMaxJsonPoints.
+        const io::OperatingGrid& grid = cases[0].grid;
+        const size_t n = grid.size();
+        const bool hold = !json_.empty();
+        if (hold && n > kMaxJsonPoints)
+            throw InputError("", 0, 0, "--json",
+                             fmt::format("{} points: compare --json lists every point of every oil and holds them in "
+                                         "memory; give at most {} (the CSV alone streams any grid)",
+                                         n, kMaxJsonPoints));
         map::MapOptions mo;
         mo.threads = threads_;
         ProgressMeter meter;
-        mo.progress = meter.callback();
-        std::vector<std::vector<solver::PointResult>> maps;
-        for (const auto& c : cases) {
-            maps.push_back(map::run_map(c.model, c.grid, mo));
-            io::throw_if_interrupted();  // not the next map
-        }
+        const auto progress = meter.callback();
+        std::vector<std::vector<solver::PointResult>> maps(cases.size());
         std::vector<std::string> names;
         map::MetadataRequest meta;
         for (size_t i = 0; i < cases.size(); ++i) {
@@ -69,10 +83,30 @@ public:
         const std::string header = map::compare_oils_header(m, names, detail_);
         io::AtomicFile f(out_);
         f.write(header);
-        std::vector<const solver::PointResult*> row(maps.size());
-        for (size_t i = 0; i < maps[0].size(); ++i) {
-            for (size_t k = 0; k < maps.size(); ++k) row[k] = &maps[k][i];
-            f.write(map::compare_oils_row(m, row, detail_));
+        std::vector<const solver::PointResult*> row(cases.size());
+        std::vector<std::vector<solver::PointResult>> part(cases.size());
+        std::string text;
+        for (size_t b0 = 0; b0 < n; b0 += kComparePointsPerBlock) {
+            const size_t b1 = std::min(n, b0 + kComparePointsPerBlock);
+            io::OperatingGrid block;
+            block.is_grid = false;
+            for (size_t i = b0; i < b1; ++i) block.points.push_back(grid.at(i));
+            for (size_t k = 0; k < cases.size(); ++k) {
+                if (progress)  // a terminal only
+                    mo.progress = [&, k, b0, b1](size_t done, size_t) {
+                        progress(b0 * cases.size() + k * (b1 - b0) + done, cases.size() * n);
+                    };
+                part[k] = map::run_map(cases[k].model, block, mo);
+                io::throw_if_interrupted();  // not the next oil
+            }
+            text.clear();
+            for (size_t i = 0; i < block.points.size(); ++i) {
+                for (size_t k = 0; k < part.size(); ++k) row[k] = &part[k][i];
+                text += map::compare_oils_row(m, row, detail_);
+            }
+            f.write(text);
+            if (hold)
+                for (size_t k = 0; k < part.size(); ++k) maps[k].insert(maps[k].end(), part[k].begin(), part[k].end());
         }
         f.commit();
         write_csv_sidecar(out_, cases[0], header, meta);

@@ -13,6 +13,7 @@
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/io/output_paths.hpp"
 #include "gearloss/map/map_runner.hpp"
+#include "gearloss/map/output_metadata.hpp"
 
 namespace gearloss::app {
 namespace {
@@ -64,6 +65,7 @@ public:
         so.warm_temperature = absolute_temperature(warm_temp_, "--warm-temp");
         if (!prewarm_.empty()) so.prewarm_target = absolute_temperature(prewarm_, "--prewarm");
         so.heater_power = single_value(heater_, units::dim::power, "--heater", "100W");
+        so.keep_traces = false;  // -o streams its time series (io::write_cycle_trace)
         const auto study = io::run_cycle_study(pt, dc, so);
         io::throw_if_interrupted();
         io::write_stdout(io::cycle_summary_text(pt, study, so));
@@ -75,11 +77,15 @@ public:
             // The sidecar's case: the case with --oil; a cycle's oil temperature is transient.
             io::Case described = k;
             if (!oil_.empty()) io::replace_oil_file(described, oil_);
-            write_csv_file(out_, io::cycle_trace_csv(pt, study), described,
-                           {.thermal = {{"mode", "transient"}, {"oil_temperature_C", nullptr},
-                                        {"start_temperature_C", so.start_temperature - 273.15},
-                                        {"ambient_C", so.ambient - 273.15}},
-                            .ratios = described.model.ratio_names()});
+            // Streamed: the runs simulated again, the rows written as they come (io::write_cycle_trace).
+            io::AtomicFile f(out_);
+            io::write_cycle_trace(pt, dc, study, so, [&](std::string_view text) { f.write(text); });
+            f.commit();
+            write_csv_sidecar(out_, described, map::header_line(io::cycle_trace_header(pt, study)),
+                              {.thermal = {{"mode", "transient"}, {"oil_temperature_C", nullptr},
+                                           {"start_temperature_C", so.start_temperature - 273.15},
+                                           {"ambient_C", so.ambient - 273.15}},
+                               .ratios = described.model.ratio_names()});
         }
         return kOk;
     }

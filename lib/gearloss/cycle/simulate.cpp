@@ -172,7 +172,7 @@ void check_run(const Powertrain& pt, const DriveCycle& cycle, const thermal::Nod
 }  // namespace
 
 CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const thermal::NodeTemperatures& start,
-                           double ambient, bool keep_trace) {
+                           double ambient, bool keep_trace, const std::function<void(const TraceRow&)>& on_row) {
     check_run(pt, cycle, start, ambient);
     CycleResult res;
     auto& tot = res.totals;
@@ -192,7 +192,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
     StepLoad load;
     int gear = 1;
     double last_loss = 0;
-    if (keep_trace) res.trace.reserve(cycle.time.size());
+    if (keep_trace && !on_row) res.trace.reserve(cycle.time.size());
     for (size_t i = 0; i + 1 < cycle.time.size(); ++i) {
         throw_if_interrupted();  // SIGINT / SIGTERM: Interrupted, exit 130 / 143
         const double dt = cycle.time[i + 1] - cycle.time[i];
@@ -293,7 +293,8 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
             row.P_gearbox = 0.0;
             for (double P : row.P_mech) row.P_gearbox += P;
             row.P_tc = d[kTc];
-            res.trace.push_back(row);
+            if (on_row) on_row(row);
+            else res.trace.push_back(row);
         }
         integrate(pt, load, ambient, x, cycle.time[i], cycle.time[i + 1]);
         // The oil driven beyond its data (or the model's search range) makes every later row nonsense.
@@ -310,7 +311,8 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         last.speed = cycle.speed.back();
         trace_temperatures(last, net, x);
         last.engine_speed = veh.engine.idle_speed;
-        res.trace.push_back(last);
+        if (on_row) on_row(last);
+        else res.trace.push_back(last);
     }
     tot.E_mech.assign(x.begin() + kMech0, x.begin() + kMech0 + n_mech);
     tot.E_tc = x[kTc];

@@ -4,6 +4,7 @@
 // torque converter and engine; the lumped thermal network integrated in time with
 // Boost.Odeint, every loss evaluated at the current oil temperature. Also the
 // pre-warming of the transmission by a heater before the cycle.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,8 +65,11 @@ struct CycleResult {
 // All nodes of the network at temperature T.
 thermal::NodeTemperatures uniform(double T);
 
+// With `on_row` the trace's rows are handed to it as they are made, in time order, instead of
+// being kept in the result (memory then does not grow with the cycle's length).
 CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const thermal::NodeTemperatures& start,
-                           double ambient, bool keep_trace = true);
+                           double ambient, bool keep_trace = true,
+                           const std::function<void(const TraceRow&)>& on_row = {});
 
 struct PrewarmResult {
     bool reached = false;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <memory>
 #include <numeric>
 #include <omp.h>
 #include <random>
@@ -16,6 +17,58 @@
 namespace gearloss::diagnosis {
 
 using namespace detail;
+
+namespace {
+
+// The points of the selection: every usable point up to max_fit_points, beyond that as many
+// spread evenly over the campaign in row order (the k-th of M is point floor(k N / M)). Each
+// candidate's response costs a coupled solve per point and knot, so this bounds the selection's
+// time and memory; the baseline, the findings' final predictions, the overall RMSE, the
+// outliers and the residuals still cover every point.
+std::vector<size_t> fit_points(size_t n, size_t max_fit_points) {
+    std::vector<size_t> at;
+    const size_t m = std::min(n, max_fit_points);
+    at.reserve(m);
+    for (size_t k = 0; k < m; ++k) at.push_back(k * n / m);
+    return at;
+}
+
+// A hypothesis of the fitted subset for every point: its flagged (unstabilised) points mapped
+// to their places among all of them.
+Hypothesis on_every_point(Hypothesis h, const std::vector<size_t>& at, size_t n) {
+    if (h.unstabilised.empty()) return h;
+    std::vector<char> flags(n, 0);
+    for (size_t k = 0; k < at.size(); ++k) flags[at[k]] = h.unstabilised[k];
+    h.unstabilised = std::move(flags);
+    return h;
+}
+
+// ratio_findings: a ratio more than kRatioTolerance from the case's is a finding; the first
+// few are named, the rest counted.
+constexpr double kRatioTolerance = 0.02;
+constexpr int kRatioFindings = 5;
+}  // namespace
+
+std::vector<std::string> ratio_findings(const solver::Model& model, const Recordings& rec) {
+    std::vector<std::string> warnings;
+    const double ratio = std::abs(model.layout.ratio);
+    if (!(ratio > 0)) return warnings;
+    int count = 0;
+    for (const auto& p : rec.points) {
+        if (!p.speed_out || !(p.speed_in > 0) || *p.speed_out == 0) continue;
+        const double recorded = std::abs(*p.speed_out) / p.speed_in;
+        if (std::abs(recorded - ratio) <= kRatioTolerance * ratio) continue;
+        if (++count <= kRatioFindings)
+            warnings.push_back(fmt::format(
+                "{}:{}:{} ({}): output speed over input speed {:.4g} contradicts the case's gear ratio {:.4g} (more than "
+                "{:.0f} % apart): recorded in another gear, or the speed sensors swapped?",
+                rec.file, p.line, rec.speed_out_column, rec.speed_out_header, recorded, ratio, 100 * kRatioTolerance));
+    }
+    if (count > kRatioFindings)
+        warnings.push_back(fmt::format("{}: {} more rows contradict the case's gear ratio {:.4g}", rec.file,
+                                       count - kRatioFindings, ratio));
+    return warnings;
+}
 
 std::string fmt_value(double v, const std::string& unit) {
     return unit.empty() ? fmt::format("{:.4g}", v) : fmt::format("{:.4g} {}", v, unit);
@@ -36,12 +89,14 @@ void DiagnoseOptions::validate() const {
     if (!(confidence_level >= adequacy_level && confidence_level < 0.5))
         bad("confidence_level", "must be within adequacy_level..0.5");
     if (!(confident_detectable > 0)) bad("confident_detectable", "must be positive (infinity: not required)");
+    if (max_fit_points < 30 || max_fit_points > 1000000) bad("max_fit_points", "give 30 to 1000000");
 }
 
 Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const DiagnoseOptions& opt) {
     opt.validate();
     Diagnosis d;
     d.warnings = rec.warnings;
+    for (auto& w : ratio_findings(model, rec)) d.warnings.push_back(std::move(w));
     // The case as described (with any calibration it carries): the baseline hypothesis.
     Hypothesis neutral = Hypothesis::of(model);
     std::vector<Obs> obs;
@@ -95,7 +150,23 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     }
     if (model.thermal.mode != solver::ThermalMode::stabilised)
         d.warnings.push_back("the case is in fixed-temperature mode: oil temperatures are not used as evidence");
-    Engine E(model, std::move(obs), opt.threads, opt.physical_scan_range, oils.models);
+    const std::vector<size_t> at = fit_points(obs.size(), static_cast<size_t>(opt.max_fit_points));
+    std::vector<Obs> chosen;
+    for (size_t i : at) chosen.push_back(obs[i]);
+    const bool subset = at.size() < obs.size();
+    if (subset)
+        d.warnings.push_back(fmt::format(
+            "{} usable points: the candidates, their cross-validation and resamples, the adequacy tests and the "
+            "remainder formula use {} of them spread evenly over the campaign (every {:.3g}th in row order); the "
+            "overall RMSE, the outliers and the residuals cover all {}",
+            obs.size(), at.size(), static_cast<double>(obs.size()) / at.size(), obs.size()));
+    else
+        obs.clear();
+    Engine E(model, std::move(chosen), opt.threads, opt.physical_scan_range, oils.models, subset ? &obs : nullptr);
+    // Every usable point (E itself when it holds them all).
+    std::unique_ptr<Engine> every_point;
+    if (subset) every_point = std::make_unique<Engine>(model, std::move(obs), opt.threads, opt.physical_scan_range, oils.models);
+    const Engine& F = subset ? *every_point : E;
     mark_tested(oils, E);
     if (oils.count_tested() >= 2)
         for (size_t j = 0; j < oils.models.size(); ++j)
@@ -104,7 +175,8 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         d.warnings.push_back("every usable test names the oil " + oils.names[static_cast<size_t>(E.obs().front().oil)] +
                              ", not the case's: the findings are for the case with that oil; --write-config keeps the "
                              "case's oil, so set `oil:` in the written case");
-    d.points = static_cast<int>(E.obs().size());
+    d.points = static_cast<int>(F.obs().size());
+    d.fit_points = static_cast<int>(E.obs().size());
     d.bootstrap = opt.bootstrap;
     d.has_temperature = E.has_temperature();
     const auto& all = E.all();
@@ -114,7 +186,17 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     const ChannelStats s0 = channel_rmse(E, p0, neutral);
     d.rmse_before = s0.rmse_loss;
     d.temp_rmse_before = s0.rmse_temp;
-    const Location baseline = locate(E, p0, neutral, model);
+    // The baseline at every point (the same prediction when the selection uses them all).
+    Pred p0_all, pf_all;
+    if (subset) {
+        if (opt.progress) opt.progress("diagnose: the model at every recorded point");
+        p0_all = F.predict_checked(neutral, F.all());
+        const ChannelStats s0_all = channel_rmse(F, p0_all, neutral);
+        d.rmse_before = s0_all.rmse_loss;
+        d.temp_rmse_before = s0_all.rmse_temp;
+    }
+    const Pred& before_all = subset ? p0_all : p0;
+    const Location baseline = locate(F, before_all, neutral, model);
     d.location = baseline.text;
     const std::string& baseline_clause = baseline.clause;
 
@@ -133,6 +215,16 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     const ChannelStats sf = channel_rmse(E, pf, base);
     d.rmse_after = sf.rmse_loss;
     d.temp_rmse_after = sf.rmse_temp;
+    // The predictions at every point (the same ones when the selection used them all).
+    const Hypothesis base_all = subset ? on_every_point(base, at, F.obs().size()) : base;
+    if (subset) {
+        if (opt.progress) opt.progress("diagnose: the model after the findings at every recorded point");
+        pf_all = F.predict_checked(base_all, F.all());
+        const ChannelStats sf_all = channel_rmse(F, pf_all, base_all);
+        d.rmse_after = sf_all.rmse_loss;
+        d.temp_rmse_after = sf_all.rmse_temp;
+    }
+    const Pred& after_all = subset ? pf_all : pf;
     d.cv_rmse_after = d.findings.empty() ? d.rmse_before : S.cv_rmse_after;
     d.oil_differences = oil_differences(E, p0, pf, oils);
 
@@ -164,13 +256,13 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             "What the findings leave passes the tests against the noise, but {} {} points those tests see little: a "
             "remainder of {:.2g} times the noise would pass them in half such campaigns (a confident name needs {:.2g}). "
             "{} or record more points to test whether the findings are the whole cause",
-            estimated ? "with the noise estimated from" : "on", d.points, ad.detectable, opt.confident_detectable,
+            estimated ? "with the noise estimated from" : "on", d.fit_points, ad.detectable, opt.confident_detectable,
             estimated ? "Declare the rig's measurement uncertainty (--loss-uncertainty, --temp-uncertainty)" : "Repeat points");
     }
     if (!d.findings.empty()) {
         d.verdict = ad.adequate && !weak_test ? "missing_physics" : "partly_explained";
         if (!ad.adequate)
-            d.remaining = "a systematic residual remains after the findings:\n" + ad.text + "\n" + locate(E, pf, base, model).text;
+            d.remaining = "a systematic residual remains after the findings:\n" + ad.text + "\n" + locate(F, after_all, base_all, model).text;
         else if (weak_test)
             d.remaining = "not shown to be the whole cause. " + weak_text;
     } else if (!ad.adequate) {
@@ -201,33 +293,33 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     // Outliers against the final model (robust z-scores), plus tests the log criterion flagged.
     {
         std::vector<double> eP, eT;
-        for (int i : all) {
-            const auto& o = E.obs()[i];
-            eP.push_back((o.loss - pf.loss[i]) / o.scale);
-            if (o.T_evidence && (base.unstabilised.empty() || !base.unstabilised[i])) eT.push_back(o.T_oil - pf.temp[i]);
+        for (int i : F.all()) {
+            const auto& o = F.obs()[i];
+            eP.push_back((o.loss - after_all.loss[i]) / o.scale);
+            if (o.T_evidence && (base_all.unstabilised.empty() || !base_all.unstabilised[i])) eT.push_back(o.T_oil - after_all.temp[i]);
         }
         const auto [mP, sP] = robust_centre_scale(eP, 0.004);
         const auto [mT, sT] = robust_centre_scale(eT, 0.15);
-        for (int i : all) {
-            const auto& o = E.obs()[i];
+        for (int i : F.all()) {
+            const auto& o = F.obs()[i];
             std::vector<std::string> why;
             if (!o.stabilised)
                 why.push_back(fmt::format("never stabilised: (T_oil - T_room) varied {:.2f} K over the last 30 min", o.drift));
-            if (!base.unstabilised.empty() && base.unstabilised[i])
+            if (!base_all.unstabilised.empty() && base_all.unstabilised[i])
                 why.push_back(fmt::format("oil {:.1f} K {} than the heat balance of its measured loss: the test was still "
                                           "{} (unstabilised)",
-                                          std::abs(pf.temp[i] - o.T_oil), o.T_oil < pf.temp[i] ? "colder" : "hotter",
-                                          o.T_oil < pf.temp[i] ? "warming up" : "cooling down"));
-            const double zP = ((o.loss - pf.loss[i]) / o.scale - mP) / sP;
+                                          std::abs(after_all.temp[i] - o.T_oil), o.T_oil < after_all.temp[i] ? "colder" : "hotter",
+                                          o.T_oil < after_all.temp[i] ? "warming up" : "cooling down"));
+            const double zP = ((o.loss - after_all.loss[i]) / o.scale - mP) / sP;
             if (std::abs(zP) > 4.5)
-                why.push_back(fmt::format("loss {:+.1f} W ({:+.1f} %) away from the model and its neighbours", o.loss - pf.loss[i],
-                                          100 * (o.loss - pf.loss[i]) / o.scale));
-            if (o.T_evidence && (base.unstabilised.empty() || !base.unstabilised[i])) {
-                const double zT = (o.T_oil - pf.temp[i] - mT) / sT;
+                why.push_back(fmt::format("loss {:+.1f} W ({:+.1f} %) away from the model and its neighbours", o.loss - after_all.loss[i],
+                                          100 * (o.loss - after_all.loss[i]) / o.scale));
+            if (o.T_evidence && (base_all.unstabilised.empty() || !base_all.unstabilised[i])) {
+                const double zT = (o.T_oil - after_all.temp[i] - mT) / sT;
                 if (std::abs(zT) > 4.5) {
                     const double dLz = zP;
-                    why.push_back(fmt::format("oil temperature {:+.1f} K away from the model{}", o.T_oil - pf.temp[i],
-                                              (o.T_oil < pf.temp[i] && dLz > -1) ? " while its loss is not low: loss and "
+                    why.push_back(fmt::format("oil temperature {:+.1f} K away from the model{}", o.T_oil - after_all.temp[i],
+                                              (o.T_oil < after_all.temp[i] && dLz > -1) ? " while its loss is not low: loss and "
                                                                                    "temperature disagree (still warming up?)"
                                                                                  : ""));
                 }
@@ -248,14 +340,14 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
         if (!std::isfinite(v)) throw std::runtime_error("diagnose: a residual statistic is not a finite number");
 
     // Per-point residuals before and after.
-    for (int i : all) {
-        const auto& o = E.obs()[i];
-        PointResidual r{o.row, o.w * to_rpm, o.torque, o.loss, p0.loss[i], pf.loss[i], {}, {}, {}, {}};
+    for (int i : F.all()) {
+        const auto& o = F.obs()[i];
+        PointResidual r{o.row, o.w * to_rpm, o.torque, o.loss, before_all.loss[i], after_all.loss[i], {}, {}, {}, {}};
         if (!d.oils.empty()) r.oil = oils.names[static_cast<size_t>(o.oil)];
         if (o.has_T) {
             r.temp = o.T_oil - 273.15;
-            r.temp_before = p0.temp[i] - 273.15;
-            r.temp_after = pf.temp[i] - 273.15;
+            r.temp_before = before_all.temp[i] - 273.15;
+            r.temp_after = after_all.temp[i] - 273.15;
         }
         d.residuals.push_back(r);
     }

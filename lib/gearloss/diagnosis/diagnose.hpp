@@ -63,6 +63,13 @@ struct DiagnoseOptions {
     // valid_range: heat flow to ambient positive). false scans each parameter's full bounds;
     // a candidate that then cannot be evaluated somewhere is rejected with the reason (tests).
     bool physical_scan_range = true;
+    // Points the selection works on. Each candidate's response costs a coupled solve per point
+    // and knot (some 500 solves a point over a diagnosis), so a larger campaign is fitted on
+    // this many of its usable points, spread evenly over it in row order (the k-th of M is
+    // point floor(k N / M)): the candidates, their cross-validation and resamples, the adequacy
+    // tests and the remainder formula see them; the baseline and final predictions, the
+    // overall RMSE, the outliers and the residuals cover every point. A warning says so.
+    int max_fit_points = 1000;
     // Ceres-style check of the options (diagnose calls it): throws InputError naming the option.
     void validate() const;
 };
@@ -144,11 +151,18 @@ struct Diagnosis {
     std::vector<std::string> oils;  // multi-oil campaigns: the oils tested (as in the recordings)
     std::vector<OilDifference> oil_differences;
     Hypothesis calibrated;          // the accepted hypothesis
-    int points = 0;
+    int points = 0;                 // usable recorded points
+    int fit_points = 0;             // of them, those the selection and the tests used (max_fit_points)
     int bootstrap = 24;             // resamples of the stability check
 };
 
 Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const DiagnoseOptions& opt = {});
+
+// The recorded output speeds against the case's gear ratio (model.layout.ratio, omega_out /
+// omega_in): a row (or log test) whose |speed_out / speed_in| is more than 2 % from it is a
+// finding naming file:line:column (recorded in another gear, or the speed sensors swapped).
+// diagnose() adds them to its warnings.
+std::vector<std::string> ratio_findings(const solver::Model& model, const Recordings& rec);
 
 // A parameter value with its unit for reports: "1.234 W", "0.95".
 std::string fmt_value(double v, const std::string& unit);

@@ -65,7 +65,7 @@ double profiled(double rss, int n, double floor) {
 }
 
 Engine::Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool physical_range,
-               const std::vector<solver::Model>& per_oil)
+               const std::vector<solver::Model>& per_oil, const std::vector<Obs>* campaign)
     : obs_(std::move(obs)),
       physical_range_(physical_range),
       heat_path_speed_dependent_(m.thermal.rejection.depends_on_speed()) {
@@ -79,11 +79,12 @@ Engine::Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool p
     states_.resize(static_cast<size_t>(threads_));
     all_.resize(obs_.size());
     std::iota(all_.begin(), all_.end(), 0);
-    for (const auto& o : obs_) {
-        mean_loss_ += std::abs(o.loss) / obs_.size();
-        mean_power_ += std::abs(o.torque * o.w) / obs_.size();
-        mean_omega_ += std::abs(o.w) / obs_.size();
-        n_T_ += o.T_evidence;
+    for (const auto& o : obs_) n_T_ += o.T_evidence;
+    const std::vector<Obs>& c = campaign ? *campaign : obs_;
+    for (const auto& o : c) {
+        mean_loss_ += std::abs(o.loss) / c.size();
+        mean_power_ += std::abs(o.torque * o.w) / c.size();
+        mean_omega_ += std::abs(o.w) / c.size();
         max_rpm_ = std::max(max_rpm_, std::abs(o.w) * to_rpm);
     }
 }

@@ -179,8 +179,10 @@ private:
 class Engine {
 public:
     // `per_oil`: the case with each of the campaign's oils, by Obs::oil (empty: `m` alone).
+    // `campaign`: the points the scan ranges are relative to (mean loss, highest speed), when
+    // `obs` is a subset of them (a large campaign fitted on part of its points); null: `obs`.
     Engine(const solver::Model& m, std::vector<Obs> obs, int threads, bool physical_range,
-           const std::vector<solver::Model>& per_oil = {});
+           const std::vector<solver::Model>& per_oil = {}, const std::vector<Obs>* campaign = nullptr);
     int oils() const { return n_oils_; }
     const lubricant::Oil& oil(int j) const { return work_[static_cast<size_t>(j)].oil; }
     int threads() const { return threads_; }

@@ -101,6 +101,7 @@ std::string diagnosis_json(const Diagnosis& d) {
     j["location"] = d.location;
     j["remaining"] = d.remaining;
     j["points"] = d.points;
+    if (d.fit_points < d.points) j["fit_points"] = d.fit_points;  // a large campaign fitted on part of its points
     j["rmse_before"] = d.rmse_before;
     j["rmse_after"] = d.rmse_after;
     j["cv_rmse_after"] = d.cv_rmse_after;

@@ -12,6 +12,7 @@
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/csv_read.hpp"
+#include "gearloss/io/interrupt.hpp"
 #include "gearloss/model/validate.hpp"
 #include "gearloss/units/units.hpp"
 
@@ -130,6 +131,7 @@ Table read_table(const std::string& file, const std::string& text, std::vector<s
     std::unordered_map<std::string, int> first_line;
     int duplicates = 0, data_row = 0;
     while (csv.next(rec)) {
+        io::throw_if_interrupted();
         ln = rec.line;
         // A row of empty cells (a spreadsheet's blank row: ",,,,") is no data.
         if (std::all_of(rec.cells.begin(), rec.cells.end(), [](const std::string& c) { return c.empty(); })) continue;
@@ -163,6 +165,15 @@ Table read_table(const std::string& file, const std::string& text, std::vector<s
 }
 
 constexpr double kMaxRecordedLoss = 1e10;             // W
+// The plausibility of a recorded point (check_point). A loss beyond the input power by more
+// than the rounding of its cells (0.1 %, and 1 mW) is an error; a loss over half the input
+// power (efficiency below 50 %) a finding.
+constexpr double kPowerRounding = 1e-3, kPowerFloor = 1e-3;
+constexpr double kLossShareFinding = 0.5;
+// A loss column and the input power less the output power may differ by the torque and
+// speed sensors' error: 1 % of the input power (a torque meter's 0.1-0.5 % of full scale
+// twice, with margin) or 10 % of the loss, whichever is larger; beyond it a finding.
+constexpr double kBalanceShareOfInput = 0.01, kBalanceShareOfLoss = 0.10;
 constexpr double kMaxRecordedTemperature = 20273.15;  // K: 20 000 degC (a 9999 degC typo stays an outlier to report)
 
 // Value of `key` in row r, converted to SI by the definition of its header.
@@ -202,6 +213,53 @@ double cell(const std::string& file, const Table& t, size_t r, const std::string
     throw InputError(file, t.lines[r], column, it == t.col.end() ? key : t.header[it->second], message);
 }
 
+// Where `key` stands in row r, "file:line:column (header)", for a finding about its value.
+std::string cell_place(const std::string& file, const Table& t, size_t r, const std::string& key) {
+    const auto it = t.col.find(key);
+    if (it == t.col.end()) return fmt::format("{}:{}", file, t.lines[r]);
+    return fmt::format("{}:{}:{} ({})", file, t.lines[r], it->second + 1, io::excerpt(t.header[it->second]));
+}
+
+// A recorded steady point checked against itself before any fit (the power balance of the
+// gearbox: P_in = P_out + P_loss, with P = T omega). Errors: a loss above the input power (it
+// cannot lose more than goes in), an output standing still while the input turns. Findings
+// (warnings naming the cell): a loss above kLossShareFinding of the input power, a loss
+// column that contradicts the recorded output torque and speed, oil colder than the ambient.
+void check_point(const std::string& file, const Table& t, size_t r, const RecordedPoint& p, bool loss_recorded,
+                 std::vector<std::string>& findings) {
+    const double P_in = p.torque_in * p.speed_in;
+    // Driven from the input (a negative input power is the output driving: no bound here).
+    if (P_in >= 0 && p.loss > P_in * (1 + kPowerRounding) + kPowerFloor)
+        fail_cell(file, t, r, loss_recorded ? "loss" : "torque_out",
+                  fmt::format("loss {:.6g} W exceeds the input power {:.6g} W (torque_in x speed_in): a gearbox cannot lose "
+                              "more than it is given",
+                              p.loss, P_in));
+    if (p.speed_out && *p.speed_out == 0 && p.speed_in > 0)
+        fail_cell(file, t, r, "speed_out",
+                  fmt::format("output speed 0 while the input turns at {:.6g} rpm: no gear train does that (a slipping "
+                              "clutch, a gearbox in neutral or a failed sensor)",
+                              p.speed_in / rpm));
+    if (P_in > 0 && p.loss > kLossShareFinding * P_in)
+        findings.push_back(fmt::format("{}: loss {:.4g} W is {:.0f} % of the input power {:.4g} W (more than {:.0f} %): a "
+                                       "no-load test, or a loss or torque in the wrong unit?",
+                                       cell_place(file, t, r, loss_recorded ? "loss" : "torque_in"), p.loss,
+                                       100 * p.loss / P_in, P_in, 100 * kLossShareFinding));
+    if (loss_recorded && p.torque_out && p.speed_out && P_in > 0) {
+        const double balance = P_in - std::abs(*p.torque_out * *p.speed_out);
+        const double tolerance = std::max(kBalanceShareOfInput * P_in, kBalanceShareOfLoss * std::abs(p.loss));
+        if (std::abs(p.loss - balance) > tolerance)
+            findings.push_back(fmt::format(
+                "{}: recorded loss {:.4g} W contradicts the input power less the output power, {:.4g} W - {:.4g} W = "
+                "{:.4g} W (tolerance {:.3g} W: {:.0f} % of the input power or {:.0f} % of the loss, the larger)",
+                cell_place(file, t, r, "loss"), p.loss, P_in, P_in - balance, balance, tolerance,
+                100 * kBalanceShareOfInput, 100 * kBalanceShareOfLoss));
+    }
+    if (p.oil_temp && p.ambient_temp && *p.oil_temp < *p.ambient_temp)
+        findings.push_back(fmt::format("{}: oil {:.4g} degC colder than the ambient {:.4g} degC: a running gearbox heats its "
+                                       "oil above the ambient (a swapped or failed sensor, or a test still warming up)",
+                                       cell_place(file, t, r, "oil"), *p.oil_temp - 273.15, *p.ambient_temp - 273.15));
+}
+
 void require(const std::string& file, const Table& t, const char* key, const char* name) {
     if (!t.col.count(key)) throw InputError(file, 1, 0, name, std::string("required column '") + name + "' is missing");
 }
@@ -222,6 +280,10 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
     Recordings rec;
     rec.file = file;
     Table t = read_table(file, text, rec.warnings);
+    if (const auto it = t.col.find("speed_out"); it != t.col.end()) {
+        rec.speed_out_column = static_cast<int>(it->second + 1);
+        rec.speed_out_header = t.header[it->second];
+    }
     auto get = [&](size_t r, const char* key, bool* present = nullptr) { return cell(file, t, r, key, present); };
 
     require(file, t, "speed_in", "speed_in_rpm");
@@ -266,6 +328,7 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
             }
             if (p.speed_in < 0) fail_cell(file, t, r, "speed_in", "negative speed");
             if (p.oil_temp && *p.oil_temp <= 0) fail_cell(file, t, r, "oil", "below absolute zero");
+            check_point(file, t, r, p, t.col.count("loss") > 0, rec.warnings);
             rec.points.push_back(p);
         }
         return rec;
@@ -287,6 +350,7 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
     };
     std::vector<Sample> s;
     for (size_t r = 0; r < t.rows.size(); ++r) {
+        io::throw_if_interrupted();
         Sample x{get(r, "time"), get(r, "speed_in"), get(r, "torque_in"), get(r, "speed_out"),
                  get(r, "torque_out"), get(r, "oil"), get(r, "ambient"), t.lines[r]};
         if (!(std::abs(x.time) <= kMaxTime))
@@ -382,6 +446,12 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
             lo = std::min(lo, sum / m);
             hi = std::max(hi, sum / m);
         }
+        if (*p.oil_temp < *p.ambient_temp)
+            rec.warnings.push_back(fmt::format(
+                "{}:{}: test {} (lines {}-{}): oil {:.4g} degC colder than the room {:.4g} degC over its last {:.0f} min: a "
+                "running gearbox heats its oil above the room (a swapped or failed sensor?)",
+                file, s[a].line, number, s[a].line, s[b - 1].line, *p.oil_temp - 273.15, *p.ambient_temp - 273.15,
+                std::min(duration, crit.window_s) / 60));
         p.stabilisation_drift = hi - lo;
         p.stabilised = duration >= crit.window_s - 1e-6 && p.stabilisation_drift < crit.max_variation;
         if (!p.stabilised)

@@ -28,7 +28,11 @@ struct Recordings {
     std::string file;
     bool from_log = false;
     std::vector<RecordedPoint> points;
+    // Findings about the recordings themselves (each names file:line, and the column where one
+    // cell is at fault), and unknown or repeated rows.
     std::vector<std::string> warnings;
+    int speed_out_column = 0;      // 1-based; 0: no output speed recorded
+    std::string speed_out_header;  // as written
 };
 
 struct StabilisationCriterion {
@@ -39,7 +43,11 @@ struct StabilisationCriterion {
 
 // Reads either format (a `time_s` column selects the raw log). Malformed rows
 // and missing columns are InputErrors with the file and line; unknown columns
-// become warnings.
+// become warnings. Each steady point is checked against the power balance before any fit
+// (recordings.cpp check_point): a loss above the input power and an output standing still
+// while the input turns are InputErrors at their cell; a loss over half the input power, a
+// loss column contradicting the output torque and speed, and oil colder than the ambient are
+// warnings naming file:line:column.
 Recordings read_recordings(const std::string& file, const StabilisationCriterion& crit = {});
 // Same from text; `name` appears in messages.
 Recordings read_recordings_text(const std::string& text, const std::string& name, const StabilisationCriterion& crit = {});

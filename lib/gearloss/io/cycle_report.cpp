@@ -52,18 +52,18 @@ CycleStudy run_cycle_study(const cycle::Powertrain& pt, const cycle::DriveCycle&
     CycleStudy s;
     s.cycle_name = dc.name;
     const auto t0 = std::chrono::steady_clock::now();
-    s.cold = cycle::simulate_cycle(pt, dc, cycle::uniform(o.start_temperature), o.ambient, true);
+    s.cold = cycle::simulate_cycle(pt, dc, cycle::uniform(o.start_temperature), o.ambient, o.keep_traces);
     s.seconds_per_run = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The traces of the reference runs cost the loss rates at each step (not the integration):
     // the totals are those of a run without trace.
-    auto warm = cycle::simulate_cycle(pt, dc, cycle::uniform(o.warm_temperature), o.ambient, true);
+    auto warm = cycle::simulate_cycle(pt, dc, cycle::uniform(o.warm_temperature), o.ambient, o.keep_traces);
     s.warm = warm.totals;
     s.warm_trace = std::move(warm.trace);
     if (o.prewarm_target) {
         const auto& net = pt.thermal_model().thermal.network;
         s.ideal_prewarm_time = net.C_oil * (*o.prewarm_target - o.start_temperature) / o.heater_power;
         s.prewarm = cycle::prewarm(pt, cycle::uniform(o.start_temperature), *o.prewarm_target, o.heater_power, o.ambient);
-        auto run = cycle::simulate_cycle(pt, dc, s.prewarm->state, o.ambient, true);
+        auto run = cycle::simulate_cycle(pt, dc, s.prewarm->state, o.ambient, o.keep_traces);
         s.prewarmed = run.totals;
         s.prewarmed_trace = std::move(run.trace);
     }
@@ -71,27 +71,29 @@ CycleStudy run_cycle_study(const cycle::Powertrain& pt, const cycle::DriveCycle&
 }
 
 namespace {
-// The columns of a reference run (`prefix`_oil_temp_C, ...) and its cells at step i.
+// The columns of a reference run (`prefix`_oil_temp_C, ...).
 std::string run_columns(const char* prefix, bool tc) {
     std::string s = fmt::format(",{0}_oil_temp_C,{0}_P_gearbox_W", prefix);
     if (tc) s += fmt::format(",{}_P_converter_W", prefix);
     return s;
 }
-std::string run_cells(const cycle::TraceRow& t, bool tc) {
+// What the time series keeps of a reference run at a step, and its cells.
+struct RunCells {
+    double T_oil = 0, P_gearbox = 0, P_tc = 0;
+    static RunCells of(const cycle::TraceRow& t) { return {t.T_oil, t.P_gearbox, t.P_tc}; }
+};
+std::string run_cells(const RunCells& t, bool tc) {
     std::string s = "," + csv_fixed(celsius(t.T_oil), 3) + "," + csv_number(t.P_gearbox);
     if (tc) s += "," + csv_number(t.P_tc);
     return s;
 }
-}  // namespace
 
-std::string cycle_trace_csv(const cycle::Powertrain& pt, const CycleStudy& study) {
-    const auto& r = study.cold;
+// The time series' header line (with its newline): the start run's columns, then the
+// reference runs' (`warm`, `prewarmed`) when they are in the table.
+std::string trace_header(const cycle::Powertrain& pt, bool warm, bool prewarmed) {
     const bool fuel = pt.vehicle.engine.fuel_map.has_value();
     const bool tc = pt.torque_converter.has_value();
     const auto& net = pt.thermal_model().thermal.network;
-    // The reference runs step through the same cycle: one row each per row of the start run.
-    const bool warm = study.warm_trace.size() == r.trace.size();
-    const bool prewarmed = study.prewarmed && study.prewarmed_trace.size() == r.trace.size();
     std::string s =
         "time_s,speed_kmh,accel_m_s2,gear,input_speed_rpm,input_torque_Nm,engine_speed_rpm,engine_torque_Nm,oil_temp_C";
     if (net.has_housing()) s += ",housing_temp_C";
@@ -103,23 +105,74 @@ std::string cycle_trace_csv(const cycle::Powertrain& pt, const CycleStudy& study
     if (fuel) s += ",fuel_g_s";
     if (warm) s += run_columns("warm", tc);
     if (prewarmed) s += run_columns("prewarmed", tc);
+    return s + "\n";
+}
+
+// One step of the time series appended to `s`: the start run's row `t`, the reference runs'
+// cells at the same step (null: not in the table).
+void append_trace_row(std::string& s, const cycle::Powertrain& pt, const cycle::TraceRow& t, const RunCells* warm,
+                      const RunCells* prewarmed) {
+    const bool fuel = pt.vehicle.engine.fuel_map.has_value();
+    const bool tc = pt.torque_converter.has_value();
+    const auto& net = pt.thermal_model().thermal.network;
+    const auto& mechs = pt.thermal_model().mechanisms;
+    s += fmt::format("{},{},{},{},{},{},{},{},{}", csv_number(t.time), csv_fixed(t.speed * 3.6, 3), csv_number(t.accel),
+                     t.gear, csv_number(t.input_speed * kRpm), csv_number(t.input_torque), csv_number(t.engine_speed * kRpm),
+                     csv_number(t.engine_torque), csv_fixed(celsius(t.T_oil), 3));
+    if (net.has_housing()) s += "," + csv_fixed(celsius(t.T_housing), 3);
+    if (net.has_clutch()) s += "," + csv_fixed(celsius(t.T_clutch), 3);
+    for (size_t k = 0; k < mechs.size(); ++k) s += "," + csv_number(k < t.P_mech.size() ? t.P_mech[k] : 0.0);
+    s += "," + csv_number(t.P_gearbox);
+    if (tc) s += fmt::format(",{},{},{}", csv_number(t.P_tc), csv_number(t.tc_speed_ratio), t.lockup ? 1 : 0);
+    if (fuel) s += "," + csv_number(t.fuel_rate * 1e3);
+    if (warm) s += run_cells(*warm, tc);
+    if (prewarmed) s += run_cells(*prewarmed, tc);
     s += "\n";
+}
+}  // namespace
+
+std::string cycle_trace_csv(const cycle::Powertrain& pt, const CycleStudy& study) {
+    const auto& r = study.cold;
+    // The reference runs step through the same cycle: one row each per row of the start run.
+    const bool warm = study.warm_trace.size() == r.trace.size();
+    const bool prewarmed = study.prewarmed && study.prewarmed_trace.size() == r.trace.size();
+    std::string s = trace_header(pt, warm, prewarmed);
     for (size_t i = 0; i < r.trace.size(); ++i) {
-        const auto& t = r.trace[i];
-        s += fmt::format("{},{},{},{},{},{},{},{},{}", csv_number(t.time), csv_fixed(t.speed * 3.6, 3),
-                         csv_number(t.accel), t.gear, csv_number(t.input_speed * kRpm), csv_number(t.input_torque),
-                         csv_number(t.engine_speed * kRpm), csv_number(t.engine_torque), csv_fixed(celsius(t.T_oil), 3));
-        if (net.has_housing()) s += "," + csv_fixed(celsius(t.T_housing), 3);
-        if (net.has_clutch()) s += "," + csv_fixed(celsius(t.T_clutch), 3);
-        for (size_t k = 0; k < mechs.size(); ++k) s += "," + csv_number(k < t.P_mech.size() ? t.P_mech[k] : 0.0);
-        s += "," + csv_number(t.P_gearbox);
-        if (tc) s += fmt::format(",{},{},{}", csv_number(t.P_tc), csv_number(t.tc_speed_ratio), t.lockup ? 1 : 0);
-        if (fuel) s += "," + csv_number(t.fuel_rate * 1e3);
-        if (warm) s += run_cells(study.warm_trace[i], tc);
-        if (prewarmed) s += run_cells(study.prewarmed_trace[i], tc);
-        s += "\n";
+        const RunCells w = warm ? RunCells::of(study.warm_trace[i]) : RunCells{};
+        const RunCells p = prewarmed ? RunCells::of(study.prewarmed_trace[i]) : RunCells{};
+        append_trace_row(s, pt, r.trace[i], warm ? &w : nullptr, prewarmed ? &p : nullptr);
     }
     return s;
+}
+
+std::string cycle_trace_header(const cycle::Powertrain& pt, const CycleStudy& study) {
+    return trace_header(pt, true, study.prewarm && study.prewarmed);
+}
+
+void write_cycle_trace(const cycle::Powertrain& pt, const cycle::DriveCycle& dc, const CycleStudy& study,
+                       const CycleStudyOptions& o, const std::function<void(std::string_view)>& write) {
+    // The reference runs again, their cells kept (3 numbers a step); then the start run again,
+    // each row formatted as it comes and written a chunk at a time.
+    const auto cells_of = [&](const thermal::NodeTemperatures& start) {
+        std::vector<RunCells> v;
+        v.reserve(dc.time.size());
+        cycle::simulate_cycle(pt, dc, start, o.ambient, true, [&](const cycle::TraceRow& t) { v.push_back(RunCells::of(t)); });
+        return v;
+    };
+    const std::vector<RunCells> warm = cells_of(cycle::uniform(o.warm_temperature));
+    const bool prewarmed = study.prewarm && study.prewarmed;
+    const std::vector<RunCells> pre = prewarmed ? cells_of(study.prewarm->state) : std::vector<RunCells>{};
+    std::string chunk = trace_header(pt, true, prewarmed);
+    size_t i = 0;
+    cycle::simulate_cycle(pt, dc, cycle::uniform(o.start_temperature), o.ambient, true, [&](const cycle::TraceRow& t) {
+        append_trace_row(chunk, pt, t, i < warm.size() ? &warm[i] : nullptr, prewarmed && i < pre.size() ? &pre[i] : nullptr);
+        ++i;
+        if (chunk.size() >= kTraceChunkBytes) {
+            write(chunk);
+            chunk.clear();
+        }
+    });
+    write(chunk);
 }
 
 namespace {

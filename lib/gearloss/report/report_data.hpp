@@ -45,7 +45,7 @@ struct ReportData {
     std::vector<GivenValue> given;
     // io::Case::assumed of the case as reported, flagged on the page.
     std::vector<AssumedValue> assumed;
-    std::vector<std::string> sweep_notes;  // what of a case's sweep the report shows
+    std::vector<std::string> sweep_notes;  // what of a case's sweep, and of a grid beyond kMaxReportPoints, the report shows
     std::string thermal;                   // "stabilised" or "fixed at 80.0 degC (--oil-temp)"
     bool fixed_oil_temperature = false;
     OilMap reference_map;

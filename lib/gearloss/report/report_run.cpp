@@ -47,6 +47,45 @@ bool is_oil_sweep(const std::vector<io::SweepAxis>& axes) {
     return axes.size() == 1 && axes[0].paths.size() == 1 && axes[0].paths[0] == "oil";
 }
 
+// `count` indices spread evenly over 0..n-1, both ends kept (all of them when n <= count).
+std::vector<size_t> even_indices(size_t n, size_t count) {
+    std::vector<size_t> at;
+    if (n <= count) {
+        for (size_t i = 0; i < n; ++i) at.push_back(i);
+        return at;
+    }
+    for (size_t k = 0; k < count; ++k) at.push_back((k * (n - 1) + (count - 1) / 2) / (count - 1));
+    return at;
+}
+
+// The grid a report shows: the case's up to kMaxReportPoints; a larger one down-sampled (a
+// speeds x torques grid to at most kMaxReportAxis values on each axis, a point list to
+// kMaxReportPoints points, evenly, the ends kept), with a note saying so. The page's memory
+// and size then stay bounded (~10 kB a point) whatever the grid.
+std::string bound_report_grid(io::OperatingGrid& g) {
+    const size_t n = g.size();
+    if (n <= kMaxReportPoints) return {};
+    if (g.is_grid) {
+        std::vector<double> sp, tq;
+        for (size_t i : even_indices(g.speeds.size(), kMaxReportAxis)) sp.push_back(g.speeds[i]);
+        for (size_t i : even_indices(g.torques.size(), kMaxReportAxis)) tq.push_back(g.torques[i]);
+        const std::string note = fmt::format(
+            "The operating grid has {} points ({} speeds x {} torques); a report shows at most {}: its maps and tables "
+            "are drawn on {} speeds x {} torques spread evenly over the grid, the first and last kept. `gearloss map` "
+            "computes every point.",
+            n, g.speeds.size(), g.torques.size(), kMaxReportPoints, sp.size(), tq.size());
+        g.speeds = std::move(sp);
+        g.torques = std::move(tq);
+        return note;
+    }
+    std::vector<std::pair<double, double>> pts;
+    for (size_t i : even_indices(n, kMaxReportPoints)) pts.push_back(g.points[i]);
+    g.points = std::move(pts);
+    return fmt::format("The case lists {} operating points; a report shows at most {}: {} of them, spread evenly over "
+                       "the list, the first and last kept. `gearloss map` computes every point.",
+                       n, kMaxReportPoints, g.points.size());
+}
+
 OilMap map_of(const io::Case& k, std::string source, const map::MapOptions& opt) {
     OilMap m;
     m.oil_name = k.model.oil.name;
@@ -83,6 +122,7 @@ ReportData collect_report(const ReportRequest& q) {
         d.sweep_notes.push_back("The case sweeps " + oil_sweep_note(sweep.axes()) + ": this report shows its first variant (" +
                                 sweep.tag(0) + "); `gearloss map` computes every variant.");
     d.reference = q.prepare(sweep.variant(0), oil_sweep ? "sweep variant " + sweep.tag(0) : "");
+    if (const std::string note = bound_report_grid(d.reference.grid); !note.empty()) d.sweep_notes.push_back(note);
     const auto& k = d.reference;
     d.assumed = k.assumed;
     d.case_hash = map::case_hash(k);
@@ -119,6 +159,7 @@ ReportData collect_report(const ReportRequest& q) {
         for (size_t v = 1; v < sweep.size(); ++v) {
             io::throw_if_interrupted();
             others.emplace_back(q.prepare(sweep.variant(v), "sweep variant " + sweep.tag(v)), "sweep " + sweep.tag(v));
+            bound_report_grid(others.back().first.grid);  // the same grid as the reference's
         }
 
     const auto t0 = std::chrono::steady_clock::now();

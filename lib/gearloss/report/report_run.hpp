@@ -15,6 +15,12 @@
 
 namespace gearloss::report {
 
+// A report shows at most kMaxReportPoints operating points: a larger grid is down-sampled to
+// at most kMaxReportAxis speeds x kMaxReportAxis torques (a point list to kMaxReportPoints
+// points), evenly with the ends kept, and the page says so (docs/report.md).
+inline constexpr size_t kMaxReportAxis = 32;
+inline constexpr size_t kMaxReportPoints = kMaxReportAxis * kMaxReportAxis;
+
 struct ReportRequest {
     std::string config;
     std::optional<std::string> ratio;    // --ratio
