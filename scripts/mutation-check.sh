@@ -60,7 +60,7 @@ IDS=() FOLDERS=() FILES=() DESCS=() ORIGS=() REPLS=()
 mut() { IDS+=("$1"); FOLDERS+=("$2"); FILES+=("$3"); DESCS+=("$4"); ORIGS+=("$5"); REPLS+=("$6"); }
 
 mut U1 units lib/gearloss/units/units.cpp "rpm as pi/60 rad/s per rpm (rev/rad slip, factor 1/2)" \
-    '{"rpm", {2.0 * pi / 60.0, angular_speed, true}}' '{"rpm", {pi / 60.0, angular_speed, true}}'
+    '{"rpm", {2.0 * pi / 60.0, angular_speed, 1, false, false, true}}' '{"rpm", {pi / 60.0, angular_speed, 1, false, false, true}}'
 mut L1 lubricant lib/gearloss/lubricant/oil.cpp "density reference at 20 degC instead of 15 degC" \
     'rho15 * (1.0 - expansion * (T_K - 288.15))' 'rho15 * (1.0 - expansion * (T_K - 293.15))'
 mut L2 lubricant lib/gearloss/lubricant/oil.cpp "Cragoe conductivity 0.1172 -> 0.1127 (digits swapped, -3.8 %)" \
@@ -78,7 +78,7 @@ mut M3 mesh lib/gearloss/mesh/friction.cpp "Ertel-Grubin constant 1.95 -> 1.99 (
 mut M4 mesh lib/gearloss/mesh/friction.cpp "Dowson-Higginson constant 2.65 -> 2.76 (+4 %)" \
     '2.65 * std::pow(U, 0.70)' '2.76 * std::pow(U, 0.70)'
 mut M5 mesh lib/gearloss/mesh/friction.cpp "Gupta thermal reduction 0.213 -> 0.231 (digits swapped)" \
-    '0.213 * (1.0 + 2.23 *' '0.231 * (1.0 + 2.23 *'
+    'const double b = 0.213 * (1.0 + 2.23 *' 'const double b = 0.231 * (1.0 + 2.23 *'
 mut M6 mesh lib/gearloss/mesh/loss_factor.cpp "Ohlendorf bracket eps2^2 -> eps2 eps1" \
     '1.0 - g.eps_alpha + g.eps1 * g.eps1 + g.eps2 * g.eps2' '1.0 - g.eps_alpha + g.eps1 * g.eps1 + g.eps2 * g.eps1'
 mut M7 mesh lib/gearloss/mesh/loss_factor.cpp "Wimmer sweep normalised by the working instead of the base radius" \
@@ -150,6 +150,12 @@ mut K2 clutch lib/gearloss/clutch/wet_clutch.cpp "heated clutch film: sinh^2 x =
     'std::sqrt(nahme / 8.0)' 'std::sqrt(nahme / 4.0)'
 mut M12 mesh lib/gearloss/mesh/viscoelastic.cpp "Maxwell relaxation per slice halved (G dx/u_e -> G dx/(2 u_e))" \
     'rate = G * dx / u_e *' 'rate = 0.5 * G * dx / u_e *'
+mut K3 clutch lib/gearloss/clutch/wet_clutch.cpp "streak oil fraction squared (f -> f^2 beyond the wetted radius)" \
+    'const double streaks = rw < c.r_outer ? f * oil_moment(rw, c.r_outer) : 0.0;' 'const double streaks = rw < c.r_outer ? f * f * oil_moment(rw, c.r_outer) : 0.0;'
+mut K4 clutch lib/gearloss/clutch/wet_clutch.cpp "air between the streaks sheared over the whole gap (1 - f dropped)" \
+    'const double air = (1.0 - f) * std::numbers::pi' 'const double air = std::numbers::pi'
+mut C5 churning lib/gearloss/churning/mauz_1987.cpp "Mauz C_2 denominator 80 -> 60" \
+    'const double C2 = e / (80.0 * e0) + 0.2;' 'const double C2 = e / (60.0 * e0) + 0.2;'
 
 # ---------------------------------------------------------------------------------
 usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
