@@ -186,15 +186,21 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     const ChannelStats s0 = channel_rmse(E, p0, neutral);
     d.rmse_before = s0.rmse_loss;
     d.temp_rmse_before = s0.rmse_temp;
+    // With a subset selecting the effects, a model is evaluated again at every recorded point:
+    // its predictions there, and the RMSEs the diagnosis reports are theirs.
+    auto at_every_point = [&](const Hypothesis& h, const char* progress, double& rmse_loss, double& rmse_temp) {
+        if (opt.progress) opt.progress(progress);
+        Pred p = F.predict_checked(h, F.all());
+        const ChannelStats s = channel_rmse(F, p, h);
+        rmse_loss = s.rmse_loss;
+        rmse_temp = s.rmse_temp;
+        return p;
+    };
     // The baseline at every point (the same prediction when the selection uses them all).
     Pred p0_all, pf_all;
-    if (subset) {
-        if (opt.progress) opt.progress("diagnose: the model at every recorded point");
-        p0_all = F.predict_checked(neutral, F.all());
-        const ChannelStats s0_all = channel_rmse(F, p0_all, neutral);
-        d.rmse_before = s0_all.rmse_loss;
-        d.temp_rmse_before = s0_all.rmse_temp;
-    }
+    if (subset)
+        p0_all = at_every_point(neutral, "diagnose: the model at every recorded point", d.rmse_before,
+                                d.temp_rmse_before);
     const Pred& before_all = subset ? p0_all : p0;
     const Location baseline = locate(F, before_all, neutral, model);
     d.location = baseline.text;
@@ -217,13 +223,9 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     d.temp_rmse_after = sf.rmse_temp;
     // The predictions at every point (the same ones when the selection used them all).
     const Hypothesis base_all = subset ? on_every_point(base, at, F.obs().size()) : base;
-    if (subset) {
-        if (opt.progress) opt.progress("diagnose: the model after the findings at every recorded point");
-        pf_all = F.predict_checked(base_all, F.all());
-        const ChannelStats sf_all = channel_rmse(F, pf_all, base_all);
-        d.rmse_after = sf_all.rmse_loss;
-        d.temp_rmse_after = sf_all.rmse_temp;
-    }
+    if (subset)
+        pf_all = at_every_point(base_all, "diagnose: the model after the findings at every recorded point",
+                                d.rmse_after, d.temp_rmse_after);
     const Pred& after_all = subset ? pf_all : pf;
     d.cv_rmse_after = d.findings.empty() ? d.rmse_before : S.cv_rmse_after;
     d.oil_differences = oil_differences(E, p0, pf, oils);
