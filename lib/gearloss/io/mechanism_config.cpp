@@ -59,13 +59,14 @@ void load_calibration(const YamlNode& n, solver::Model& m) {
     auto& c = m.calibration;
     for (const auto& [key, x] : n.entries()) {
         if (key == "note") continue;
-        auto factor = [&](double& v, double lo, double hi) {
-            v = x.as_number();
-            if (!(v >= lo && v <= hi)) x.fail(fmt::format("must be in [{}, {}]", lo, hi));
+        // The node is passed in: a lambda capturing a structured binding needs clang >= 16.
+        auto factor = [](const YamlNode& node, double& v, double lo, double hi) {
+            v = node.as_number();
+            if (!(v >= lo && v <= hi)) node.fail(fmt::format("must be in [{}, {}]", lo, hi));
         };
-        if (key == "viscosity_factor") { factor(c.viscosity_factor, 0.05, 20); continue; }
-        if (key == "heat_rejection_factor") { factor(c.heat_rejection_factor, 0.05, 20); continue; }
-        if (key == "cooling_per_1000rpm") { factor(c.cooling_per_1000rpm, -0.95, 50); continue; }
+        if (key == "viscosity_factor") { factor(x, c.viscosity_factor, 0.05, 20); continue; }
+        if (key == "heat_rejection_factor") { factor(x, c.heat_rejection_factor, 0.05, 20); continue; }
+        if (key == "cooling_per_1000rpm") { factor(x, c.cooling_per_1000rpm, -0.95, 50); continue; }
         if (auto* mech = m.mechanisms.find(key); mech && x.is_map()) {
             for (const auto& [pk, px] : x.entries()) {
                 if (pk == "note") continue;
