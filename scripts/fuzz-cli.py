@@ -311,11 +311,21 @@ def one_run(args):
         argv, outs, mutated, reads = draw_run(rng, t)
         before = snapshot(t)
         start = time.monotonic()
+        # Now and then standard output is an input opened for reading and writing without
+        # truncation (the shell's `1<>case.yaml`): nothing may be written into it.
+        stdout_file = None
+        if rng.random() < 0.08:
+            stdout_file = open(os.path.join(t, rng.choice(sorted(reads - {"gl"}))), "r+b")
         try:
-            p = subprocess.run(argv, cwd=t, capture_output=True, timeout=timeout)
-            rc, out, err, hung = p.returncode, p.stdout, p.stderr, False
+            p = subprocess.run(argv, cwd=t, stdout=stdout_file or subprocess.PIPE, stderr=subprocess.PIPE,
+                               timeout=timeout)
+            rc, out, err, hung = p.returncode, p.stdout or b"", p.stderr, False
         except subprocess.TimeoutExpired as e:
             rc, out, err, hung = None, e.stdout or b"", e.stderr or b"", True
+        finally:
+            if stdout_file:
+                stdout_file.close()
+                argv = argv + [f"1<>{os.path.relpath(stdout_file.name, t)}"]
         elapsed = time.monotonic() - start
         after = snapshot(t)
         problems = []
