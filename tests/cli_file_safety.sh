@@ -227,5 +227,82 @@ read -r rc ms < <(python3 close_after_two.py "$bin" map "$src/configs/transfer-b
 check "map BIG, reader closes after two lines: exit 141 (got $rc)" test "$rc" = 141
 check "map BIG, reader closes after two lines: ends within 2 s of it (took $ms ms)" test "$ms" -lt 2000
 
+# 8. Standard output is an output of every command: when it is a regular file that is an
+#    input (`1<> case.yaml` opens the case for writing without emptying it), the text the
+#    command prints (check, point, the cycle summary, the diagnosis, -o -) would go into the
+#    input; refused before anything is written. A plain `> file` still works.
+mkdir stdout && cd stdout || exit 1
+cp -r "$src/configs/oils" . && cp "$src/configs/spur-seed000.yaml" spur.yaml && cp "$src/configs/automatic-6speed.yaml" auto.yaml
+cp "$src/configs/transfer-box.yaml" tb.yaml
+"$bin" synth tb.yaml --speed 600,900rpm --torque 100,200Nm -o rec.csv
+refused "check: standard output is the case" spur.yaml "standard output '.*spur.yaml' is the input config 'spur.yaml'" \
+    bash -c '"$0" check spur.yaml 1<> spur.yaml' "$bin"
+refused "point: standard output is the case" spur.yaml "standard output '.*spur.yaml' is the input config" \
+    bash -c '"$0" point spur.yaml --speed 800rpm --torque 50Nm 1<> spur.yaml' "$bin"
+refused "cycle: standard output (the summary) is the case" auto.yaml "standard output '.*auto.yaml' is the input config" \
+    bash -c '"$0" cycle auto.yaml --cycle nedc --start-temp 20degC 1<> auto.yaml' "$bin"
+refused "diagnose: standard output (the diagnosis) is the case's oil" oils/75W90-A.yaml \
+    "standard output '.*75W90-A.yaml' is the input named by the case at 'oil'" \
+    bash -c '"$0" diagnose tb.yaml rec.csv 1<> oils/75W90-A.yaml' "$bin"
+refused "report -o -: standard output is the case" tb.yaml "is the input config" \
+    bash -c '"$0" report tb.yaml --speed 600rpm --torque 100Nm --oil-temp 70degC --no-spread -o - 1<> tb.yaml' "$bin"
+"$bin" check spur.yaml > check.txt
+check "check > check.txt: written" grep -q "spur" check.txt
+
+# 9. The files gearloss ships are never outputs, whether this run reads them or not: a
+#    cycle run on wltc, or a map, asked to write onto the shipped nedc cycle.
+mkdir data && cp -r "$src/configs/cycles" "$src/configs/bearings" data/
+export GEARLOSS_DATA_DIR=$PWD/data
+refused "cycle --cycle wltc --json onto the shipped nedc.csv" data/cycles/nedc.csv \
+    "--json '.*data/cycles/nedc.csv' is the input the shipped cycle 'nedc'" \
+    "$bin" cycle auto.yaml --cycle wltc --start-temp 20degC --json "$GEARLOSS_DATA_DIR/cycles/nedc.csv"
+refused "map --json onto a shipped cycle file" data/cycles/artemis-urban.csv "is the input the shipped cycle 'artemis-urban'" \
+    "$bin" map tb.yaml --speed 600rpm --torque 100Nm --oil-temp 70degC -o m.csv --json data/cycles/artemis-urban.csv
+unset GEARLOSS_DATA_DIR
+
+# 10. The sidecar of an input (the recordings' rec.csv.meta.json, written by synth) is kept
+#     like the input.
+refused "diagnose --json onto the recordings' sidecar" rec.csv.meta.json \
+    "--json 'rec.csv.meta.json' is the metadata 'rec.csv.meta.json' of the input recordings 'rec.csv'" \
+    "$bin" diagnose tb.yaml rec.csv --json rec.csv.meta.json
+refused "diagnose --residuals onto the recordings' sidecar" rec.csv.meta.json "of the input recordings 'rec.csv'" \
+    "$bin" diagnose tb.yaml rec.csv --residuals rec.csv.meta.json
+cd "$tmp" || exit 1
+
+# 11. Every command writing to a pipe stops within a second of its reader going away, while
+#     the output is still being computed (not only the streamed map): the reader exits at once
+#     (`| true`); each run takes 10 s or more to the end. Within 5 s (1 s is the contract; a
+#     loaded CI machine), exit 141 with the message, no temporary.
+gone_reader() {  # gone_reader NAME COMMAND...: COMMAND's standard output piped to `true`
+    local name=$1
+    shift
+    local t0
+    t0=$(date +%s%N)
+    timeout 120 "$@" 2> gone.err | true
+    local rc=${PIPESTATUS[0]} ms=$((($(date +%s%N) - t0) / 1000000))
+    check "$name | true: ends within 5 s (took $ms ms)" test $ms -lt 5000
+    check "$name | true: exit 141 (got $rc)" test "$rc" -eq 141
+    check "$name | true: message" grep -q "signal 13: a reader closed its pipe" gone.err
+    check "$name | true: no temporary" no_temporary
+}
+mkdir gone && cd gone || exit 1
+cp -r "$src/configs/oils" . && cp "$src/configs/transfer-box.yaml" tb.yaml && cp "$src/configs/automatic-6speed.yaml" auto.yaml
+gone_reader "synth -o -" "$bin" synth "$spur" --speed "$(list 500 10 151)rpm" --torque "$(list 10 10 80)Nm" -o -
+gone_reader "report -o -" "$bin" report tb.yaml -o -
+gone_reader "map --spread -o -" "$bin" map tb.yaml --spread -o -
+python3 -c "
+print('time_s,speed_kmh')
+for i in range(400001): print(f'{i},{50 + 30 * ((i // 60) % 2)}')" > long.csv
+gone_reader "cycle (400 000 s) summary" "$bin" cycle auto.yaml --cycle long.csv --start-temp 20degC
+"$bin" synth tb.yaml --speed 600,800,1000,1200rpm --torque 100,150,200,250,300Nm -o rec20.csv
+python3 -c "
+lines = open('rec20.csv').read().splitlines()
+rows = [l.split(',') for l in lines[1:]]
+print(lines[0])
+for k in range(150):  # 3000 points, each speed a little apart (a minute of fitting)
+    for r in rows: print(','.join([f'{float(r[0]) + 0.01 * k:.3f}'] + r[1:]))" > rec3k.csv
+gone_reader "diagnose (3000 points) text" "$bin" diagnose tb.yaml rec3k.csv
+cd "$tmp" || exit 1
+
 echo "cli_file_safety: $pass passed, $fail failed"
 test $fail -eq 0

@@ -67,7 +67,10 @@ public:
     }
 
     int run() override {
-        io::Case k = load_with_options(common_, false);
+        io::Case k = load_with_options(common_, false);  // first: its reader bounds what a hostile case can cost
+        // No output file, but the report goes to standard output: not onto an input, and a
+        // reader that goes away ends the run.
+        io::require_safe_outputs({}, case_inputs(common_.config, {{"--oil", common_.oil}}), true);
         if (common_.oil_temp.empty()) io::write_stdout(json_ ? io::check_json(k) : io::check_report(k));
         else io::write_stdout(json_ ? json_with_oil_state(k) : report_with_oil_state(k));
         return kOk;

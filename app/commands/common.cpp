@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 #include <unistd.h>
 
@@ -136,9 +137,17 @@ NamedPaths case_inputs(const std::string& config, const NamedPaths& more) {
         // A case that cannot be read or parsed: loading it reports the error with its line;
         // until then the case file itself is the input to protect.
     }
-    // The bearing catalogue gearloss ships, read for any designation (gearloss/io/data_dir.hpp).
-    if (const auto data = io::find_data_dir().dir)
+    // The data gearloss ships (gearloss/io/data_dir.hpp): the bearing catalogue, read for any
+    // designation, and the drive cycles, read by name (`--cycle nedc`), whether this run reads
+    // them or not: no command damages them.
+    if (const auto data = io::find_data_dir().dir) {
         inputs.emplace_back("the shipped bearing catalogue", (*data / "bearings" / "catalogue.yaml").string());
+        std::error_code ec;
+        for (auto it = std::filesystem::directory_iterator(*data / "cycles", ec);
+             !ec && it != std::filesystem::directory_iterator(); it.increment(ec))
+            if (it->path().extension() == ".csv")
+                inputs.emplace_back("the shipped cycle '" + it->path().stem().string() + "'", it->path().string());
+    }
     inputs.insert(inputs.end(), more.begin(), more.end());
     return inputs;
 }

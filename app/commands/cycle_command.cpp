@@ -58,7 +58,8 @@ public:
         // included, is kept from the outputs, before the simulation.
         NamedPaths inputs = case_inputs(config_, {{"--oil", oil_}, {"--cycle", cycle_}});
         for (const auto& f : cycle_files) inputs.emplace_back("--cycle " + cycle_ + " (its file)", f);
-        io::require_safe_outputs({{"--output", out_}, sidecar_output("--output", out_), {"--json", json_}}, inputs);
+        io::require_safe_outputs({{"--output", out_}, sidecar_output("--output", out_), {"--json", json_}}, inputs,
+                                 true);  // the summary
         io::CycleStudyOptions so;
         so.start_temperature = absolute_temperature(start_temp_, "--start-temp");
         so.ambient = ambient_.empty() ? so.start_temperature : absolute_temperature(ambient_, "--ambient");

@@ -50,7 +50,7 @@ public:
                                     std::filesystem::path(p.oil).is_absolute() ? p.oil : (dir / p.oil).string());
         io::require_safe_outputs({{"--json", json_}, {"--residuals", residuals_}, sidecar_output("--residuals", residuals_),
                                   {"--write-config", write_config_}},
-                                 inputs);
+                                 inputs, true);  // the diagnosis text
         diagnosis::DiagnoseOptions opt;
         opt.bootstrap = bootstrap_;
         opt.threads = threads_;

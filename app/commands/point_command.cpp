@@ -23,8 +23,8 @@ public:
     }
 
     int run() override {
-        io::require_safe_outputs({{"--json", json_}}, case_inputs(common_.config, {{"--oil", common_.oil}}));
-        io::Case k = load_with_options(common_);
+        io::Case k = load_with_options(common_);  // first: its reader bounds what a hostile case can cost
+        io::require_safe_outputs({{"--json", json_}}, case_inputs(common_.config, {{"--oil", common_.oil}}), json_ != "-");
         const double w = point_speed(speed_, "800rpm");
         const double T = point_torque(torque_, "250Nm");
         map::validate_point(w, T);

@@ -191,11 +191,36 @@ private:
     std::thread thread_;
 };
 
+namespace {
+
+// The watches of the run's streamed outputs (watch_stream_outputs), by descriptor; used on
+// the main thread only.
+std::vector<std::pair<int, std::unique_ptr<ReaderWatch>>>& run_watches() {
+    static std::vector<std::pair<int, std::unique_ptr<ReaderWatch>>> w;
+    return w;
+}
+
+// The output written to `fd` takes over (or the run ends): its run watch stops.
+void end_run_watch(int fd) {
+    auto& w = run_watches();
+    w.erase(std::remove_if(w.begin(), w.end(), [fd](const auto& e) { return e.first == fd; }), w.end());
+}
+
+}  // namespace
+
+void watch_stream_outputs(const std::vector<int>& fds) {
+    auto& w = run_watches();
+    for (const int fd : fds)
+        if (ReaderWatch::watchable(fd) && std::none_of(w.begin(), w.end(), [fd](const auto& e) { return e.first == fd; }))
+            w.emplace_back(fd, std::make_unique<ReaderWatch>(fd));
+}
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), label_("'" + path_ + "'") {
     target_ = resolve_output(path_);
     switch (target_.kind) {
     case OutputTarget::Kind::descriptor: {
         fd_ = target_.fd;
+        end_run_watch(fd_);  // this file's own watch takes over
         if (fd_ == 1) {
             label_ = "to standard output";
             std::fflush(stdout);  // keep the order of text printed through stdio (errors: see finish_stdout)
@@ -314,8 +339,10 @@ void AtomicFile::flush_buffer() {
 
 void AtomicFile::commit() {
     if (committed_) return;
+    // The watch stops before the last write: a reader already gone is seen by that write
+    // (EPIPE), and one that leaves once every byte went out loses nothing and ends nothing.
+    watch_.reset();
     flush_buffer();
-    watch_.reset();  // every byte went out: a reader leaving now loses nothing
     if (tmp_.empty()) {  // written directly
         if (own_fd_) {
             const int fd = fd_;
@@ -342,6 +369,7 @@ void AtomicFile::commit() {
 OutputTransaction::OutputTransaction() { transaction().active = true; }
 
 OutputTransaction::~OutputTransaction() {
+    run_watches().clear();
     auto& tx = transaction();
     discard(tx.pending);
     tx.active = false;
@@ -381,6 +409,10 @@ void finish_stdout() {
 
 void write_stdout(std::string_view text) {
     finish_stdout();
+    // The text is written now, in one go: a reader already gone is seen by the write itself
+    // (EPIPE), and one that leaves once every byte went out loses nothing and ends nothing
+    // (the watch, stopped after the write, could see it leave an instant later).
+    end_run_watch(STDOUT_FILENO);
     write_all(STDOUT_FILENO, text.data(), text.size(), !is_regular(STDOUT_FILENO), "to standard output");
 }
 

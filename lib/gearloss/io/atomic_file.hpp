@@ -79,6 +79,17 @@ public:
     void publish();
 };
 
+// The descriptors (standard output, /dev/fd/N) of a run's streamed outputs, watched from
+// the check of its files (require_safe_outputs) until they are written: while the output is
+// still being computed (a report, a synthesised campaign, a diagnosis, a cycle), a pipe,
+// FIFO or socket whose reader goes away ends the run within a second as SIGPIPE does
+// (on_reader_closed), not at the first write at the end. The output written to that
+// descriptor (AtomicFile, write_stdout) takes over: its watch ends with its last byte, so a
+// reader that leaves once everything arrived loses nothing and ends nothing. Descriptors
+// that are not a pipe, FIFO or socket are not watched; the end of the run's
+// OutputTransaction stops every watch.
+void watch_stream_outputs(const std::vector<int>& fds);
+
 // Text on standard output, checked: IoError on a write error (e.g. ENOSPC on /dev/full);
 // a closed pipe (EPIPE) ends the run as SIGPIPE (on_reader_closed, then IoError).
 void write_stdout(std::string_view text);

@@ -190,8 +190,10 @@ std::string quoted(const std::string& path) { return "'" + excerpt(path, 200) + 
 
 }  // namespace
 
-void require_safe_outputs(const NamedFiles& outputs, const NamedFiles& inputs) {
+void require_safe_outputs(const NamedFiles& outputs, const NamedFiles& inputs, bool text_on_stdout) {
     std::vector<std::pair<size_t, FileIdentity>> seen;  // (index in outputs, identity)
+    std::vector<int> streams;                            // descriptors to watch for their reader
+    if (text_on_stdout) streams.push_back(STDOUT_FILENO);
     for (size_t i = 0; i < outputs.size(); ++i) {
         const auto& [option, path] = outputs[i];
         if (path.empty()) continue;
@@ -205,26 +207,54 @@ void require_safe_outputs(const NamedFiles& outputs, const NamedFiles& inputs) {
                                  "; give two different files");
         }
         seen.emplace_back(i, id);
-    }
-    // The inputs, then the program itself: a regular file an output leads to is refused.
-    NamedFiles read = inputs;
-    read.emplace_back("the running program", "/proc/self/exe");
-    for (const auto& [in_option, in_path] : read) {
-        struct stat in {};
-        if (in_path.empty() || in_path == "-" || ::stat(in_path.c_str(), &in) != 0 || !S_ISREG(in.st_mode)) continue;
-        for (const auto& [j, o] : seen) {
-            if (!o.inode || o.dev != in.st_dev || o.ino != in.st_ino) continue;
-            const auto& [option, path] = outputs[j];
-            std::string what = "the input " + in_option + " " + quoted(in_path);
-            if (in_path == "/proc/self/exe") {
-                char exe[PATH_MAX + 1] = {};
-                const ssize_t n = ::readlink("/proc/self/exe", exe, PATH_MAX);
-                what = "the running program" + (n > 0 ? " " + quoted(std::string(exe, static_cast<size_t>(n))) : std::string());
-            }
-            throw InputError("", 0, 0, option,
-                             option + " " + quoted(path) + " is " + what + "; write the output to another file");
+        try {
+            if (const OutputTarget t = resolve_output(path); t.kind == OutputTarget::Kind::descriptor) streams.push_back(t.fd);
+        } catch (const IoError&) {
+            // not writable: reported when written
         }
     }
+    // What is written: the outputs, and standard output when it is a regular file (whatever
+    // a command prints lands there; `1<> case.yaml` would write into the case).
+    struct Written {
+        std::string option, path;
+        FileIdentity id;
+    };
+    std::vector<Written> written;
+    for (const auto& [j, o] : seen) written.push_back({outputs[j].first, outputs[j].second, o});
+    if (struct stat out {}; ::fstat(STDOUT_FILENO, &out) == 0 && S_ISREG(out.st_mode)) {
+        char name[PATH_MAX + 1] = {};
+        const ssize_t n = ::readlink("/proc/self/fd/1", name, PATH_MAX);
+        FileIdentity id;
+        id.inode = true;
+        id.dev = out.st_dev;
+        id.ino = out.st_ino;
+        written.push_back({"standard output", n > 0 ? std::string(name, static_cast<size_t>(n)) : std::string("-"), id});
+    }
+    // The inputs, the sidecars beside them, then the program itself: a regular file an output
+    // leads to is refused.
+    std::vector<std::pair<std::string, std::string>> read;  // (what it is, path)
+    for (const auto& [in_option, in_path] : inputs) {
+        if (in_path.empty() || in_path == "-") continue;
+        read.emplace_back("the input " + in_option + " " + quoted(in_path), in_path);
+        const std::string sidecar = in_path + kSidecarSuffix;
+        read.emplace_back("the metadata " + quoted(sidecar) + " of the input " + in_option + " " + quoted(in_path), sidecar);
+    }
+    {
+        char exe[PATH_MAX + 1] = {};
+        const ssize_t n = ::readlink("/proc/self/exe", exe, PATH_MAX);
+        read.emplace_back("the running program" + (n > 0 ? " " + quoted(std::string(exe, static_cast<size_t>(n))) : std::string()),
+                          "/proc/self/exe");
+    }
+    for (const auto& [what, in_path] : read) {
+        struct stat in {};
+        if (::stat(in_path.c_str(), &in) != 0 || !S_ISREG(in.st_mode)) continue;
+        for (const auto& w : written) {
+            if (!w.id.inode || w.id.dev != in.st_dev || w.id.ino != in.st_ino) continue;
+            throw InputError("", 0, 0, w.option,
+                             w.option + " " + quoted(w.path) + " is " + what + "; write the output to another file");
+        }
+    }
+    watch_stream_outputs(streams);
 }
 
 mode_t current_umask() {

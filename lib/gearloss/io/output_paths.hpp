@@ -52,6 +52,10 @@ int create_locked_temporary(const std::string& dir, const std::string& name, std
 // The files of one run, as (option or key, path) pairs; empty paths are skipped.
 using NamedFiles = std::vector<std::pair<std::string, std::string>>;
 
+// The suffix of the sidecar a CSV output gets (FILE.meta.json, map::sidecar_path): the
+// sidecar of an input (a recording's rec.csv.meta.json) is kept from the outputs like the input.
+inline constexpr const char* kSidecarSuffix = ".meta.json";
+
 // The one check of a run's files, made before anything is computed or written; each
 // failure is an InputError (exit 2) naming both paths and both options or keys:
 //  - two outputs leading to the same file (after links, by st_dev/st_ino when the file
@@ -60,10 +64,19 @@ using NamedFiles = std::vector<std::pair<std::string, std::string>>;
 //  - an output that is one of the inputs (`map case.yaml -o case.yaml`), compared by
 //    st_dev/st_ino after links; inputs that do not exist or are not regular files are
 //    skipped;
-//  - an output that is the running program (the file /proc/self/exe leads to).
+//  - an output that is the running program (the file /proc/self/exe leads to);
+//  - an output that is the sidecar (FILE.meta.json) of an input FILE;
+//  - standard output, for every command, when it is a regular file (`1<> case.yaml`): the
+//    text a command prints there (check, point, diagnose, the cycle summary, `-o -`) must
+//    not land on an input or the program either (it is not compared with the other outputs:
+//    "-" is that same stream, written in turn).
 // The caller lists every output with its derived names (sidecars, per-gear files) and
 // every input with the files they name (app/commands/common.hpp: case_inputs).
-void require_safe_outputs(const NamedFiles& outputs, const NamedFiles& inputs);
+// Then every output that is a pipe, FIFO or socket reached through a descriptor ("-",
+// /dev/stdout, /dev/fd/N), and standard output when `text_on_stdout` (the command prints
+// its result there), is watched from this moment (io::watch_stream_outputs): a reader that
+// goes away ends the run within a second, while the output is still being computed.
+void require_safe_outputs(const NamedFiles& outputs, const NamedFiles& inputs, bool text_on_stdout = false);
 
 // The process umask, read without changing it.
 mode_t current_umask();

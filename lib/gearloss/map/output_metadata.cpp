@@ -283,7 +283,7 @@ std::string json_text(const ordered_json& j) {
     return j.dump(2, ' ', false, ordered_json::error_handler_t::replace) + "\n";
 }
 
-std::string sidecar_path(const std::string& csv_path) { return csv_path + ".meta.json"; }
+std::string sidecar_path(const std::string& csv_path) { return csv_path + io::kSidecarSuffix; }
 
 bool wants_sidecar(const std::string& csv_path) {
     if (csv_path.empty() || csv_path == "-") return false;
