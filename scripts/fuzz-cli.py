@@ -314,8 +314,9 @@ def one_run(args):
         # Now and then standard output is an input opened for reading and writing without
         # truncation (the shell's `1<>case.yaml`): nothing may be written into it.
         stdout_file = None
-        if rng.random() < 0.08:
-            stdout_file = open(os.path.join(t, rng.choice(sorted(reads - {"gl"}))), "r+b")
+        readable = sorted(reads - {"gl"})  # the program's copy cannot be opened for writing while it runs
+        if rng.random() < 0.08 and readable:
+            stdout_file = open(os.path.join(t, rng.choice(readable)), "r+b")
         try:
             p = subprocess.run(argv, cwd=t, stdout=stdout_file or subprocess.PIPE, stderr=subprocess.PIPE,
                                timeout=timeout)
