@@ -10,6 +10,7 @@
 
 #include "commands/command.hpp"
 #include "commands/common.hpp"
+#include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/interrupt.hpp"
 
 namespace app = gearloss::app;
@@ -52,6 +53,22 @@ int main(int argc, char** argv) {
         table.push_back({make(), nullptr});
     for (auto& e : table) e.sub = e.command->add_to(cli);
 
+    // A first word that is neither an option nor a command is a misspelt command: say so, rather
+    // than CLI11's "A subcommand is required".
+    if (argc > 1 && argv[1][0] != '-') {
+        const std::string word = argv[1];
+        std::string names;
+        bool known = false;
+        for (const auto& e : table) {
+            known = known || e.sub->check_name(word);
+            names += (names.empty() ? "" : ", ") + e.sub->get_name();
+        }
+        if (!known) {
+            std::fprintf(stderr, "gearloss: usage error: unknown command '%s'; the commands are %s (see gearloss --help)\n",
+                         gearloss::io::excerpt(word).c_str(), names.c_str());
+            return app::kUsage;
+        }
+    }
     try {
         cli.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -126,6 +126,60 @@ expect "--threads 0" 1 "^gearloss: usage error: --threads: .*1 to 1024" "$bin" m
 expect "--threads abc" 1 "^gearloss: usage error: --threads: " "$bin" map "$spur" --threads abc -o "$tmp/t.csv"
 
 # ---------------------------------------------------------------------------------------
+# Values that break physics are never 'ok' (second red team, F7, F8, M1-M3, M5).
+# F7: the wind turbine's rotor at 30 000 rpm turned its planet bearings at 467 000 rpm and its
+# high-speed shaft at 3.1e6 rpm (n d_m far beyond any rolling bearing): 'ok' with 2.2e13 W of
+# bearing loss against 3.1e8 W of input power. Now out_of_range, naming the bearing.
+"$bin" point "$src/configs/wind-turbine-2.5MW.yaml" --speed 30000rpm --torque 1e5Nm > "$tmp/wt.txt" 2> "$tmp/wt.err"
+check "F7 wind turbine at 30000 rpm: not ok" bash -c "! grep -q '^status: ok' '$tmp/wt.txt'"
+check "F7 wind turbine at 30000 rpm: out_of_range at a bearing's n d_m" \
+    grep -qE "out_of_range: bearing [^ ]+ speed .*n d_m .* beyond the rolling-bearing range" "$tmp/wt.txt" "$tmp/wt.err"
+check "F7 wind turbine at 30000 rpm: no nan/inf" no_nonfinite "$tmp/wt.txt" "$tmp/wt.err"
+"$bin" point "$src/configs/wind-turbine-2.5MW.yaml" --speed 15rpm --torque 1e6Nm > "$tmp/wt15.txt" 2> /dev/null
+check "F7 wind turbine at its rated 15 rpm: still ok" grep -q '^status: ok' "$tmp/wt15.txt"
+# F8: oil at 1000 degC was 'ok' with the viscosity floored at 0.5 cSt and a density of 292 kg/m^3.
+expect "F8 --oil-temp 1000degC" 2 "^gearloss: error: --oil-temp: .*above the data of oil" \
+    "$bin" point "$spur" --speed 800rpm --torque 100Nm --oil-temp 1000degC
+expect "F8 --oil-temp 150degC still accepted" 0 "" "$bin" point "$spur" --speed 800rpm --torque 100Nm --oil-temp 150degC
+"$bin" synth "$spur" -o "$tmp/rec_hot.csv" 2> /dev/null
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "oil_temp_C") c = i; print; next } NR == 3 { $c = 900 } { print }' \
+    OFS=, "$tmp/rec_hot.csv" > "$tmp/hot.csv"
+"$bin" diagnose "$spur" "$tmp/hot.csv" > "$tmp/hot.txt" 2> "$tmp/hot.err"
+check "F8 recordings with oil at 900 degC: the row is named as beyond the oil's data" \
+    grep -qE "above the data of oil" "$tmp/hot.txt" "$tmp/hot.err"
+# M1: an error during the cycle names the CSV file and the line of its row.
+expect "M1 cycle error at its row: gear 1 to 200 km/h" 2 "first.csv:[3-6]: cycle: at t = [0-9]+ s .*max_speed" \
+    "$bin" cycle "$tmp/man.yaml" --cycle "$tmp/first.csv" --start-temp 20degC
+# M2: vehicle data blamed on the key that holds it (was: "oil reaches 367.4 degC", "input speed 52013 rpm").
+sed 's/idle_speed: 800 rpm/idle_speed: 8000 rpm/' "$tmp/man.yaml" > "$tmp/idle.yaml"
+expect "M2 idle_speed: 8000 rpm" 2 "idle.yaml:[0-9]+:[0-9]+: vehicle\.engine\.idle_speed: .*outside the plausible idle speeds" \
+    "$bin" check "$tmp/idle.yaml"
+sed 's/wheel_radius: 0.31 m/wheel_radius: 0.31 mm/' "$tmp/man.yaml" > "$tmp/wheel.yaml"
+expect "M2 wheel_radius: 0.31 mm" 2 "wheel.yaml:[0-9]+:[0-9]+: vehicle\.wheel_radius: .*outside the range of road-vehicle wheels" \
+    "$bin" check "$tmp/wheel.yaml"
+# M3: viscosity points at 40 and 40.000001 degC: the fitted law breaks down at the ambient, which
+# was blamed (thermal.ambient) instead of the points.
+sed 's/- \[70 degC, 36.7 cSt\]/- [40.000001 degC, 36.7 cSt]/; s/- \[100 degC, 16.37 cSt\]//' "$tmp/oils/75W90-A.yaml" \
+    > "$tmp/oils/steep.yaml"
+expect "M3 viscosity law breaking down inside the range" 2 \
+    "steep.yaml:[0-9]+:[0-9]+: viscosity\.points: .*fitted viscosity law gives 1e7 or more mm\^2/s at 0.0 degC" \
+    "$bin" check "$tb" --oil "$tmp/oils/steep.yaml"
+# M5: the wording list.
+expect "M5 --start-temp -100degC (the stated bound: refused only by the oil data)" 2 "below the data of oil" \
+    "$bin" cycle "$tmp/man.yaml" --cycle "$tmp/first.csv" --start-temp -100degC
+check "M5 --start-temp -100degC: not 'outside the stated range'" bash -c "! grep -q 'outside the stated range' '$tmp/err'"
+expect "M5 gearloss mapp" 1 "^gearloss: usage error: unknown command 'mapp'" "$bin" mapp "$spur"
+expect "M5 --threads 1.5" 1 "^gearloss: usage error: --threads: .*not a whole number of threads 1 to 1024" \
+    "$bin" map "$spur" --threads 1.5 -o "$tmp/t.csv"
+sed '0,/teeth: 23/s//teeth: 100000000000/' "$spur" > "$tmp/teeth.yaml"
+expect "M5 teeth: 100000000000" 2 "teeth.yaml:[0-9]+:[0-9]+: gears\[0\]\.teeth: whole number '100000000000' out of range" \
+    "$bin" check "$tmp/teeth.yaml"
+cp "$tmp/oils/75W90-A.yaml" "$tmp/m.csv.meta.json"
+expect "M5 sidecar onto an input: the option named once" 2 "^gearloss: error: --output \(its metadata [^)]*\) '[^']*' is the input --oil" \
+    "$bin" map "$spur" --speed 800rpm --torque 100Nm -o "$tmp/m.csv" --oil "$tmp/m.csv.meta.json"
+expect "M5 --shard ' 1/2'" 2 "^gearloss: error: --shard: ' 1/2' is not K/N" "$bin" map "$spur" --shard ' 1/2' -o "$tmp/sh.csv"
+
+# ---------------------------------------------------------------------------------------
 # Every output of every command, for inputs that are accepted though hostile: no nan/inf.
 # Oil recorded colder than the ambient (diagnose printed "+/- nan"), a cold oil at the edge of
 # its data, the lowest and highest speeds and torques of the stated range.

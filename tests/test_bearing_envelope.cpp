@@ -162,6 +162,11 @@ TEST_CASE("bearing loss over the envelope of every shipped case: no fall with sp
         double n_max = 0, T_max = 0;
         for (double s : c.grid.speeds) n_max = std::max(n_max, std::abs(s));
         for (double t : c.grid.torques) T_max = std::max(T_max, std::abs(t));
+        // A case with a point list (the wind turbine's 9..16.5 rpm power curve): its points.
+        for (const auto& [s, t] : c.grid.points) {
+            n_max = std::max(n_max, std::abs(s));
+            T_max = std::max(T_max, std::abs(t));
+        }
         // A case without an operating grid (vehicle cases, driven by a cycle): 4000 rpm and 200 N m.
         if (!(n_max > 0)) n_max = 4000 * rpm;
         if (!(T_max > 0)) T_max = 200;

@@ -107,6 +107,17 @@ std::string usage_error_line(const CLI::Error& e) {
     return m;
 }
 
+CLI::Validator threads_check() {
+    return CLI::Validator(
+        [](std::string& v) -> std::string {
+            const bool digits = !v.empty() && v.size() <= 5 && v.find_first_not_of("0123456789") == std::string::npos;
+            const int n = digits ? std::stoi(v) : 0;
+            if (digits && n >= 1 && n <= 1024) return {};
+            return "'" + io::excerpt(v) + "' is not a whole number of threads 1 to 1024";
+        },
+        "1..1024");
+}
+
 namespace {
 std::vector<std::string>& command_line_storage() {
     static std::vector<std::string> args;

@@ -39,6 +39,8 @@ void check_option_values(const CLI::App& sub);
 
 // A CLI11 parse error on one line ("--threads: Value 0 not in range [1 - 1024]").
 std::string usage_error_line(const CLI::Error& e);
+// The --threads value: a whole number 1..1024 (CLI11's Range says only "not in range" of 1.5).
+CLI::Validator threads_check();
 
 // config, --ratio, --oil-temp and --oil with their help texts.
 void add_common_options(CLI::App& sub, CommonOptions& c);

@@ -31,7 +31,7 @@ public:
         s->add_option("--oil-temp", common_.oil_temp, "fixed oil temperature (e.g. 70degC): no thermal solve");
         grid_.add_to(*s, "override the input speeds", "override the input torques");
         s->add_option("-o,--output", out_, "output CSV ('-' = stdout)");
-        s->add_option("--threads", threads_, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+        s->add_option("--threads", threads_, "threads (default: all cores)")->check(threads_check());
         s->add_flag("--detail", detail_, "add each mechanism's loss per oil and its difference to the first oil");
         s->add_option("--json", json_, "also write the comparison as JSON (summary per oil and every point) to this file");
         s->footer("Example: gearloss compare configs/transfer-box.yaml --oil configs/oils/75W90-A.yaml "

@@ -26,7 +26,7 @@ public:
         s->add_option("--write-config", write_config_, "write the calibrated case file");
         s->add_option("--residuals", residuals_, "write per-point residuals before/after (CSV, for scripts/plot-residuals.py)");
         s->add_option("--bootstrap", bootstrap_, "bootstrap resamples for the stability check")->check(CLI::Range(4, 1000));
-        s->add_option("--threads", threads_, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+        s->add_option("--threads", threads_, "threads (default: all cores)")->check(threads_check());
         s->add_option("--loss-uncertainty", loss_uncertainty_,
                       "measurement noise of the loss, one standard deviation (e.g. 1.5%); default: estimated from the "
                       "recordings (replicates or neighbouring points)");

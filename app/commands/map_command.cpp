@@ -38,7 +38,7 @@ public:
         auto* s = app.add_subcommand("map", "all operating points of the grid to CSV (parallel, written atomically)");
         add_common_options(*s, common_);
         s->add_option("-o,--output", out_, "output CSV file ('-' = stdout)");
-        s->add_option("--threads", threads_, "threads (default: all cores)")->check(CLI::Range(1, 1024));
+        s->add_option("--threads", threads_, "threads (default: all cores)")->check(threads_check());
         s->add_flag("--detail", detail_, "add a column per mesh, gear, bearing and seal");
         s->add_flag("--stats", stats_, "print the map's time (solved, formatted and written), points per second and loss evaluations per point to stderr");
         grid_.add_to(*s, "override the input speeds, e.g. 600,700,800rpm", "override the input torques, e.g. 150,200,250Nm");

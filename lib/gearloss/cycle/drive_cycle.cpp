@@ -20,6 +20,9 @@ DriveCycle concatenate(const DriveCycle& a, const DriveCycle& b, const std::stri
     }
     if (!a.gear.empty() && !b.gear.empty()) c.gear.insert(c.gear.end(), b.gear.begin(), b.gear.end());
     else c.gear.clear();
+    // Rows of different files have no single file to name.
+    c.file.clear();
+    c.line.clear();
     return c;
 }
 

@@ -11,6 +11,10 @@ struct DriveCycle {
     std::vector<double> time;   // s, strictly increasing
     std::vector<double> speed;  // m/s
     std::vector<int> gear;      // prescribed gear per sample (0 = neutral); empty = shift schedule
+    // Where each sample was read: the CSV file and each sample's 1-based line in it (empty for a
+    // cycle joined from several files), so that an error at a row names the user's row.
+    std::string file;
+    std::vector<int> line;
     double duration() const { return time.empty() ? 0.0 : time.back() - time.front(); }
     double distance() const;    // m, trapezoid rule
 };

@@ -101,6 +101,12 @@ std::string celsius(double T) { return std::isfinite(T) ? celsius_text(T) : "(no
 
 [[noreturn]] void fail(const std::string& key, const std::string& message) { throw InputError("", 0, 0, key, message); }
 
+// An error at sample i of the cycle: at its file and line when the cycle was read from one CSV file.
+[[noreturn]] void fail_at(const DriveCycle& c, size_t i, const std::string& message) {
+    if (!c.file.empty() && i < c.line.size()) throw InputError(c.file, c.line[i], 0, "cycle", message);
+    fail("cycle", message);
+}
+
 // Called by the integrator once per accepted step: bounds the steps and stops at the first
 // value that is not finite, naming the component when the gearbox is loaded.
 struct StepGuard {
@@ -155,13 +161,13 @@ void check_run(const Powertrain& pt, const DriveCycle& cycle, const thermal::Nod
     if (t.size() != cycle.speed.size() || (!cycle.gear.empty() && cycle.gear.size() != t.size()))
         fail("cycle", "the cycle's columns differ in length");
     for (size_t i = 0; i < t.size(); ++i) {
-        if (!std::isfinite(t[i])) fail("cycle", fmt::format("sample {}: time is not a finite number", i + 1));
-        if (i > 0 && !(t[i] > t[i - 1])) fail("cycle", fmt::format("sample {}: time does not increase", i + 1));
+        if (!std::isfinite(t[i])) fail_at(cycle, i, fmt::format("sample {}: time is not a finite number", i + 1));
+        if (i > 0 && !(t[i] > t[i - 1])) fail_at(cycle, i, fmt::format("sample {}: time does not increase", i + 1));
         if (!(cycle.speed[i] >= 0 && cycle.speed[i] <= kMaxVehicleSpeed))
-            fail("cycle", fmt::format("sample {}: vehicle speed {:.4g} km/h outside 0..{:g} km/h", i + 1,
+            fail_at(cycle, i, fmt::format("sample {}: vehicle speed {:.4g} km/h outside 0..{:g} km/h", i + 1,
                                       cycle.speed[i] * 3.6, kMaxVehicleSpeed * 3.6));
         if (!cycle.gear.empty() && (cycle.gear[i] < 0 || cycle.gear[i] > static_cast<int>(pt.gears.size())))
-            fail("cycle", fmt::format("sample {}: gear {} but the vehicle has gears 1..{} (0 = neutral)", i + 1,
+            fail_at(cycle, i, fmt::format("sample {}: gear {} but the vehicle has gears 1..{} (0 = neutral)", i + 1,
                                       cycle.gear[i], pt.gears.size()));
     }
     if (!t.empty() && !(t.back() - t.front() <= kMaxDuration))
@@ -235,7 +241,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
                 std::string cause = load.point.fault;
                 if (cause.empty()) cause = solver::loss_fault(gm, load.point, x[kOil], ambient);
                 const auto value = [](double v) { return finite_number_text(v, 4); };
-                fail("cycle", fmt::format("at t = {:g} s (gear {}, {} rpm, {} N m, oil {}): out_of_range: {}",
+                fail_at(cycle, i, fmt::format("at t = {:g} s (gear {}, {} rpm, {} N m, oil {}): out_of_range: {}",
                                           cycle.time[i], gear, value(w_in * 30 / 3.14159265358979323846), value(T_in),
                                           celsius(x[kOil]), cause.empty() ? "gearbox loss not finite" : cause));
             }
@@ -271,13 +277,13 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         // The gearbox input turns with the engine (a locked or slipping clutch, or the turbine of a
         // converter, which is never faster than its pump).
         if (w_in > veh.engine.max_speed * (1.0 + 1e-9))
-            fail("cycle", fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): gearbox input speed {:.0f} rpm above the "
+            fail_at(cycle, i, fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): gearbox input speed {:.0f} rpm above the "
                                       "engine's max_speed {:.0f} rpm; the vehicle cannot drive this row (check the speed "
                                       "and gear)",
                                       cycle.time[i], v * 3.6, gear, w_in * 30 / 3.14159265358979323846,
                                       veh.engine.max_speed * 30 / 3.14159265358979323846));
         if (veh.engine.max_torque && T_eng > *veh.engine.max_torque * (1.0 + 1e-9))
-            fail("cycle", fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): engine torque {:.0f} N m above the engine's "
+            fail_at(cycle, i, fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): engine torque {:.0f} N m above the engine's "
                                       "max_torque {:.0f} N m; the vehicle cannot drive this row",
                                       cycle.time[i], v * 3.6, gear, T_eng, *veh.engine.max_torque));
         if (veh.engine.fuel_map) {
@@ -299,9 +305,9 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         integrate(pt, load, ambient, x, cycle.time[i], cycle.time[i + 1]);
         // The oil driven beyond its data (or the model's search range) makes every later row nonsense.
         if (auto f = solver::oil_temperature_fault(pt.thermal_model().oil, x[kOil]))
-            fail("cycle", fmt::format("at t = {:g} s: oil temperature {}", cycle.time[i + 1], *f));
+            fail_at(cycle, i + 1, fmt::format("at t = {:g} s: oil temperature {}", cycle.time[i + 1], *f));
         if (const double T_max = pt.thermal_model().thermal.equilibrium.T_max; x[kOil] > T_max)
-            fail("cycle", fmt::format("at t = {:g} s the oil reaches {}, above thermal.max_oil_temperature {}: the cycle "
+            fail_at(cycle, i + 1, fmt::format("at t = {:g} s the oil reaches {}, above thermal.max_oil_temperature {}: the cycle "
                                       "overheats the gearbox beyond what the model covers",
                                       cycle.time[i + 1], celsius(x[kOil]), celsius(T_max)));
     }

@@ -58,6 +58,31 @@ void require_ascending(const YamlNode& before, double T_before, const YamlNode& 
 }
 }  // namespace
 
+namespace {
+// The fitted viscosity law must describe a lubricant from 0 degC to the oil's permissible
+// temperature: a law whose Vogel pole lies inside, or that runs past the bounds of
+// lubricant::Oil::nu_mm2s (0.5 and 1e7 mm^2/s) there, is blamed on its points, not later on
+// the case's ambient or oil temperature.
+void check_viscosity_law_range(const lubricant::Oil& oil, const YamlNode& viscosity) {
+    // ASTM D341 constants given as such are checked by the model's validation (solver::validate).
+    if (!viscosity.has("points")) return;
+    const YamlNode at = viscosity.at("points");
+    const double T_lo = 273.15, T_hi = oil.max_temperature;
+    if (const auto* vg = std::get_if<lubricant::VogelLaw>(&oil.viscosity); vg && 273.15 - vg->c_C >= T_lo)
+        at.fail(fmt::format("the fitted Vogel law has its pole at {:.1f} degC, inside the oil's range 0..{:.0f} degC "
+                            "(to its max_temperature): check the points",
+                            -vg->c_C, T_hi - 273.15));
+    constexpr double nu_floor = 0.5, nu_cap = 1e7;  // mm^2/s, the bounds of Oil::nu_mm2s
+    for (double T = T_lo; T <= T_hi + 1e-9; T += std::max(1.0, (T_hi - T_lo) / 400)) {
+        const double nu = oil.nu_mm2s(T);
+        if (nu > nu_floor && nu < nu_cap) continue;
+        at.fail(fmt::format("the fitted viscosity law gives {} mm^2/s at {:.1f} degC, inside the oil's range 0..{:.0f} "
+                            "degC (to its max_temperature): check the points",
+                            nu >= nu_cap ? "1e7 or more" : "0.5 or less", T - 273.15, T_hi - 273.15));
+    }
+}
+}  // namespace
+
 lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
     using detail::assume;
     using detail::number_text;
@@ -294,6 +319,7 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
             assume(assumed, f ? *f : bf ? *bf : n, fmt::format("oil.bearing_friction.{}.mu_bl", family),
                    number_text(lubricant::BearingFrictionPair{}.mu_bl), "SKF (2004) boundary friction coefficient");
     }
+    check_viscosity_law_range(oil, n.at("viscosity"));
     return oil;
 }
 

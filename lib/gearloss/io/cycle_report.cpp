@@ -32,7 +32,9 @@ cycle::Powertrain load_powertrain(const Case& c, const std::optional<std::string
 
 void CycleStudyOptions::validate() const {
     const auto temperature = [](const char* key, double T) {
-        if (!(T >= solver::kMinAmbient_K && T <= solver::kMaxAmbient_K))
+        // The bounds as written in degC: -100 degC is 173.14999999999998 K after the offset.
+        constexpr double rounding = 1e-9;
+        if (!(T >= solver::kMinAmbient_K - rounding && T <= solver::kMaxAmbient_K + rounding))
             throw InputError("", 0, 0, key, fmt::format("{:.4g} degC is outside the stated range -100..300 degC", T - 273.15));
     };
     temperature("--start-temp", start_temperature);

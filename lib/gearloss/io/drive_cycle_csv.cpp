@@ -25,6 +25,7 @@ DriveCycle load_cycle_csv(const std::string& file) {
     CsvRecord rec;
     DriveCycle c;
     c.name = fs::path(file).stem().string();
+    c.file = file;
     int ln = 0;
     int it = -1, iv = -1, ig = -1;
     size_t ncol = 0;
@@ -76,6 +77,7 @@ DriveCycle load_cycle_csv(const std::string& file) {
         }
         c.time.push_back(t);
         c.speed.push_back(v / 3.6);
+        c.line.push_back(ln);
         if (ig >= 0) {
             const double g = csv_cell_number(cells[ig], file, ln, ig + 1, "gear", sep);
             if (g < 0 || g > 20 || g != std::floor(g)) throw InputError(file, ln, ig + 1, "gear", "gear must be 0-20");

@@ -201,7 +201,8 @@ void require_safe_outputs(const NamedFiles& outputs, const NamedFiles& inputs, b
         for (const auto& [j, o] : seen) {
             if (!o.same(id) || id.shareable) continue;
             const auto& [o_option, o_path] = outputs[j];
-            throw InputError("", 0, 0, o_option,
+            // The message begins with the options' names: no key before it (it would say them twice).
+            throw InputError("", 0, 0, "",
                              o_option + " and " + option + " name the same file" +
                                  (o_path == path ? " " + quoted(path) : " (" + quoted(o_path) + " and " + quoted(path) + ")") +
                                  "; give two different files");
@@ -250,7 +251,7 @@ void require_safe_outputs(const NamedFiles& outputs, const NamedFiles& inputs, b
         if (::stat(in_path.c_str(), &in) != 0 || !S_ISREG(in.st_mode)) continue;
         for (const auto& w : written) {
             if (!w.id.inode || w.id.dev != in.st_dev || w.id.ino != in.st_ino) continue;
-            throw InputError("", 0, 0, w.option,
+            throw InputError("", 0, 0, "",
                              w.option + " " + quoted(w.path) + " is " + what + "; write the output to another file");
         }
     }

@@ -1,6 +1,8 @@
 // The `vehicle` block of a case: road load, final drive, gears and shift schedule,
 // engine (idle, overrun, fuel map) and an optional torque converter.
 #include <cmath>
+#include <fmt/format.h>
+#include <numbers>
 
 #include "gearloss/io/config.hpp"
 
@@ -99,6 +101,11 @@ void load_vehicle(const YamlNode& n, Case& c) {
         if (!(v.rotating_mass_factor >= 0 && v.rotating_mass_factor < 1)) e->fail("must be in [0, 1)");
     }
     v.wheel_radius = n.positive_quantity("wheel_radius", dim::length, "0.31 m");
+    // A road vehicle's dynamic rolling radius: 0.1 m (small scooter wheels) to 2 m (the largest
+    // mining-truck tyres); a radius outside, e.g. 0.31 mm for 0.31 m, would show up only later as
+    // an absurd input speed of the gearbox.
+    if (!(v.wheel_radius >= 0.1 && v.wheel_radius <= 2.0))
+        n.at("wheel_radius").fail(fmt::format("{:.4g} m outside the range of road-vehicle wheels 0.1..2 m", v.wheel_radius));
     if (auto u = n.get("underbody_air")) {
         v.underbody_air = u->as_number();
         if (!(v.underbody_air >= 0 && v.underbody_air <= 1)) u->fail("a share of the vehicle speed, in [0, 1]");
@@ -142,7 +149,11 @@ void load_vehicle(const YamlNode& n, Case& c) {
                        "lower_heating_value", "note"});
         auto& en = v.engine;
         if (auto x = e->get("idle_speed")) en.idle_speed = x->as_quantity(dim::angular_speed, "800 rpm");
-        if (!(en.idle_speed > 0)) e->at("idle_speed").fail("must be positive");
+        // Road-vehicle engines idle between about 500 rpm (heavy diesels) and 1500 rpm (small petrol
+        // engines, cold); 200..3000 rpm leaves room and still catches a red line typed as the idle.
+        if (!(en.idle_speed * 30 / std::numbers::pi >= 200 && en.idle_speed * 30 / std::numbers::pi <= 3000))
+            e->at("idle_speed").fail(fmt::format("{:.4g} rpm outside the plausible idle speeds 200..3000 rpm",
+                                                 en.idle_speed * 30 / std::numbers::pi));
         if (auto x = e->get("max_speed")) {
             en.max_speed = x->as_quantity(dim::angular_speed, "6500 rpm");
             if (!(en.max_speed > en.idle_speed)) x->fail("must be above the idle speed");
@@ -156,6 +167,8 @@ void load_vehicle(const YamlNode& n, Case& c) {
         if (auto x = e->get("fuel_density")) en.fuel_density = x->as_quantity(dim::density, "745 kg/m^3");
         if (auto x = e->get("lower_heating_value"))
             en.lower_heating_value = x->as_quantity(units::make_dim(2, 0, -2, 0), "43 MJ/kg");
+        if (!(en.lower_heating_value > 0)) e->at("lower_heating_value").fail("must be positive");
+        if (!(en.fuel_density > 0)) e->at("fuel_density").fail("must be positive");
         if (auto fm = e->get("fuel_map")) en.fuel_map = load_fuel_map(*fm);
     }
     if (auto tc = n.get("torque_converter")) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -456,6 +457,8 @@ int YamlNode::as_int() const {
     const std::string s = as_string();
     int v = 0;
     const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec == std::errc::result_out_of_range && ptr == s.data() + s.size())
+        fail(fmt::format("whole number '{}' out of range (at most {} in magnitude)", excerpt(s), INT_MAX));
     if (ec != std::errc() || ptr != s.data() + s.size()) fail("expected a whole number, got '" + excerpt(s) + "'");
     return v;
 }

@@ -166,6 +166,8 @@ Shard parse_shard(const std::string& text) {
     const auto slash = text.find('/');
     try {
         if (slash == std::string::npos) throw std::invalid_argument("no slash");
+        // Digits and the slash only: std::stoi would skip a leading space or sign (' 1/2', '+1/2').
+        if (text.find_first_not_of("0123456789/") != std::string::npos) throw std::invalid_argument("not a digit");
         size_t p1 = 0, p2 = 0;
         s.index = std::stoi(text.substr(0, slash), &p1);
         s.count = std::stoi(text.substr(slash + 1), &p2);

@@ -357,6 +357,18 @@ std::optional<std::string> oil_temperature_fault(const lubricant::Oil& oil, doub
     if (oil.nu_mm2s(T) >= capped_nu_mm2s)
         return fmt::format("{} is below the data of oil '{}' (its viscosity law gives more than {:g} mm^2/s there: a "
                            "solid)", degC(T), oil.name, capped_nu_mm2s);
+    // Hotter, the law runs below the floor of lubricant::Oil::nu_mm2s (0.5 mm^2/s, a solvent rather
+    // than a gear oil) or the linear expansion law has lost more than a third of the 15 degC density
+    // (far past the boiling and flash points of mineral and synthetic gear oils): every loss computed
+    // from the floored viscosity or that density would be nonsense labelled ok, as on the cold side.
+    constexpr double floored_nu_mm2s = 0.5;
+    if (!(oil.nu_mm2s(T) > floored_nu_mm2s))
+        return fmt::format("{} is above the data of oil '{}' (its viscosity law gives {:g} mm^2/s or less there: no "
+                           "longer a lubricant)", degC(T), oil.name, floored_nu_mm2s);
+    constexpr double min_density_share = 2.0 / 3.0;
+    if (oil.expansion > 0 && !(oil.density(T) > min_density_share * oil.rho15))
+        return fmt::format("{} is above the data of oil '{}' (its density falls below two thirds of its 15 degC value "
+                           "there)", degC(T), oil.name);
     return std::nullopt;
 }
 
