@@ -377,5 +377,24 @@ r = json.load(open('$tmp/cv_check.json'))['churning_range']
 assert r['form'] == 'changenet_velex_2007' and r['limits'] == [] and 'not stated in a verified source' in r['provenance'], r
 "
 
+# ---------------------------------------------------------------------------------------
+# Kinds that do not depend on spelling: a torque names a force; Hz counts revolutions; angles
+# that repeat; '%' only alone; a right-to-left override in the case's name.
+for t in "100 Pa*m^3" "100 kg*m^2/s^2"; do
+    "$bin" point "$tb" --speed 600rpm --torque "$t" --oil-temp 70degC > /dev/null 2> "$tmp/kind.err"
+    check "point --torque '$t' refused (exit 2)" test $? -eq 2
+    check "point --torque '$t': no force named" grep -q "does not name a force" "$tmp/kind.err"
+done
+for s in "800 rpm^2/rpm" "800 rev*rpm/rev"; do
+    "$bin" point "$tb" --speed "$s" --torque 100Nm --oil-temp 70degC > /dev/null 2> "$tmp/kind.err"
+    check "point --speed '$s' refused (exit 2)" test $? -eq 2
+done
+"$bin" point "$tb" --speed 600rpm --torque "100 N*m*%" --oil-temp 70degC > /dev/null 2> "$tmp/kind.err"
+check "point --torque '100 N*m*%' refused (exit 2)" test $? -eq 2
+sed 's/^name: .*/name: "gear\\u202Ebox"/' "$tb" > "$tmp/bidi.yaml"
+"$bin" check "$tmp/bidi.yaml" > /dev/null 2> "$tmp/bidi.err"
+check "a case name with U+202E refused (exit 2)" test $? -eq 2
+check "U+202E refused at the name's line" grep -q "bidi.yaml:5:" "$tmp/bidi.err"
+
 echo "cli_units_plausibility: $pass passed, $fail failed"
 test $fail -eq 0

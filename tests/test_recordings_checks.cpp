@@ -3,6 +3,9 @@
 // balance P_in = P_out + P_loss with P = T omega (omega = n pi / 30).
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <fmt/format.h>
+#include <functional>
+#include <sstream>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -12,10 +15,12 @@
 #include "gearloss/diagnosis/recordings.hpp"
 #include "gearloss/diagnosis/synth.hpp"
 #include "gearloss/io/config.hpp"
+#include "gearloss/io/csv_read.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;
 using Catch::Matchers::Contains;
+using Approx = Catch::Detail::Approx;
 
 namespace {
 constexpr double rpm = std::numbers::pi / 30;
@@ -160,4 +165,130 @@ TEST_CASE("a campaign beyond max_fit_points is fitted on an even subset, reporte
     CHECK(std::abs(part.findings[0].parameter.value - 30) < 4);
     // The baseline RMSE is over every point in both: the same number.
     CHECK(part.rmse_before == Catch::Detail::Approx(whole.rmse_before).epsilon(1e-12));
+}
+
+namespace {
+// `csv` with the cells of column `name` passed through `f` on every data row (row index from 1).
+std::string with_column(const std::string& csv, const std::string& name,
+                        const std::function<std::string(const std::string&, int)>& f) {
+    std::istringstream in(csv);
+    std::string line, out;
+    std::getline(in, line);
+    out = line + "\n";
+    int col = -1, k = 0;
+    for (size_t a = 0;; ++k) {
+        const size_t b = line.find(',', a);
+        if (line.substr(a, b == std::string::npos ? std::string::npos : b - a) == name) col = k;
+        if (b == std::string::npos) break;
+        a = b + 1;
+    }
+    REQUIRE(col >= 0);
+    for (int row = 1; std::getline(in, line); ++row) {
+        size_t a = 0;
+        for (int j = 0; j < col; ++j) a = line.find(',', a) + 1;
+        const size_t b = std::min(line.find(',', a), line.size());
+        out += line.substr(0, a) + f(line.substr(a, b - a), row) + line.substr(b) + "\n";
+    }
+    return out;
+}
+
+std::string transfer_log(const std::vector<double>& speeds_rpm, const std::vector<double>& torques) {
+    diagnosis::SynthOptions so;
+    so.raw_log = true;
+    return diagnosis::synthesize(transfer().model, test_support::rpm_grid(speeds_rpm, torques), so);
+}
+
+std::string times(const std::string& cell, double k) { return fmt::format("{:.6g}", std::stod(cell) * k); }
+}  // namespace
+
+TEST_CASE("a raw log's tests are checked as steady points (output at rest, output power above input)", "[recordings][rtrec]") {
+    const std::string log = transfer_log({800, 1200}, {100, 300});
+    REQUIRE_NOTHROW(diagnosis::read_recordings_text(log, "log.csv"));
+    // speed_out 0 in every row while the input turns: an error naming the first test.
+    const auto e = input_error([&] {
+        diagnosis::read_recordings_text(with_column(log, "speed_out_rpm", [](const std::string&, int) { return "0"; }), "log.csv");
+    });
+    CHECK_THAT(e.message, Contains("test 1 (lines 2-") && Contains("output speed 0"));
+    // torque_out x 3: the output power is 3 x 0.98 = 2.9 times the input (an efficiency near 98 %).
+    const auto e3 = input_error([&] {
+        diagnosis::read_recordings_text(with_column(log, "torque_out_Nm", [](const std::string& c, int) { return times(c, 3); }),
+                                        "log.csv");
+    });
+    CHECK_THAT(e3.message, Contains("test 1 (lines 2-") && Contains("exceeds the input power") &&
+                               Contains("does not make power"));
+    CHECK(e3.key == "torque_out_Nm");
+}
+
+TEST_CASE("a steady output power far above the input power is an error, a negative loss a finding", "[recordings][rtrec]") {
+    // No loss column: 1000 rpm x 100 N m = 10 472 W in; 436.4 rpm = 45.700 rad/s out.
+    const std::string header = "speed_in_rpm,torque_in_Nm,torque_out_Nm,speed_out_rpm\n";
+    const auto good = diagnosis::read_recordings_text(header + "1000,100,220,436.4\n", "r.csv");
+    CHECK(good.warnings.empty());
+    // 440 N m out: 440 x 45.700 = 20 107.9 W, 9 636 W (92 % of the input) more than goes in: an error.
+    const auto e = input_error([&] { diagnosis::read_recordings_text(header + "1000,100,220,436.4\n1000,100,440,436.4\n", "r.csv"); });
+    CHECK(e.line == 3);
+    CHECK(e.column == 3);
+    CHECK_THAT(e.message, Contains("output power 20107.9 W") && Contains("input power 10472 W") && Contains("does not make power"));
+    // 330 N m out (x 1.5): 330 x 45.700 = 15 080.9 W, 44 % over the input; a torque sensor's gain
+    // could not do that either, but a finding at the cell is what a steady row gets below 50 %.
+    const auto r = diagnosis::read_recordings_text(header + "1000,100,330,436.4\n", "r.csv");
+    CHECK(any_contains(r.warnings, "r.csv:2:3 (torque_out_Nm): loss -4608.9"));
+    // A recorded loss of -5 W (line 3, column 3): a finding at its cell, not only an outlier.
+    const auto n = diagnosis::read_recordings_text(kHeader + kGood + "1000,100,-5,220,436.4,61,25\n", "r.csv");
+    CHECK(any_contains(n.warnings, "r.csv:3:3 (P_loss_W): loss -5 W is negative"));
+    // -6000 W of 10 472 W in (57 %): an error at the cell.
+    const auto e2 = input_error([] { diagnosis::read_recordings_text(kHeader + kGood + "1000,100,-6000,220,436.4,60,25\n", "r.csv"); });
+    CHECK(e2.line == 3);
+    CHECK(e2.column == 3);
+    CHECK_THAT(e2.message, Contains("negative"));
+}
+
+TEST_CASE("an output speed of the other sign than the others is a finding at its cell", "[recordings][rtrec]") {
+    const auto r = diagnosis::read_recordings_text(
+        kHeader + kGood + "1000,100,418,220,436.4,61,25\n1000,100,418,220,-436.4,62,25\n", "r.csv");
+    REQUIRE(r.warnings.size() == 1);
+    CHECK_THAT(r.warnings[0], Contains("r.csv:4:5 (speed_out_rpm)") && Contains("other way"));
+    // In a log: row 7 negated (line 8).
+    const std::string log = transfer_log({800, 1200}, {100, 300});
+    const auto l = diagnosis::read_recordings_text(
+        with_column(log, "speed_out_rpm", [](const std::string& c, int row) { return row == 7 ? times(c, -1) : c; }), "log.csv");
+    CHECK(any_contains(l.warnings, "log.csv:8:"));
+}
+
+TEST_CASE("recordings headers go through the kind check: an energy is no torque", "[recordings][rtrec]") {
+    for (const char* unit : {"J", "kJ", "Wh", "Pa*m^3"}) {
+        INFO(unit);
+        const std::string header = std::string("speed_in_rpm,torque_in_") + unit + ",P_loss_W\n";
+        const auto e = input_error([&] { diagnosis::read_recordings_text(header + "1000,100,418\n", "r.csv"); });
+        CHECK(e.line == 1);
+        CHECK(e.column == 2);
+        CHECK_THAT(e.message, Contains("torque"));
+    }
+    // In a raw log as well (torque_out_J).
+    const std::string log = transfer_log({800}, {100});
+    const std::string renamed = "torque_out_J" + log.substr(log.find("torque_out_Nm") + 13);
+    const auto e = input_error([&] {
+        diagnosis::read_recordings_text(log.substr(0, log.find("torque_out_Nm")) + renamed, "log.csv");
+    });
+    CHECK_THAT(e.message, Contains("not a torque"));
+    // kNm and N*mm are torques: 0.1 kNm = 100 N m.
+    const auto r = diagnosis::read_recordings_text("speed_in_rpm,torque_in_kNm,P_loss_W\n1000,0.1,418\n", "r.csv");
+    CHECK(r.points.at(0).torque_in == Approx(100));
+}
+
+TEST_CASE("a log too short for a diagnosis says which tests it found", "[recordings][rtrec]") {
+    const auto e = input_error([] {
+        diagnosis::diagnose(transfer().model, diagnosis::read_recordings_text(transfer_log({800}, {100, 300}), "log.csv"));
+    });
+    CHECK_THAT(e.message, Contains("at least 4 recorded tests") && Contains("(2 usable of 2)") &&
+                              Contains("test 1 (lines 2-") && Contains("test 2 (lines"));
+}
+
+TEST_CASE("a bidirectional override in a label is refused like a control character", "[recordings][rtrec]") {
+    CHECK_FALSE(io::is_printable_utf8("gear\u202Ebox"));
+    CHECK_FALSE(io::is_printable_utf8("a\u2066b"));
+    CHECK(io::is_printable_utf8("Zahnrad \u00b5m \u2013 ok"));
+    const auto e = input_error(
+        [] { diagnosis::read_recordings_text("label,speed_in_rpm,torque_in_Nm,P_loss_W\nrun\u202E1,1000,100,418\n", "r.csv"); });
+    CHECK(e.column == 1);
 }

@@ -68,3 +68,33 @@ TEST_CASE("kinds beyond the dimension: angles, torques, speeds, temperatures", "
     CHECK_THROWS_WITH(absolute_temperature(parse_quantity("-300degC"), "-300degC"), Catch::Contains("below absolute zero"));
     CHECK_THROWS_WITH(absolute_temperature(parse_quantity("70"), "70"), Catch::Contains("not a temperature"));
 }
+
+TEST_CASE("the kind check does not depend on spelling: torques, Hz, repeated angles, percent", "[units][units37][rtrec]") {
+    constexpr double pi = std::numbers::pi;
+    const auto value = [](const std::string& s, const Dimension& d, Kind k = Kind::plain) {
+        return checked_value(parse_quantity(s), d, s, k);
+    };
+    // A torque names a force times a length: 0.1 kN*m = 100 N m, 2000 N*mm = 2 N m. Pa*m^3 (a
+    // pressure times a volume, an energy) and kg*m^2/s^2 share its dimension but name no force.
+    CHECK(value("0.1 kN*m", dim::torque) == Approx(100));
+    CHECK(value("2000 N*mm", dim::torque) == Approx(2));
+    for (const char* s : {"100 Pa*m^3", "100 kg*m^2/s^2", "100 MPa*cm^3"})
+        CHECK_THROWS_WITH(value(s, dim::torque), Catch::Contains("does not name a force"));
+    // Hz counts revolutions as rpm does: no length or speed written with it ("20 m*rpm" is refused
+    // already); as a rotational speed 10 Hz = 10 rev/s = 62.83 rad/s.
+    CHECK_THROWS_WITH(value("20 Hz*mm*s", dim::length), Catch::Contains("Hz"));
+    CHECK_THROWS_WITH(value("20 Hz*m", dim::velocity), Catch::Contains("Hz"));
+    CHECK_THROWS_WITH(value("20 m*rpm", dim::velocity), Catch::Contains("angle unit"));
+    CHECK(value("10 Hz", dim::angular_speed) == Approx(20 * pi));
+    CHECK(value("72 km/h", dim::velocity) == Approx(20));  // h is a time, not a revolution
+    // Angles that repeat, or that Hz repeats, are refused like rpm/rev and rad^2/s.
+    for (const char* s : {"800 rpm^2/rpm", "800 rev*rpm/rev", "10 Hz*rev", "10 Hz*rpm/rpm", "10 Hz^2/Hz"})
+        CHECK_THROWS_WITH(value(s, dim::angular_speed), Catch::Contains("not a rotational speed"));
+    CHECK_THROWS_WITH(value("20 deg^2/deg", dim::angle, Kind::angle), Catch::Contains("not an angle"));
+    CHECK(value("800 rpm", dim::angular_speed) == Approx(800 * pi / 30));
+    // '%' only alone, a plain ratio: "20 mm*%" would be 0.2 mm.
+    CHECK(value("5 %", dim::none) == Approx(0.05));
+    CHECK(value("5 percent", dim::none) == Approx(0.05));
+    for (const char* s : {"20 mm*%", "100 N*m*%", "3 %/K", "2 percent*m"})
+        CHECK_THROWS_WITH(parse_quantity(s), Catch::Contains("'%' stands alone"));
+}

@@ -101,6 +101,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     Hypothesis neutral = Hypothesis::of(model);
     std::vector<Obs> obs;
     std::vector<Outlier> unused;  // rows the model cannot be compared with: listed, not used
+    size_t first_unused = 0;      // its index in rec.points
     CampaignOils oils = campaign_oils(model, rec);
     {
         std::vector<solver::Model>& per_oil = oils.models;
@@ -128,6 +129,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             if (why.empty() && !(std::isfinite(o.loss - L) && std::isfinite(o.T_oil - T)))
                 why = "its residual is not a finite number";
             if (!why.empty()) {
+                if (unused.empty()) first_unused = k;
                 unused.push_back({o.row, "not used: " + why});
                 continue;
             }
@@ -137,15 +139,28 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     double mean_abs = 0;
     for (const auto& o : obs) mean_abs += std::abs(o.loss) / obs.size();
     for (auto& o : obs) o.scale = std::max({std::abs(o.loss), 0.05 * mean_abs, 1.0});
+    // Where a point was recorded: a row and its line, or a log's test and its lines.
+    const auto where = [&](size_t k) {
+        const RecordedPoint& p = rec.points[k];
+        return rec.from_log ? fmt::format("{}:{}: {}", rec.file, p.line, p.label)
+                            : fmt::format("{}:{}: row {}", rec.file, p.line, p.row);
+    };
     if (!unused.empty())
-        d.warnings.push_back(fmt::format("{} recorded point(s) not used, the model cannot be compared with them (first: row "
-                                         "{}, {}); see the outliers",
-                                         unused.size(), unused.front().row, unused.front().reason.substr(10)));
+        d.warnings.push_back(fmt::format("{} recorded point(s) not used, the model cannot be compared with them (first: {}: "
+                                         "{}); see the outliers",
+                                         unused.size(), where(first_unused), unused.front().reason.substr(10)));
     if (obs.size() < 4) {
-        std::string why = "at least 4 recorded points are needed for a diagnosis";
+        const char* unit = rec.from_log ? "test" : "point";
+        std::string why = fmt::format("{}: at least 4 recorded {}s are needed for a diagnosis ({} usable of {})", rec.file,
+                                      unit, obs.size(), rec.points.size());
+        if (rec.from_log) {
+            // A log gives one test per set-point of speed and torque held for at least 2 samples.
+            why += "; the log splits into one test per set-point of input speed and torque held for at least 2 samples";
+            for (size_t k = 0; k < rec.points.size() && k < 6; ++k) why += (k ? ", " : ": ") + rec.points[k].label;
+            if (rec.points.size() > 6) why += fmt::format(" and {} more", rec.points.size() - 6);
+        }
         if (!unused.empty())
-            why += fmt::format(" ({} usable of {}; row {}: {})", obs.size(), rec.points.size(), unused.front().row,
-                               unused.front().reason.substr(10));
+            why += fmt::format("; not used: {}: {}", where(first_unused), unused.front().reason.substr(10));
         throw InputError(why);
     }
     if (model.thermal.mode != solver::ThermalMode::stabilised)

@@ -28,7 +28,11 @@ std::string evaluate_point(solver::Model& m, solver::PointState& p, const Hypoth
     try {
         const double T_true = (o.torque - h.art.torque_offset) / h.art.torque_gain;
         solver::prepare_point(m, o.w, T_true, p);
-        if (!p.fault.empty()) return p.fault;
+        // The fault names the value that left the model's range ("bearing B1 contact angle"): said as
+        // a sentence, since the diagnosis quotes it as the reason a point is not used.
+        if (!p.fault.empty())
+            return "the model is out of its range at the recorded speed and torque (" + p.fault +
+                   " out of range: a torque or speed in the wrong unit, or beyond what the gearbox carries?)";
         // A fixed-temperature case holds its oil where the case says (a cooler): no heat balance.
         if (m.thermal.mode == solver::ThermalMode::fixed) {
             const double T_fixed = m.thermal.oil_temperature;

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
+#include <functional>
 #include <sstream>
 #include <map>
 #include <unordered_map>
@@ -66,12 +67,10 @@ std::optional<ColumnDef> column_definition(const std::string& name, const std::s
             if (f.dim != *q.dim || f.affine != q.temperature)
                 throw units::UnitError(fmt::format("unit '{}' is not {}", unit,
                                                    q.temperature ? "a temperature (C, degC, K)" : units::to_string(*q.dim)));
-            units::Quantity one;
-            one.value = f.scale;
-            one.dim = f.dim;
-            one.explicit_angle = f.angle;
-            one.rotation = f.rotation;
-            return ColumnDef{q.key, units::as_rotational_speed(one, unit), f.offset};
+            if (q.temperature) return ColumnDef{q.key, f.scale, f.offset};
+            // The same kind check as a YAML value: a torque in J or Wh, an angle unit in a
+            // loss, a speed whose angles repeat are refused naming the column.
+            return ColumnDef{q.key, units::checked_value(units::unit_quantity(f), *q.dim, unit), f.offset};
         } catch (const units::UnitError& e) {
             throw InputError(file, line, col, io::excerpt(name), e.message);
         }
@@ -220,30 +219,54 @@ std::string cell_place(const std::string& file, const Table& t, size_t r, const 
     return fmt::format("{}:{}:{} ({})", file, t.lines[r], it->second + 1, io::excerpt(t.header[it->second]));
 }
 
-// A recorded steady point checked against itself before any fit (the power balance of the
-// gearbox: P_in = P_out + P_loss, with P = T omega). Errors: a loss above the input power (it
-// cannot lose more than goes in), an output standing still while the input turns. Findings
-// (warnings naming the cell): a loss above kLossShareFinding of the input power, a loss
-// column that contradicts the recorded output torque and speed, oil colder than the ambient.
-void check_point(const std::string& file, const Table& t, size_t r, const RecordedPoint& p, bool loss_recorded,
-                 std::vector<std::string>& findings) {
+// Where a point's errors and findings go: a cell of a steady row ("file:line:column (header)"),
+// or a test of a raw log ("file:line: test 2 (lines 40-940)", the means of its last 30 min).
+struct PointPlace {
+    std::function<std::string(const std::string& key)> at;                  // for a finding
+    std::function<void(const std::string& key, const std::string& msg)> fail;  // an error; throws
+};
+
+// A recorded point checked against itself before any fit (the power balance of the gearbox:
+// P_in = P_out + P_loss, with P = T omega). Errors: a loss above the input power (it cannot lose
+// more than goes in), a negative loss beyond kLossShareFinding of the input power (an output
+// power above 1.5 times the input), an output standing still while the input turns. Findings:
+// a loss above kLossShareFinding of the input power, any other negative loss (recorded or
+// derived), a loss column that contradicts the recorded output torque and speed, oil colder
+// than the ambient.
+void check_point(const PointPlace& where, const RecordedPoint& p, bool loss_recorded, std::vector<std::string>& findings) {
     const double P_in = p.torque_in * p.speed_in;
+    const char* loss_key = loss_recorded ? "loss" : "torque_out";
     // Driven from the input (a negative input power is the output driving: no bound here).
     if (P_in >= 0 && p.loss > P_in * (1 + kPowerRounding) + kPowerFloor)
-        fail_cell(file, t, r, loss_recorded ? "loss" : "torque_out",
-                  fmt::format("loss {:.6g} W exceeds the input power {:.6g} W (torque_in x speed_in): a gearbox cannot lose "
-                              "more than it is given",
-                              p.loss, P_in));
+        where.fail(loss_key, fmt::format("loss {:.6g} W exceeds the input power {:.6g} W (torque_in x speed_in): a gearbox "
+                                         "cannot lose more than it is given",
+                                         p.loss, P_in));
     if (p.speed_out && *p.speed_out == 0 && p.speed_in > 0)
-        fail_cell(file, t, r, "speed_out",
-                  fmt::format("output speed 0 while the input turns at {:.6g} rpm: no gear train does that (a slipping "
-                              "clutch, a gearbox in neutral or a failed sensor)",
-                              p.speed_in / rpm));
+        where.fail("speed_out", fmt::format("output speed 0 while the input turns at {:.6g} rpm: no gear train does that (a "
+                                            "slipping clutch, a gearbox in neutral or a failed sensor)",
+                                            p.speed_in / rpm));
+    // A negative loss: the output power above the input power. A torque sensor's offset or gain
+    // does that at light load (the diagnosis names such an artefact), so it is a finding; beyond
+    // half the input power no sensor error explains it (a torque in the wrong unit, columns swapped).
+    if (p.loss < 0) {
+        const double excess = -p.loss;
+        const std::string what = fmt::format("loss {:.6g} W is negative: the output power {:.6g} W exceeds the input power "
+                                             "{:.6g} W (torque_in x speed_in)",
+                                             p.loss, P_in + excess, P_in);
+        if (P_in > 0 && excess > kLossShareFinding * P_in)
+            where.fail(loss_key, what + fmt::format(" by more than {:.0f} % of it: a gearbox does not make power ({} in the "
+                                                    "wrong unit, or columns swapped?)",
+                                                    100 * kLossShareFinding,
+                                                    loss_recorded ? "the loss or a torque" : "torque_out or speed_out"));
+        findings.push_back(fmt::format("{}: {}: a gearbox does not make power (a torque sensor's offset or gain at light "
+                                       "load, or a sign or unit slip?)",
+                                       where.at(loss_key), what));
+    }
     if (P_in > 0 && p.loss > kLossShareFinding * P_in)
         findings.push_back(fmt::format("{}: loss {:.4g} W is {:.0f} % of the input power {:.4g} W (more than {:.0f} %): a "
                                        "no-load test, or a loss or torque in the wrong unit?",
-                                       cell_place(file, t, r, loss_recorded ? "loss" : "torque_in"), p.loss,
-                                       100 * p.loss / P_in, P_in, 100 * kLossShareFinding));
+                                       where.at(loss_recorded ? "loss" : "torque_in"), p.loss, 100 * p.loss / P_in, P_in,
+                                       100 * kLossShareFinding));
     if (loss_recorded && p.torque_out && p.speed_out && P_in > 0) {
         const double balance = P_in - std::abs(*p.torque_out * *p.speed_out);
         const double tolerance = std::max(kBalanceShareOfInput * P_in, kBalanceShareOfLoss * std::abs(p.loss));
@@ -251,13 +274,38 @@ void check_point(const std::string& file, const Table& t, size_t r, const Record
             findings.push_back(fmt::format(
                 "{}: recorded loss {:.4g} W contradicts the input power less the output power, {:.4g} W - {:.4g} W = "
                 "{:.4g} W (tolerance {:.3g} W: {:.0f} % of the input power or {:.0f} % of the loss, the larger)",
-                cell_place(file, t, r, "loss"), p.loss, P_in, P_in - balance, balance, tolerance,
-                100 * kBalanceShareOfInput, 100 * kBalanceShareOfLoss));
+                where.at("loss"), p.loss, P_in, P_in - balance, balance, tolerance, 100 * kBalanceShareOfInput,
+                100 * kBalanceShareOfLoss));
     }
     if (p.oil_temp && p.ambient_temp && *p.oil_temp < *p.ambient_temp)
         findings.push_back(fmt::format("{}: oil {:.4g} degC colder than the ambient {:.4g} degC: a running gearbox heats its "
                                        "oil above the ambient (a swapped or failed sensor, or a test still warming up)",
-                                       cell_place(file, t, r, "oil"), *p.oil_temp - 273.15, *p.ambient_temp - 273.15));
+                                       where.at("oil"), *p.oil_temp - 273.15, *p.ambient_temp - 273.15));
+}
+
+// Output speeds whose sign differs from most of the others (a negated cell): the ratio check
+// compares magnitudes and a log test averages the rows, so neither would see it. `speed_out`
+// holds the row index and value of every recorded non-zero output speed.
+void check_output_signs(const std::string& file, const Table& t, const std::vector<std::pair<size_t, double>>& speed_out,
+                        std::vector<std::string>& findings) {
+    size_t negative = 0;
+    for (const auto& [r, v] : speed_out) negative += v < 0;
+    const size_t positive = speed_out.size() - negative;
+    if (negative == positive) return;  // no majority (also none recorded)
+    const bool minority_negative = negative < positive;
+    const size_t minority = std::min(negative, positive);
+    int named = 0;
+    for (const auto& [r, v] : speed_out) {
+        if ((v < 0) != minority_negative) continue;
+        if (++named > kDuplicateWarnings) break;
+        findings.push_back(fmt::format("{}: output speed {:.6g} rpm turns the other way from the output speed of {} of the "
+                                       "{} rows (a sign lost or added in this row?)",
+                                       cell_place(file, t, r, "speed_out"), v / rpm, std::max(negative, positive),
+                                       speed_out.size()));
+    }
+    if (minority > static_cast<size_t>(kDuplicateWarnings))
+        findings.push_back(fmt::format("{}: {} more rows with the output speed turning the other way", file,
+                                       minority - kDuplicateWarnings));
 }
 
 void require(const std::string& file, const Table& t, const char* key, const char* name) {
@@ -292,6 +340,7 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
         if (!t.col.count("loss") && !(t.col.count("torque_out") && t.col.count("speed_out")))
             throw InputError(file, 1, 0, "P_loss_W",
                              "required column 'P_loss_W' is missing (or give torque_out_Nm and speed_out_rpm)");
+        std::vector<std::pair<size_t, double>> speed_out;  // row, value: non-zero output speeds
         for (size_t r = 0; r < t.rows.size(); ++r) {
             RecordedPoint p;
             p.row = t.data_rows[r];
@@ -328,9 +377,14 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
             }
             if (p.speed_in < 0) fail_cell(file, t, r, "speed_in", "negative speed");
             if (p.oil_temp && *p.oil_temp <= 0) fail_cell(file, t, r, "oil", "below absolute zero");
-            check_point(file, t, r, p, t.col.count("loss") > 0, rec.warnings);
+            const PointPlace cell_of_row{
+                [&](const std::string& key) { return cell_place(file, t, r, key); },
+                [&](const std::string& key, const std::string& msg) { fail_cell(file, t, r, key, msg); }};
+            check_point(cell_of_row, p, t.col.count("loss") > 0, rec.warnings);
+            if (p.speed_out && *p.speed_out != 0) speed_out.emplace_back(r, *p.speed_out);
             rec.points.push_back(p);
         }
+        check_output_signs(file, t, speed_out, rec.warnings);
         return rec;
     }
 
@@ -349,6 +403,7 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
         int line;
     };
     std::vector<Sample> s;
+    std::vector<std::pair<size_t, double>> log_speed_out;  // row, value: non-zero output speeds
     for (size_t r = 0; r < t.rows.size(); ++r) {
         io::throw_if_interrupted();
         Sample x{get(r, "time"), get(r, "speed_in"), get(r, "torque_in"), get(r, "speed_out"),
@@ -360,7 +415,9 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
         if (!(x.oil > 0)) fail_cell(file, t, r, "oil", "below absolute zero");
         if (!(x.room > 0)) fail_cell(file, t, r, "ambient", "below absolute zero");
         s.push_back(x);
+        if (x.n_out != 0) log_speed_out.emplace_back(r, x.n_out);
     }
+    check_output_signs(file, t, log_speed_out, rec.warnings);
     // A new test starts when speed or torque leaves the current set-point for
     // 10 consecutive samples (20 s at 0.5 Hz); the set-point is the running mean.
     std::vector<std::pair<size_t, size_t>> tests;
@@ -452,6 +509,19 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
                 "running gearbox heats its oil above the room (a swapped or failed sensor?)",
                 file, s[a].line, number, s[a].line, s[b - 1].line, *p.oil_temp - 273.15, *p.ambient_temp - 273.15,
                 std::min(duration, crit.window_s) / 60));
+        // The means of the test checked as a steady point (the power balance, the output turning).
+        const std::string test_name = fmt::format("test {} (lines {}-{}, the means of its last {:.0f} min)", number,
+                                                  s[a].line, s[b - 1].line, std::min(duration, crit.window_s) / 60);
+        const PointPlace test_place{
+            [&](const std::string&) { return fmt::format("{}:{}: {}", file, s[a].line, test_name); },
+            [&](const std::string& key, const std::string& msg) {
+                const auto it = t.col.find(key);
+                throw InputError(file, s[a].line, it == t.col.end() ? 0 : static_cast<int>(it->second + 1),
+                                 it == t.col.end() ? key : t.header[it->second], test_name + ": " + msg);
+            }};
+        RecordedPoint means = p;
+        means.oil_temp.reset();  // the oil-colder-than-room finding is given below, with the window
+        check_point(test_place, means, false, rec.warnings);
         p.stabilisation_drift = hi - lo;
         p.stabilised = duration >= crit.window_s - 1e-6 && p.stabilisation_drift < crit.max_variation;
         if (!p.stabilised)

@@ -38,6 +38,14 @@ std::pair<std::string, double> parse_effect_assignment(const solver::Model& mode
     if (q.dim != want && !(q.dim == units::dim::none))
         throw InputError("", 0, 0, "--effect " + name,
                          "'" + value + "' has dimension " + units::to_string(q.dim) + ", expected " + units::to_string(want));
+    // A dimensioned value goes through the kind check of any other ("100 J" is no torque offset).
+    if (!(q.dim == units::dim::none)) {
+        try {
+            q.value = units::checked_value(q, want, value);
+        } catch (const units::UnitError& err) {
+            throw InputError("", 0, 0, "--effect " + name, err.message);
+        }
+    }
     if (e->discrete()) {
         if (q.value != 0 && q.value != 1)
             throw InputError("", 0, 0, "--effect " + name, "a form is chosen (1) or not (0): give " + name + "=1");

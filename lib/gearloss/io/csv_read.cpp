@@ -43,7 +43,15 @@ std::size_t utf8_length(std::string_view s, std::size_t i) {
 bool is_control(std::string_view s, std::size_t i, std::size_t len) {
     const unsigned char c = static_cast<unsigned char>(s[i]);
     if (len == 1) return c < 0x20 || c == 0x7F;
-    return len == 2 && c == 0xC2 && static_cast<unsigned char>(s[i + 1]) < 0xA0;  // C1 controls U+0080-U+009F
+    const auto at = [&](std::size_t k) { return static_cast<unsigned char>(s[i + k]); };
+    if (len == 2) return (c == 0xC2 && at(1) < 0xA0) || (c == 0xD8 && at(1) == 0x9C);  // C1 controls; U+061C
+    // The bidirectional controls reorder the text after them, so that a name or a message shows
+    // other than it reads (U+202E right-to-left override): marks U+200E-U+200F, embeddings and
+    // overrides U+202A-U+202E, isolates U+2066-U+2069.
+    if (len == 3 && c == 0xE2)
+        return (at(1) == 0x80 && (at(2) == 0x8E || at(2) == 0x8F || (at(2) >= 0xAA && at(2) <= 0xAE))) ||
+               (at(1) == 0x81 && at(2) >= 0xA6 && at(2) <= 0xA9);
+    return false;
 }
 
 std::string kind_of(mode_t m) {
@@ -201,7 +209,7 @@ bool invisible(char32_t c) {
 
 std::string name_problem(std::string_view s, std::size_t max_bytes) {
     if (s.empty()) return "a name cannot be empty";
-    if (!is_printable_utf8(s)) return "a name must be printable UTF-8 text without control characters or line breaks";
+    if (!is_printable_utf8(s)) return "a name must be printable UTF-8 text without control characters (nor direction controls such as U+202E) or line breaks";
     for (std::size_t i = 0; i < s.size();) {
         const std::size_t n = utf8_length(s, i);
         if (invisible(code_point(s, i, n)))

@@ -43,7 +43,8 @@ void check_input_text(std::string_view text, const std::string& file, std::size_
 // shown as '?', and "..." marks a cut.
 std::string excerpt(std::string_view s, std::size_t max = kExcerptChars);
 
-// Valid UTF-8 (no overlong forms, no surrogates) without control characters (C0, DEL, C1).
+// Valid UTF-8 (no overlong forms, no surrogates) without control characters (C0, DEL, C1) nor the
+// bidirectional controls (U+061C, U+200E-U+200F, U+202A-U+202E, U+2066-U+2069), which reorder text.
 bool is_printable_utf8(std::string_view s);
 
 // Why `s` cannot name a component (empty when it can): printable UTF-8 without invisible

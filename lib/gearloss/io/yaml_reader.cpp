@@ -438,7 +438,7 @@ std::string YamlNode::as_title() const {
     const std::string s = as_string();
     if (s.empty()) fail("a name cannot be empty");
     if (!is_printable_utf8(s))
-        fail("'" + excerpt(s) + "': a name must be printable UTF-8 text without control characters or line breaks");
+        fail("'" + excerpt(s) + "': a name must be printable UTF-8 text without control characters (nor direction controls such as U+202E) or line breaks");
     if (s.size() > kMaxTitleBytes)
         fail("'" + excerpt(s) + "': a name is at most " + std::to_string(kMaxTitleBytes) + " bytes long");
     return s;

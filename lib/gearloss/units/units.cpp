@@ -65,6 +65,11 @@ struct Unit {
     bool rotation = false;      // Hz or a time unit other than the second (1/min, min^-1): revolutions per time
     bool energy = false;        // J, Wh, W and their multiples: an energy or a power, never a torque
     bool angle_named = false;   // an angle unit appears (rpm/rev: its angles cancel, but it names them)
+    // Set by the parser from the names (not in the table):
+    int angle_uses = 0;         // angle units and Hz counted with the magnitude of their powers (rpm^2/rpm: 3)
+    bool frequency = false;     // Hz or kHz: a frequency, which counts revolutions (DIN 1301)
+    bool force = false;         // N, kN, MN, Nm, kNm: a force is named (a torque needs one)
+    bool percent = false;       // % or percent
 };
 
 const std::map<std::string, Unit, std::less<>>& unit_table() {
@@ -172,7 +177,8 @@ private:
     // u*v (sign +1) or u/v (sign -1): the scales, dimensions and angle powers combine, the names accumulate.
     static Unit combine(const Unit& u, const Unit& v, int sign) {
         return {sign > 0 ? u.scale * v.scale : u.scale / v.scale, add(u.d, v.d, sign), u.angle + sign * v.angle,
-                u.rotation || v.rotation, u.energy || v.energy, u.angle_named || v.angle_named};
+                u.rotation || v.rotation, u.energy || v.energy, u.angle_named || v.angle_named,
+                u.angle_uses + v.angle_uses, u.frequency || v.frequency, u.force || v.force, u.percent || v.percent};
     }
     // The result of combining two units: every base exponent within +-kMaxExponent.
     Unit checked(const Unit& u) const {
@@ -180,6 +186,11 @@ private:
             if (e > kMaxExponent || e < -kMaxExponent) fail("exponent out of range");
         if (u.angle > kMaxExponent || u.angle < -kMaxExponent) fail("exponent out of range");
         return u;
+    }
+    // u^p: the scale, dimension and angle power raised; each angle unit counted |p| times.
+    static Unit power(const Unit& u, int p) {
+        return {std::pow(u.scale, p), mul(u.d, p), u.angle * p, u.rotation, u.energy, u.angle_named,
+                u.angle_uses * std::abs(p), u.frequency, u.force, u.percent};
     }
     void skip_ws() {
         while (pos_ < s_.size() && s_[pos_] == ' ') ++pos_;
@@ -221,7 +232,7 @@ private:
             if (pos_ - start > 2) fail("exponent out of range");
             int p = std::stoi(std::string(s_.substr(start, pos_ - start))) * sign;
             if (p > 6 || p < -6) fail("exponent out of range");
-            u = checked({std::pow(u.scale, p), mul(u.d, p), u.angle * p, u.rotation, u.energy, u.angle_named});
+            u = checked(power(u, p));
         } else {
             // "m2" / "m3" shorthand for squared / cubed units
             size_t start = pos_;
@@ -230,7 +241,7 @@ private:
                 if (pos_ - start > 2) fail("exponent out of range");
                 int p = std::stoi(std::string(s_.substr(start, pos_ - start)));
                 if (p > 6) fail("exponent out of range");
-                u = checked({std::pow(u.scale, p), mul(u.d, p), u.angle * p, u.rotation, u.energy, u.angle_named});
+                u = checked(power(u, p));
             }
         }
         return u;
@@ -265,7 +276,12 @@ private:
         std::string_view name = s_.substr(start, pos_ - start);
         auto it = unit_table().find(name);
         if (it == unit_table().end()) fail("unknown unit '" + excerpt(name) + "'");
-        return it->second;
+        Unit u = it->second;
+        u.frequency = name == "Hz" || name == "kHz";
+        u.angle_uses = u.angle_named || u.frequency ? 1 : 0;
+        u.force = name == "N" || name == "kN" || name == "MN" || name == "Nm" || name == "kNm";
+        u.percent = name == "%" || name == "percent";
+        return u;
     }
 };
 
@@ -287,11 +303,16 @@ UnitFactor parse_unit(std::string_view expr) {
     if (expr == "K") return {1.0, 0.0, dim::temperature, true};
     if (expr.empty()) return {1.0, 0.0, dim::none, false};
     Unit u = UnitParser(expr).parse();
+    // "20 mm*%" would be 0.2 mm: a percent inside a unit is a scale factor nobody means.
+    if (u.percent && expr != "%" && expr != "percent")
+        throw UnitError("cannot read unit '" + excerpt(expr) + "': '%' stands alone, for a plain ratio ('20 %'), not " +
+                        "inside a unit");
     // "((km^6)^4)^6" is 1e144 m^144 before the exponent check stops it; a scale that
     // overflows or underflows would turn every value into inf, 0 or NaN.
     if (!std::isnormal(u.scale))
         throw UnitError("cannot read unit '" + excerpt(expr) + "': its scale to SI units is out of range");
-    return {u.scale, 0.0, u.d, false, u.angle == 1, u.rotation, u.angle, u.angle_named, u.energy};
+    return {u.scale, 0.0, u.d, false, u.angle == 1, u.rotation, u.angle, u.angle_named, u.energy,
+            u.angle_uses, u.frequency, u.force};
 }
 
 Quantity parse_quantity(std::string_view text) {
@@ -308,10 +329,17 @@ Quantity parse_quantity(std::string_view text) {
     std::string_view rest = trim(std::string_view(ptr, static_cast<size_t>(e - ptr)));
     // "10/s" reads as 10 (1/s).
     const UnitFactor f = !rest.empty() && rest.front() == '/' ? parse_unit("1" + std::string(rest)) : parse_unit(rest);
-    Quantity q;
+    Quantity q = unit_quantity(f);
     q.value = v * f.scale + f.offset;
     // "1e308 km" is 1e311 m: inf, which would pass any "must be positive" check downstream.
     if (!std::isfinite(q.value)) throw UnitError("'" + excerpt(s) + "' is out of range (its value in SI units overflows)");
+    q.unitless = rest.empty();
+    return q;
+}
+
+Quantity unit_quantity(const UnitFactor& f) {
+    Quantity q;
+    q.value = f.scale + f.offset;
     q.dim = f.dim;
     q.absolute_temperature = f.affine;
     q.explicit_angle = f.angle;
@@ -319,18 +347,24 @@ Quantity parse_quantity(std::string_view text) {
     q.angle_power = f.angle_power;
     q.angle_named = f.angle_named;
     q.energy_named = f.energy_named;
-    q.unitless = rest.empty();
+    q.angle_uses = f.angle_uses;
+    q.frequency_named = f.frequency_named;
+    q.force_named = f.force_named;
     return q;
 }
 
 double as_rotational_speed(const Quantity& q, std::string_view text) {
     if (q.dim != dim::angular_speed) return q.value;
-    if (q.explicit_angle) return q.value;                     // rpm, rev/min, rad/s, deg/s
-    // "1000 rpm/rev" is 1000/min with the angle divided out: no longer a speed of rotation as written.
-    if (q.angle_named)
+    // "1000 rpm/rev" is 1000/min with the angle divided out, "800 rpm^2/rpm" and "800 rev*rpm/rev"
+    // repeat it, "10 Hz*rev" counts the revolutions twice (Hz counts them): no longer a speed of
+    // rotation as written. One angle unit or one Hz, to the first power, and no other.
+    if (q.angle_uses > 1 || (q.angle_named && q.angle_power != 1))
         throw UnitError("'" + excerpt(trim(text)) + "' is not a rotational speed: its angle units " +
-                        (q.angle_power == 0 ? "cancel" : "do not reduce to one angle per time") +
+                        (q.angle_named && q.angle_power == 0 ? "cancel"
+                         : q.angle_uses > 1 ? "repeat (an angle unit, or Hz, which counts revolutions, written more than once)"
+                                            : "do not reduce to one angle per time") +
                         "; write e.g. '1000 rpm', '1000 rev/min', '100 rad/s' or '10 Hz'");
+    if (q.explicit_angle) return q.value;                     // rpm, rev/min, rad/s, deg/s
     if (q.rotation) return 2.0 * std::numbers::pi * q.value;  // Hz, 1/min, min^-1: revolutions per time
     // "1/s" is the angular velocity in rad/s to some and revolutions per second (DIN 1301) to others.
     throw UnitError("'" + excerpt(trim(text)) +
@@ -362,15 +396,25 @@ double checked_value(const Quantity& q, const Dimension& expected, std::string_v
         if (!q.angle_named)
             throw UnitError("'" + s + "' has no angle unit; write the angle with one, e.g. in deg or rad (a bare " +
                             "number is not taken as radians)");
-        if (q.angle_power != 1) throw UnitError("'" + s + "' is not an angle: its angle units do not reduce to one angle");
+        if (q.angle_power != 1 || q.angle_uses != 1)
+            throw UnitError("'" + s + "' is not an angle: its angle units do not reduce to one angle written once");
         return q.value;
     }
     if (expected == dim::angular_speed) return as_rotational_speed(q, text);
     if (q.angle_named)
         throw UnitError("'" + s + "' is written with an angle unit; a value of dimension " + to_string(expected) +
                         " was expected, without one");
+    // Hz counts revolutions (as rpm does): "20 Hz*mm*s" is no length, as "20 m*rpm" is none.
+    if (q.frequency_named)
+        throw UnitError("'" + s + "' is written with Hz, which counts revolutions per time; a value of dimension " +
+                        to_string(expected) + " was expected, without one");
+    // A torque is a force times a lever arm: its unit names a force (N, kN, MN, Nm, kNm) and no
+    // energy or power. "Pa*m^3" and "kg*m^2/s^2" share its dimension but not its meaning.
     if (expected == dim::torque && q.energy_named)
         throw UnitError("'" + s + "' is an energy (J, Wh or W*s), not a torque; write a torque in N*m, Nm or kNm");
+    if (expected == dim::torque && !q.force_named)
+        throw UnitError("'" + s + "' does not name a force; a torque is a force times a length: write it in N*m, Nm, " +
+                        "kNm, kN*m or N*mm");
     return q.value;
 }
 

@@ -35,6 +35,9 @@ struct Quantity {
     int angle_power = 0;                // power of the angle units in the expression (rad/s: 1, rad^2: 2, rpm/rev: 0)
     bool angle_named = false;           // an angle unit appears at all (rpm/rev: true, though the angles cancel)
     bool energy_named = false;          // an energy or power unit appears (J, Wh, W): the value is not a torque
+    int angle_uses = 0;                 // angle units and Hz, each counted |power| times (rpm^2/rpm: 3; rpm: 1)
+    bool frequency_named = false;       // Hz or kHz appears: counts revolutions, so only in a rotational speed
+    bool force_named = false;           // N, kN, MN, Nm or kNm appears: a torque needs one
     bool unitless = false;              // a number alone
 };
 
@@ -55,8 +58,14 @@ struct UnitFactor {
     int angle_power = 0;    // see Quantity::angle_power
     bool angle_named = false;
     bool energy_named = false;
+    int angle_uses = 0;          // see Quantity::angle_uses
+    bool frequency_named = false;
+    bool force_named = false;
 };
 UnitFactor parse_unit(std::string_view expr);
+// One of the unit `f` as a quantity (its SI value f.scale + f.offset, with what the unit names), for
+// a unit written without a number (a recordings header "torque_in_Nm") to go through checked_value.
+Quantity unit_quantity(const UnitFactor& f);
 
 // A quantity of dimension 1/s read as a rotational speed [rad/s]. An explicit
 // angle (rpm, rev/min, rad/s, deg/s) is taken as written; a frequency with no
@@ -68,7 +77,9 @@ double as_rotational_speed(const Quantity& q, std::string_view text);
 // What a value is meant to be beyond its dimension: radians are dimensionless and a
 // torque has the dimension of an energy, so the dimension alone cannot tell them apart.
 enum class Kind {
-    plain,  // the dimension says it all (a torque refuses J, Wh and W; no angle unit)
+    plain,  // the dimension says it all, but: no angle unit and no Hz (both count angles); a torque
+            // names a force (N*m, Nm, kNm, kN*m, N*mm) and no energy or power (J, Wh, W*s,
+            // Pa*m^3 and kg*m^2/s^2 are refused)
     angle,  // an angle: dimensionless, but written with exactly one angle unit (rad, deg, rev)
 };
 
