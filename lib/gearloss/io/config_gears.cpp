@@ -126,7 +126,7 @@ void Loader::load_gears() {
         } else {
             s.hand = geometry::Hand::spur;
         }
-        // Basic-rack coefficients: ISO 53 has 1.0 and 1.25; stub and high-contact-ratio racks stay
+        // Basic-rack coefficients: ISO 53 has 1.0 and 1.25; short-tooth and high-contact-ratio racks stay
         // within these bounds. Checked here so that a wrong one is blamed, not the profile shift.
         if (n.has("addendum_coefficient")) {
             s.ha_star = n.at("addendum_coefficient").as_number();
