@@ -311,3 +311,45 @@ TEST_CASE("cycle trace streamed: byte for byte the trace held whole, with or wit
         }
     }
 }
+
+TEST_CASE("cycle: an engine asked beyond its fuel map without max_torque is counted and reported, not silent",
+          "[cycle][units37]") {
+    // Manual, second gear held, from 20 to 56 km/h at 5 m/s^2 (half a g, below the 1 g refusal).
+    // Hand calculation of the least engine torque: F = 1550 kg x 1.03 x 5 m/s^2 = 7982.5 N at the
+    // wheels (road load only adds), wheel torque 7982.5 x 0.31 m = 2474.6 N m, through the final
+    // drive 3.7 (efficiency 0.97) and g2 (n_in/n_out = 2.0526, 19/39):
+    // T_eng >= 2474.6 / (3.7 x 0.97 x 2.0526) = 335.9 N m, beyond the map's 200 N m.
+    const auto pt = powertrain("configs/manual-6speed.yaml");
+    cycle::DriveCycle dc;
+    dc.name = "hard";
+    dc.file = "hard.csv";
+    for (int k = 0; k <= 10; ++k) {
+        dc.time.push_back(k * 0.2 + (k > 0 ? 10 : 0));  // 10 s at 20 km/h, then 2 s of acceleration
+        dc.speed.push_back(20 / 3.6 + (k > 0 ? 5.0 * (k - 1) * 0.2 : 0.0) * (k > 0));
+        dc.gear.push_back(2);
+        dc.line.push_back(k + 2);
+    }
+    const double T0 = kC + 80;
+    const auto r = cycle::simulate_cycle(pt, dc, cycle::uniform(T0), T0, true);
+    const auto& b = r.totals.engine_beyond_map;
+    CHECK(b.map_torque == Approx(200.0));
+    CHECK(b.peak_torque > 335.9);
+    // The count against the trace, a different route: every row whose engine torque passes 200 N m.
+    int beyond = 0;
+    double peak = 0;
+    for (const auto& row : r.trace)
+        if (row.engine_torque > 200.0 + 1e-6) ++beyond, peak = std::max(peak, row.engine_torque);
+    CHECK(b.rows == beyond);
+    CHECK(b.rows >= 8);
+    CHECK(b.peak_torque == Approx(peak));
+    CHECK(b.first_line == 3);  // the first accelerating row (line 3 of the file: header, 10 s row, then it)
+    const auto w = io::engine_beyond_map_warning(b);
+    CHECK(w.find("beyond its fuel map (200 N m)") != std::string::npos);
+    CHECK(w.find("line 3") != std::string::npos);
+    // The same cycle at a gentle pace asks nothing beyond the map: no warning.
+    auto gentle = dc;
+    for (size_t k = 1; k < gentle.speed.size(); ++k) gentle.speed[k] = 20 / 3.6 + 0.5 * (k - 1) * 0.2;
+    const auto g = cycle::simulate_cycle(pt, gentle, cycle::uniform(T0), T0, false).totals;
+    CHECK(g.engine_beyond_map.rows == 0);
+    CHECK(io::engine_beyond_map_warning(g.engine_beyond_map).empty());
+}

@@ -69,6 +69,10 @@ public:
         so.keep_traces = false;  // -o streams its time series (io::write_cycle_trace)
         const auto study = io::run_cycle_study(pt, dc, so);
         io::throw_if_interrupted();
+        // Once on stderr too, for scripts that keep only the files (the run from the start
+        // temperature: the warm and pre-warmed runs ask less of a cold converter).
+        if (const auto w = io::engine_beyond_map_warning(study.cold.totals.engine_beyond_map); !w.empty())
+            std::fprintf(stderr, "gearloss: %s", w.c_str());
         io::write_stdout(io::cycle_summary_text(pt, study, so));
         if (stats_)
             std::fprintf(stderr, "cycle %s: %zu steps simulated in %.2f ms\n", dc.name.c_str(), dc.time.size() - 1,

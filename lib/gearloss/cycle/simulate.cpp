@@ -286,6 +286,20 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
             fail_at(cycle, i, fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): engine torque {:.0f} N m above the engine's "
                                       "max_torque {:.0f} N m; the vehicle cannot drive this row",
                                       cycle.time[i], v * 3.6, gear, T_eng, *veh.engine.max_torque));
+        if (veh.engine.fuel_map && !veh.engine.max_torque && T_eng > veh.engine.fuel_map->torques.back() * (1.0 + 1e-9)) {
+            // Without max_torque a demand beyond the map is not refused (shipped cold starts ask
+            // for it: a converter stalled in -30 degC fluid); it is counted and reported.
+            auto& b = tot.engine_beyond_map;
+            if (b.rows++ == 0) {
+                b.first_time = cycle.time[i];
+                b.first_line = i < cycle.line.size() ? cycle.line[i] : 0;
+                b.map_torque = veh.engine.fuel_map->torques.back();
+            }
+            if (T_eng > b.peak_torque) {
+                b.peak_torque = T_eng;
+                b.peak_time = cycle.time[i];
+            }
+        }
         if (veh.engine.fuel_map) {
             const bool fuel_cut = T_eng < 0 && w_eng > 1.05 * veh.engine.idle_speed;
             row.fuel_rate = fuel_cut ? 0.0 : veh.engine.fuel_map->rate_at(w_eng, std::max(T_eng, 0.0));

@@ -48,6 +48,17 @@ struct CycleTotals {
     double stored_start = 0, stored_end = 0;   // J, network heat content relative to ambient
     double fuel = 0;                           // kg
     bool has_fuel = false;
+    // Rows whose engine torque lies beyond the engine's fuel map (no `max_torque` given, so not an
+    // error): the vehicle could not follow the cycle there and the fuel read at the map's edge is
+    // too low. Counted so that the summary can say so; empty without a fuel map.
+    struct EngineBeyondData {
+        int rows = 0;
+        double peak_torque = 0;        // N m, the largest engine torque asked
+        double map_torque = 0;         // N m, the fuel map's largest torque
+        double peak_time = 0;          // s
+        double first_time = 0;         // s, the first such row
+        int first_line = 0;            // its line in the cycle file (0: not read from one file)
+    } engine_beyond_map;
     thermal::NodeTemperatures start{}, end{};
     double gearbox_loss() const {
         double e = 0.0;

@@ -177,6 +177,16 @@ void write_cycle_trace(const cycle::Powertrain& pt, const cycle::DriveCycle& dc,
     write(chunk);
 }
 
+std::string engine_beyond_map_warning(const cycle::CycleTotals::EngineBeyondData& b, std::string_view indent) {
+    if (b.rows == 0) return {};
+    return fmt::format("{}warning: the engine is asked beyond its fuel map ({:.0f} N m) on {} row{} from t = {:g} s{}, up to "
+                       "{:.0f} N m at t = {:g} s: the vehicle could not follow the cycle there and the fuel is read at the "
+                       "map's edge (give the engine a max_torque to make such rows errors)\n",
+                       indent, b.map_torque, b.rows, b.rows == 1 ? "" : "s", b.first_time,
+                       b.first_line > 0 ? fmt::format(" (line {})", b.first_line) : std::string(), b.peak_torque,
+                       b.peak_time);
+}
+
 namespace {
 double litres(const cycle::Powertrain& pt, double kg) { return kg / pt.vehicle.engine.fuel_density * 1e3; }
 
@@ -195,6 +205,15 @@ nlohmann::ordered_json totals_json(const cycle::Powertrain& pt, const cycle::Cyc
         j["fuel_L"] = litres(pt, t.fuel);
         j["fuel_L_per_100km"] = t.distance > 0 ? litres(pt, t.fuel) / (t.distance / 1e5) : 0.0;
     }
+    if (const auto& b = t.engine_beyond_map; b.rows > 0) {
+        auto& e = j["engine_beyond_fuel_map"];
+        e["rows"] = b.rows;
+        e["fuel_map_max_torque_Nm"] = b.map_torque;
+        e["peak_torque_Nm"] = b.peak_torque;
+        e["peak_time_s"] = b.peak_time;
+        e["first_time_s"] = b.first_time;
+        if (b.first_line > 0) e["first_line"] = b.first_line;
+    }
     return j;
 }
 
@@ -211,7 +230,7 @@ std::string totals_text(const cycle::Powertrain& pt, const cycle::CycleTotals& t
         s += t.distance > 0
                  ? fmt::format("; fuel {:.3f} L ({:.2f} L/100 km)", litres(pt, t.fuel), litres(pt, t.fuel) / (t.distance / 1e5))
                  : fmt::format("; fuel {:.3f} L (no distance driven)", litres(pt, t.fuel));
-    return s + "\n";
+    return s + "\n" + engine_beyond_map_warning(t.engine_beyond_map, "       ");
 }
 
 double relative_saving(double base, double other) { return base > 0 ? (base - other) / base : 0.0; }

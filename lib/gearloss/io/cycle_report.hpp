@@ -59,6 +59,8 @@ void write_cycle_trace(const cycle::Powertrain& pt, const cycle::DriveCycle& dc,
 // Its header line (with the newline), for the sidecar.
 std::string cycle_trace_header(const cycle::Powertrain& pt, const CycleStudy& study);
 inline constexpr size_t kTraceChunkBytes = 1 << 20;
+// The warning for rows whose engine torque lies beyond the fuel map (empty when there are none).
+std::string engine_beyond_map_warning(const cycle::CycleTotals::EngineBeyondData& b, std::string_view indent = {});
 std::string cycle_summary_text(const cycle::Powertrain& pt, const CycleStudy& s, const CycleStudyOptions& o);
 std::string cycle_summary_json(const cycle::Powertrain& pt, const CycleStudy& s, const CycleStudyOptions& o);
 
