@@ -180,6 +180,44 @@ expect "M5 sidecar onto an input: the option named once" 2 "^gearloss: error: --
 expect "M5 --shard ' 1/2'" 2 "^gearloss: error: --shard: ' 1/2' is not K/N" "$bin" map "$spur" --shard ' 1/2' -o "$tmp/sh.csv"
 
 # ---------------------------------------------------------------------------------------
+# N3: sizes that no gearbox has, read silently before (a unit slip each); F6: an engine asked
+# beyond its fuel map without max_torque, silent before.
+cp "$src/configs/automatic-6speed.yaml" "$tmp/auto.yaml"
+sed 's/{name: output_seal, shaft: I,   diameter: 40 mm}/{name: output_seal, shaft: I,   diameter: 1 m}/' "$tb" > "$tmp/seal1m.yaml"
+expect "a 1 m seal on a 32-35 mm shaft" 2 "seal1m.yaml:[0-9]+:[0-9]+: seals\[1\]\.diameter: seal 'output_seal' of 1000 mm .*check the unit" \
+    "$bin" check "$tmp/seal1m.yaml"
+sed 's/{name: output_seal, shaft: I,   diameter: 40 mm}/{name: output_seal, shaft: I,   diameter: 90 mm}/' "$tb" > "$tmp/seal90.yaml"
+expect "a 90 mm seal beside 80 mm bearings" 0 "seal90.yaml:[0-9]+:[0-9]+: seals\[1\]\.diameter: warning: seal 'output_seal' of 90 mm" \
+    "$bin" point "$tmp/seal90.yaml" --speed 800rpm --torque 200Nm --oil-temp 70degC
+sed 's/shaft: I,   position: 150 mm, locating: true/shaft: I,   position: -60 km, locating: true/' "$tb" > "$tmp/far.yaml"
+expect "a bearing at -60 km" 2 "far.yaml:[0-9]+:[0-9]+: bearings\[5\]\.position: bearing 'B6_6307' .*no shaft is that long" \
+    "$bin" check "$tmp/far.yaml"
+sed 's/oil_volume: [0-9.]* L/oil_volume: 800 m^3/' "$tb" > "$tmp/sump.yaml"
+expect "an 800 m^3 sump" 2 "sump.yaml:[0-9]+:[0-9]+: housing\.oil_volume: oil volume 8e\+05 L is [0-9]+ times the space the gears sweep" \
+    "$bin" check "$tmp/sump.yaml"
+sed 's/oil_volume: [0-9.]* L/oil_volume: 200 L/' "$tb" > "$tmp/sump200.yaml"
+expect "a 200 L sump on 1.4 L of gears" 0 "housing\.oil_volume: warning: oil volume 200 L is 144 times" \
+    "$bin" point "$tmp/sump200.yaml" --speed 800rpm --torque 200Nm --oil-temp 70degC
+sed 's/torque_ratio: \[2.0,/torque_ratio: [0.2,/' "$tmp/auto.yaml" > "$tmp/tr.yaml"
+expect "converter torque ratio 0.2 at stall" 2 "tr.yaml:[0-9]+:[0-9]+: vehicle\.torque_converter\.torque_ratio\[0\]: torque ratio 0.2 at stall" \
+    "$bin" check "$tmp/tr.yaml"
+sed 's/gears: \[g1, g2, g3, g4, g5, g6\]/gears: [g1, g1, g3, g4, g5, g6]/' "$tmp/man.yaml" > "$tmp/g1g1.yaml"
+expect "vehicle.gears [g1, g1, ...]" 2 "g1g1.yaml:[0-9]+:[0-9]+: vehicle\.gears\[1\]: ratio 'g1' is listed twice" \
+    "$bin" check "$tmp/g1g1.yaml"
+mkdir -p "$tmp/cat"
+sed 's/\["K 12x15x20", 12, 15, 20, 8.5, 12\]/["K 12x15x20", 12, 15, 20, 0.1, 5300]/' \
+    "$src/configs/bearings/catalogue.yaml" > "$tmp/cat/catalogue.yaml"
+sed 's/type: needle_roller, d: 38 mm, D: 43 mm, B: 27 mm, shaft: III, under_gear: w4/designation: K 12x15x20, shaft: III, under_gear: w4/' "$tb" > "$tmp/catrow.yaml"
+echo "bearing_catalogue: cat/catalogue.yaml" >> "$tmp/catrow.yaml"
+expect "catalogue row C 0.1 kN, C0 5300 kN" 2 "catalogue.yaml:[0-9]+:[0-9]+: .*C0 = 5300 kN against C = 0.1 kN" \
+    "$bin" check "$tmp/catrow.yaml"
+printf 'time_s,speed_kmh,gear\n0,20,2\n10,20,2\n10.2,20,2\n10.4,23.6,2\n10.6,27.2,2\n10.8,30.8,2\n11,34.4,2\n' > "$tmp/hard.csv"
+expect "engine beyond its fuel map without max_torque" 0 "^gearloss: warning: the engine is asked beyond its fuel map \(200 N m\) on [0-9]+ rows? from t = 10.2 s \(line 4\)" \
+    "$bin" cycle "$tmp/man.yaml" --cycle "$tmp/hard.csv" --start-temp 80degC --json "$tmp/hard.json"
+check "engine beyond its fuel map: in the summary" grep -q "warning: the engine is asked beyond its fuel map" "$tmp/out"
+check "engine beyond its fuel map: in --json" grep -q '"engine_beyond_fuel_map":{"rows":' "$tmp/hard.json"
+
+# ---------------------------------------------------------------------------------------
 # Every output of every command, for inputs that are accepted though hostile: no nan/inf.
 # Oil recorded colder than the ambient (diagnose printed "+/- nan"), a cold oil at the edge of
 # its data, the lowest and highest speeds and torques of the stated range.

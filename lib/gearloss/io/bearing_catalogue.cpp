@@ -42,6 +42,13 @@ void read_row(const YamlNode& row, const std::vector<std::string>& cols, Catalog
     }
     if (v.count("C")) e.C = v.at("C") * kN;
     if (v.count("C0")) e.C0 = v.at("C0") * kN;
+    // The static rating against the dynamic one: C0/C lies near 0.4-0.8 for ball bearings and
+    // 1-3 for needle and roller bearings (the shipped rows: 0.40-2.9); outside 0.2-6 a digit or a
+    // decimal point was lost (three shipped needle rows had one).
+    if (e.C && e.C0 && !(*e.C0 / *e.C >= 0.2 && *e.C0 / *e.C <= 6))
+        row.fail(fmt::format("C0 = {} kN against C = {} kN (C0/C = {:.3g}): rolling bearings have C0/C between about 0.2 "
+                             "and 6; a digit or a decimal point is likely lost",
+                             v.at("C0"), v.at("C"), *e.C0 / *e.C));
     if (v.count("e")) e.e = v.at("e");
     if (v.count("Y")) {
         e.Y = v.at("Y");

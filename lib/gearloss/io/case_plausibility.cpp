@@ -133,6 +133,7 @@ void check_case_plausibility(const YamlNode& root, Case& c, solver::Lubrication 
         c.warnings.push_back(where.located((f.severity == S::note ? "note: " : "warning: ") + f.message));
     }
     warn_unsupported_shafts(root, c);
+    check_component_sizes(root, c);
 }
 
 void check_oil_temperature(Case& c, const std::string& option) {

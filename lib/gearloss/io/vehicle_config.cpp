@@ -1,5 +1,6 @@
 // The `vehicle` block of a case: road load, final drive, gears and shift schedule,
 // engine (idle, overrun, fuel map) and an optional torque converter.
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -71,8 +72,19 @@ torque_converter::TorqueConverter load_tc(const YamlNode& n) {
     require_ascending(n.at("speed_ratio"), c.speed_ratio);
     if (c.speed_ratio.front() != 0.0) n.at("speed_ratio").items()[0].fail("the characteristic starts at stall (0)");
     if (c.speed_ratio.back() > 1.0) n.at("speed_ratio").items()[m - 1].fail("speed ratio above 1");
+    // A converter multiplies torque at stall (its stator turns the flow back; passenger cars
+    // 1.7-2.5) and couples 1:1 beyond the coupling point; below 1 at stall it is no converter,
+    // and well below 1 anywhere the turbine would give back less than a fluid coupling.
+    if (!(c.torque_ratio.front() >= 1.0))
+        n.at("torque_ratio").items()[0].fail(fmt::format(
+            "torque ratio {:g} at stall: a converter multiplies torque there (at least 1, typically 1.7 to 2.5)",
+            c.torque_ratio.front()));
     for (size_t i = 0; i < m; ++i) {
         if (!(c.torque_ratio[i] > 0 && c.torque_ratio[i] < 5)) n.at("torque_ratio").items()[i].fail("must be in (0, 5)");
+        if (c.torque_ratio[i] < 0.8)
+            n.at("torque_ratio").items()[i].fail(fmt::format(
+                "torque ratio {:g}: below 0.8 the turbine gives back far less than a fluid coupling (1); check the curve",
+                c.torque_ratio[i]));
         if (!(c.capacity[i] > 0)) n.at("capacity").items()[i].fail("must be positive (rpm/sqrt(N*m))");
     }
     if (n.has("impeller_head") != n.has("impeller_flow"))
@@ -135,7 +147,15 @@ void load_vehicle(const YamlNode& n, Case& c) {
         v.final_drive_efficiency = e->as_number();
         if (!(v.final_drive_efficiency > 0.5 && v.final_drive_efficiency <= 1)) e->fail("must be in (0.5, 1]");
     }
-    for (const auto& g : n.at("gears").items()) v.gears.push_back(g.as_string());
+    for (const auto& g : n.at("gears").items()) {
+        v.gears.push_back(g.as_string());
+        // Each vehicle gear is one ratio of the gearbox; the same ratio twice is a slip (the
+        // shift schedule would shift into the gear it is in).
+        if (std::count(v.gears.begin(), v.gears.end(), v.gears.back()) > 1)
+            g.fail(fmt::format("ratio '{}' is listed twice in vehicle.gears (gear {} and gear {})", v.gears.back(),
+                               std::find(v.gears.begin(), v.gears.end(), v.gears.back()) - v.gears.begin() + 1,
+                               v.gears.size()));
+    }
     if (v.gears.empty()) n.at("gears").fail("empty list");
     if (auto sh = n.get("shift")) {
         sh->allow_keys({"upshift", "downshift"});
