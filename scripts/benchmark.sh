@@ -257,7 +257,7 @@ PY
 
 # Scale of diagnose (issue 37): steady campaigns of 10^4 (100 x 100) and 10^5 (400 x 250) rows with a
 # concealed windage, wall clock and peak memory (targets on 2 cores: 10^4 rows < 10 s, 10^5 rows
-# < 60 s, < 200 MB; beyond 1000 usable points the selection works on 1000 of them, the residuals cover
+# < 60 s, < 200 MB; beyond 400 usable points the selection works on 400 of them, the residuals cover
 # all), and the time from SIGTERM (sent 3 s into the 10^5-row run) to the exit (target < 1 s).
 build/app/gearloss synth configs/transfer-box.yaml --speed "$(python3 -c "print(','.join(str(400 + 8 * i) for i in range(100)))")rpm" \
     --torque "$(python3 -c "print(','.join(str(20 + 3 * i) for i in range(100)))")Nm" --effect windage=25W --seed 7 -o "$tmp/rec1e4.csv"

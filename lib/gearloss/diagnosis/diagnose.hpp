@@ -69,7 +69,7 @@ struct DiagnoseOptions {
     // point floor(k N / M)): the candidates, their cross-validation and resamples, the adequacy
     // tests and the remainder formula see them; the baseline and final predictions, the
     // overall RMSE, the outliers and the residuals cover every point. A warning says so.
-    int max_fit_points = 1000;
+    int max_fit_points = 400;
     // Ceres-style check of the options (diagnose calls it): throws InputError naming the option.
     void validate() const;
 };
