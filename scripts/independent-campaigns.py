@@ -30,6 +30,12 @@ verdict and findings against the truth. The diagnosis source is not read by this
 or its author: only README.md, docs/config.md, docs/diagnosis-proof.md, the shipped
 configs and the --help texts.
 
+Issue 38 added three categories that ask other questions: `synth_own` (campaigns made by
+`gearloss synth` itself: is a right answer said with confidence, with and without a declared
+uncertainty?), `order` (the same campaign sorted by speed, by torque and shuffled; a drift with a
+`run` column) and `outliers` (1.5 % noise: no normal row listed; a planted +20 % row listed); and
+the outside-library campaigns are also scored for the model of the remainder (outside_model.py).
+
 Every shipped stabilised case uses the housing-surface model (some with a thermal
 network), whose correlations are not documented. So most stabilised campaigns run on a
 DERIVED case: the shipped gearbox with its `thermal` block replaced by a rig-measured
@@ -43,7 +49,7 @@ are written to OUT/cases/ and are exactly what `diagnose` receives.
 Usage:
   scripts/independent-campaigns.py [--binary build/app/gearloss] [--cases transfer,fzg]
         [--seeds N] [--quick] [--categories single,two,...] [--out DIR] [--jobs N] [--reuse]
-        [--only TAGS] [--noise-scale F] [--housing-check] [--proof-doc FILE]
+        [--only CATEGORY|TAG|EFFECT[,..]] [--noise-scale F] [--housing-check] [--proof-doc FILE]
 Outputs in OUT: scores.md (the tables), failures.md (every campaign not scored correct),
 results.json, and per campaign recordings.csv (+ oils/ for multi-oil), truth.json,
 diagnose.json, diagnose.txt. --proof-doc writes docs/diagnosis-proof.md's tables (proof_doc.py).
@@ -70,6 +76,8 @@ from independent_campaigns.cases import CASES, DEFAULT_CASES, ROOT  # noqa: E402
 from independent_campaigns.heat_balance import housing_check  # noqa: E402
 from independent_campaigns.multi_oil import build_multi_oil_campaign  # noqa: E402
 from independent_campaigns.proof_doc import write_proof_doc  # noqa: E402
+from independent_campaigns.robustness import build_robustness, plan_issue38  # noqa: E402
+from independent_campaigns.synth_own import build_synth_campaign, build_synth_outlier  # noqa: E402
 from independent_campaigns.scoring import run_diagnose, score  # noqa: E402
 from independent_campaigns.tables import failures, tabulate  # noqa: E402
 
@@ -97,7 +105,8 @@ def main():
     ap.add_argument("--reuse", action="store_true",
                     help="re-score: reuse OUT's diagnose.json where the regenerated recordings are byte-identical")
     ap.add_argument("--only", default=None,
-                    help="comma list of campaign tags, effect names or categories to run (e.g. aero_drag,null0,form)")
+                    help="comma list of categories, campaign tags or effect names to run (e.g. synth_own, order,outliers, "
+                         "aero_drag,null0): only the cases those campaigns need are mapped")
     ap.add_argument("--proof-doc", default=None, help="also write the proof document (docs/diagnosis-proof.md) here")
     ap.add_argument("--noise-scale", type=float, default=1.0,
                     help="multiply the drawn loss and temperature noise (e.g. 0.1: which misses the noise causes)")
@@ -133,18 +142,29 @@ def main():
         housing_check(binary, case_names, out, log)
         return
 
-    cases = {cname: prepare_case(binary, cname, out, log) for cname in case_names}
-
-    specs = plan(case_names, args.seeds, args.quick, categories)
+    specs = plan(case_names, args.seeds, args.quick, categories) \
+        + plan_issue38(case_names, args.seeds, args.quick, categories)
     if args.only:
         keep = set(args.only.split(","))
-        specs = [s for s in specs if s["tag"] in keep or s["category"] in keep or any(e in keep for e in s["effects"])]
+        specs = [s for s in specs if s["tag"] in keep or s["category"] in keep or any(e in keep for e in s["effects"])
+                 or s.get("synth_effect") in keep]
+    if not specs:
+        sys.exit("no campaign planned (check --only / --categories)")
+    # the model tables are mapped only for the cases a planned campaign needs (synth_own needs none)
+    cases = {cname: prepare_case(binary, cname, out, log) for cname in case_names
+             if any(s["case"] == cname and s["category"] != "synth_own" and not s.get("synth") for s in specs)}
     results, todo = [], []
     for s in specs:
         cid = f"{s['case']}/s{s['seed']}/{s['tag']}"
         cdir = out / "campaigns" / s["case"] / f"s{s['seed']}" / s["tag"]
-        c = cases[s["case"]]
-        if s["category"] == "multi_oil":
+        c = cases.get(s["case"])
+        if s["category"] == "synth_own":
+            truth, why = build_synth_campaign(s, binary, cdir)
+        elif s.get("synth"):  # outliers made by synth
+            truth, why = build_synth_outlier(s, binary, cdir)
+        elif s["category"] in ("order", "outliers"):
+            truth, why = build_robustness(s, c, cdir)
+        elif s["category"] == "multi_oil":
             truth, why = build_multi_oil_campaign(s, c, cdir)
         elif "form" in s:
             model, why = c.form_table(*s["form"])
@@ -158,16 +178,25 @@ def main():
             continue
         todo.append((cid, s, truth, cdir))
 
+    def diagnose(s, truth, cdir):
+        if args.reuse and truth["recordings_unchanged"] and (cdir / "diagnose.json").exists():
+            return json.loads((cdir / "diagnose.json").read_text()), 0.0
+        config = ROOT / truth["config"] if "config" in truth else cases[s["case"]].config  # synth_own: as shipped
+        return run_diagnose(binary, config, cdir, truth.get("diagnose_args", []))
+
     def work(item):
         cid, s, truth, cdir = item
-        if args.reuse and truth["recordings_unchanged"] and (cdir / "diagnose.json").exists():
-            diag, dt = json.loads((cdir / "diagnose.json").read_text()), 0.0
+        if truth.get("runs"):  # one campaign written several ways (order): each file diagnosed
+            runs = [diagnose(s, truth, cdir / sub) for sub in truth["runs"]]
+            diag, dt = [d for d, _ in runs], sum(t for _, t in runs)
+            summary = " || ".join((d.get("summary") or "")[:130] for d in diag)
         else:
-            diag, dt = run_diagnose(binary, cases[s["case"]].config, cdir)
+            diag, dt = diagnose(s, truth, cdir)
+            summary = diag.get("summary") or ""
         sc = score(truth, diag)
         return {"id": cid, "truth": {k: v for k, v in truth.items() if k != "rows"}, "score": sc, "seconds": dt,
                 "reused": dt == 0.0,
-                "summary": (diag.get("summary") or "")[:400]}
+                "summary": summary[:400]}
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as ex:
         for k, res in enumerate(ex.map(work, todo)):

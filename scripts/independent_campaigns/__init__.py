@@ -9,6 +9,9 @@ Independent blind campaigns for `gearloss diagnose`, one module per stage:
   forms        the model-form axes, a case's forms, derived cases with another form or oil
   campaigns    a case's shared setup, the plan, one campaign's recordings.csv + truth.json
   multi_oil    multi-oil campaigns: per-oil model tables, per-oil effects, the `oil` column
+  synth_own    issue 38: campaigns from `gearloss synth` itself (confidence when it is earned)
+  robustness   issue 38: row order (three orderings; a drift with a `run` column) and outliers
+  outside_model issue 38: outside the library, the final model's residual and the recovered form
   scoring      diagnose run blind, the outcome of each campaign
   tables       scores.md's tables, failures.md, each category's headline numbers
   proof_doc    docs/diagnosis-proof.md (targets, per-category and per-case tables)

@@ -14,7 +14,7 @@ import math
 import random
 
 from .cases import CASES, OILS_DIR, ROOT, Oil, derive_case, oil_family, oil_path, read_thermal
-from .effects import ACCEPT, EFFECTS, LIBRARY, OUTSIDE, THERMAL_ONLY, Ctx
+from .effects import ACCEPT, EFFECTS, LIBRARY, ORDERED, OUTSIDE, THERMAL_ONLY, Ctx
 from .forms import AXES, alternatives, case_forms, checked_forms, expected_id, rewrite_case
 from .heat_balance import T_MAX_NULL, Heat, heat_check, steady_temperature
 from .model_table import ModelTable
@@ -22,7 +22,8 @@ from .numerics import mean
 
 # An effect must show on its own at least this many noise standard deviations per point (below_noise).
 DETECTABLE = 1.0
-CATEGORIES = ["single", "outside", "two", "three", "form", "form_effect", "multi_oil", "null"]
+CATEGORIES = ["single", "outside", "two", "three", "form", "form_effect", "multi_oil", "null",
+              "synth_own", "order", "outliers"]  # the last three: issue 38 (synth_own.py, robustness.py)
 MULTI_OIL_KINDS = ["common", "per_oil", "both"]
 
 
@@ -335,6 +336,10 @@ def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
         order_kind = "speed outer, torque inner"
     nrows = len(order)
     drift, s_loss, s_temp, fmt = draw_conditions(rng)
+    # conditions a category fixes (order, outliers): the draws above are made all the same, so
+    # the other campaigns' recordings do not change
+    fix = spec.get("conditions", {})
+    drift, s_loss, fmt = fix.get("drift", drift), fix.get("noise_loss", s_loss), fix.get("format", fmt)
     form = None
     if case_model is not None:  # form change: detectable against the noise, else not built
         d = mean(abs(model.get("P_total_W", i, ctx.t0[i]) / case_model.get("P_total_W", i, ctx.t0[i]) - 1)
@@ -353,6 +358,7 @@ def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
         truth_rows.append(trow)
         if row is None:
             continue
+        row["run"] = str(k + 1)  # the test order (written only where a `run` column is recorded)
         rows.append(row)
         trow["null_oil_temp_C"] = steady_temperature(null_ctx, i, ta, [], k)  # the balance `diagnose` expects
         if case_model is not None:  # what `diagnose` compares with: the case's own form
@@ -362,14 +368,22 @@ def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
     why = below_noise(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, heat.kind == "fixed")
     if why:
         return None, why
-    fmt, unchanged = write_recordings(outdir, rows, fmt)
+    # effects along the run order are recorded with a `run` column (issue 38: row order is not run order);
+    # `shuffle_file` writes the rows in another order than the run's, so only that column tells it
+    ordered = any(e.name in ORDERED for e in effects)
+    if ordered and fix.get("shuffle_file"):
+        rows = list(rows)
+        random.Random(f"{spec['case']}|{spec['tag']}|{spec['seed']}|file order").shuffle(rows)
+    fmt, unchanged = write_recordings(outdir, rows, fmt, lead=("run",) if ordered else ())
     size_loss, size_temp = visible_size([x for x in truth_rows if "dropped" not in x], heat.kind == "fixed")
     truth = {"case": spec["case"], "tag": spec["tag"], "seed": spec["seed"], "category": spec["category"],
              "effects": [{"name": e.name, "params": e.params, "truth_parameter": e.truth(ctx)} for e in effects],
              "points": len(rows), "dropped_points": len(truth_rows) - len(rows) + len(dropped),
              "noise_loss": s_loss, "noise_temp_K": s_temp, "ambient_drift_K": drift, "order": order_kind,
              "format": fmt, "heat": heat.kind, "size_loss_rel": size_loss, "size_temp_rms_K": size_temp,
-             "recordings_unchanged": unchanged, "rows": truth_rows}
+             "recordings_unchanged": unchanged, "rows": truth_rows, "run_column": ordered,
+             "noise_loss_W": math.sqrt(mean((s_loss * x["P_recorded_noiseless_W"]) ** 2
+                                            for x in truth_rows if "dropped" not in x))}
     if form:
         truth["form"] = form
     (outdir / "truth.json").write_text(json.dumps(truth, indent=1))

@@ -32,14 +32,20 @@ ACCEPT = {
     "hot_loss": set(),
     "torque2_band": set(),
     "running_in": set(),
+    "speed_power": set(),
+    "visc_loss": set(),
+    # a loss drifting linearly over the recorded run order (order campaigns, with a `run` column)
+    "loss_drift": set(),
     # per-oil effects of the multi-oil campaigns (multi_oil.py): named for that oil only
     "oil_visc_factor": {"oil_viscosity"},
     "oil_mesh_friction": {"mesh_friction"},
 }
 LIBRARY = ["aero_drag", "churning_speed", "bearing_visc_drag", "seal_extra", "mesh_low_film", "visc_shift",
            "heat_factor", "forced_convection", "sensor_gain", "sensor_offset", "pump_loss"]
-OUTSIDE = ["speed_step", "hot_loss", "torque2_band", "running_in"]
-THERMAL_ONLY = {"heat_factor", "forced_convection", "hot_loss"}  # need a stabilised heat path
+OUTSIDE = ["speed_step", "hot_loss", "torque2_band", "running_in", "speed_power", "visc_loss"]
+# effects acting along the row (test) order: their campaigns carry a `run` column giving that order
+ORDERED = {"running_in", "loss_drift"}
+THERMAL_ONLY = {"heat_factor", "forced_convection", "hot_loss", "visc_loss"}  # need a stabilised heat path
 
 
 # ----------------------------------------------------------------------------------------
@@ -368,6 +374,49 @@ class RunningIn(Effect):
         return self.r0 * math.exp(-k / (self.tau_frac * self.nrows)) * ctx.m.get("P_total_W", i, t)
 
 
+class SpeedPower(Effect):
+    """OUTSIDE: a load-independent loss A (n/n_med)^p with an exponent no candidate has:
+    p in [0.3, 0.6] (below the seals' n^1) or [3.9, 4.6] (above windage's n^2.9)."""
+    name = "speed_power"
+
+    def setup(self, ctx, r):
+        self.p = self.rng.uniform(0.3, 0.6) if self.rng.random() < 0.5 else self.rng.uniform(3.9, 4.6)
+        self.A = self.size_to(ctx, lambda i: (ctx.n[i] / ctx.n_med) ** self.p, r)
+        self.params = {"W_at_n_med": self.A, "n_med_rpm": ctx.n_med, "speed_exponent": self.p}
+
+    def dloss(self, ctx, i, t, k):
+        return self.A * (ctx.n[i] / ctx.n_med) ** self.p
+
+
+class ViscLoss(Effect):
+    """OUTSIDE: a speed- and load-independent viscous loss A (nu/nu_med)^p, p in [0.8, 1.2]
+    (a viscous pump or a throttled oil supply; the library's viscous drags all rise with speed)."""
+    name = "visc_loss"
+
+    def setup(self, ctx, r):
+        self.p = self.rng.uniform(0.8, 1.2)
+        self.nu_med = median(ctx.oil.nu(t) for t in ctx.t0.values())
+        self.A = self.size_to(ctx, lambda i: (ctx.oil.nu(ctx.t0[i]) / self.nu_med) ** self.p, r)
+        self.params = {"W_at_nu_med": self.A, "nu_med_cSt": self.nu_med, "viscosity_exponent": self.p}
+
+    def dloss(self, ctx, i, t, k):
+        return self.A * (ctx.oil.nu(t) / self.nu_med) ** self.p
+
+
+class LossDrift(Effect):
+    """ORDER: the loss drifts linearly over the campaign's run order, P (1 + d (k/(N-1) - 1/2)),
+    d = +-(0.12..0.25) from the first to the last test (a seal bedding in, a sensor warming)."""
+    name = "loss_drift"
+
+    def setup(self, ctx, r):
+        self.d = self.rng.choice([-1, 1]) * self.rng.uniform(0.12, 0.25)
+        self.nrows = len(ctx.pts)
+        self.params = {"relative_drift": self.d}
+
+    def dloss(self, ctx, i, t, k):
+        return self.d * (k / max(self.nrows - 1, 1) - 0.5) * ctx.m.get("P_total_W", i, t)
+
+
 EFFECTS = {c.name: c for c in [AeroDrag, ChurningSpeed, BearingViscDrag, SealExtra, MeshLowFilm, ViscShift,
                                HeatFactor, ForcedConvection, SensorGain, SensorOffset, PumpLoss,
-                               SpeedStep, HotLoss, Torque2Band, RunningIn]}
+                               SpeedStep, HotLoss, Torque2Band, RunningIn, SpeedPower, ViscLoss, LossDrift]}

@@ -18,16 +18,33 @@ PARAM_TOLERANCE = 0.15  # fitted parameters within 15 % of the truth (factors by
 # (category, index into tables.measures, target text, test on (count, n), or None: reported, no target)
 TARGETS = [
     ("single", 0, ">= 95 % on every gearbox", None),  # tested per case below
-    ("two", 0, ">= 90 %", lambda k, n: k >= 0.90 * n),
-    ("two", 1, ">= 80 %", lambda k, n: k >= 0.80 * n),
+    ("two", 0, ">= 95 % (issue 38)", lambda k, n: k >= 0.95 * n),
+    ("two", 1, ">= 90 % (issue 38)", lambda k, n: k >= 0.90 * n),
     ("three", 0, "no target", None), ("three", 1, "no target", None), ("three", 2, "no target", None),
     ("outside", 0, ">= 85 %", lambda k, n: k >= 0.85 * n),
     ("outside", 1, "never (0)", lambda k, n: k == 0),
+    ("outside", 2, ">= 80 % (issue 38)", lambda k, n: k >= 0.80 * n),
+    ("outside", 3, ">= 70 % (issue 38)", lambda k, n: k >= 0.70 * n),
+    ("outside", 4, "reported", None),
     ("form", 0, ">= 85 %", lambda k, n: k >= 0.85 * n),
     ("form", 1, "reported apart, not correct", None),
     ("form_effect", 0, "no target", None),
     ("multi_oil", 0, "no target", None), ("multi_oil", 1, "present in every campaign", lambda k, n: k == n),
     ("null", 0, ">= 97 %", lambda k, n: k >= 0.97 * n),
+    # issue 38's own categories (synth_own.py, robustness.py)
+    ("synth_own", 0, ">= 90 %", lambda k, n: k >= 0.90 * n),
+    ("synth_own", 1, ">= 90 %", lambda k, n: k >= 0.90 * n),
+    ("synth_own", 2, ">= 90 %", lambda k, n: k >= 0.90 * n),
+    ("synth_own", 3, "reported", None),
+    ("synth_own", 4, "every campaign", lambda k, n: k == n),
+    ("order", 0, "every campaign", lambda k, n: k == n),
+    ("order", 1, "every campaign", lambda k, n: k == n),
+    ("order", 2, "every campaign", lambda k, n: k == n),
+    ("order", 3, "every campaign", lambda k, n: k == n),
+    ("outliers", 0, "every campaign", lambda k, n: k == n),
+    ("outliers", 1, "every campaign", lambda k, n: k == n),
+    ("outliers", 2, "every campaign", lambda k, n: k == n),
+    ("outliers", 3, "every campaign", lambda k, n: k == n),
 ]
 
 TRUTH_TEXT = """\
@@ -68,6 +85,14 @@ CATEGORY_TEXT = """\
 | form + effect | a form change with a 4-6 % torque-sensor offset or windage-like drag | both in the top two findings |
 | multi-oil | 2-3 oils of one family on the same grid (column `oil` = a path relative to the recordings); a common effect (windage-like, sensor offset, seals, pump, heat path), a per-oil one (that oil's viscosity x 1.3-1.6 or / 1.3-1.6 at every temperature, or its mesh friction +-15-30 %), or one of each | every truth named with the right scope: `"oil": null` for a common effect, `"oil": "<the column text>"` for a per-oil one (`oil_viscosity`, `mesh_friction`) |
 | null | nothing concealed | `no_significant_mismatch` |
+| synth's own heat path | `gearloss synth` itself: one library effect (6-14 % of the loss, heat path x 0.75-0.85 or 1.2-1.3), 9 or 16 points, 1-3 % loss noise, diagnosed without and with `--loss-uncertainty`; plus the 3 x 3 `synth --effect mesh_friction=1.2` at 1.5 % | the effect as top finding AND `missing_physics`; 3 x 3: no resonance / local-contact lead, loss noise used >= its stated floor and >= half the true noise, factor within 5 % |
+| row order | one campaign (no ambient drift, nothing along the run) written sorted by speed, by torque and shuffled, no run column; a true drift (linear or running-in) with a `run` column, rows shuffled | the same verdict and top finding for the three files, `run_order.recorded` false and no drift / running-in hypothesis; with the column: `run_order.recorded` (column `run`) and the drift named |
+| outliers | 1.5 % loss noise, null or windage-like drag; the same with one row's loss +20 %; 3 x 3 and 4 x 4 campaigns made by `gearloss synth` (true draws from a noise-free twin) | no row whose true noise draws (loss, oil temperature) are both < 2.5 sigma listed as an outlier; the planted row listed |
+
+Outside the library is also scored for the model of the remainder: the final model's cross-validated loss
+residual (library findings + the remainder formula; `remainder_hypothesis.final_cv_rmse_W`) <= 1.5 x the
+campaign's true loss noise, and the form recovered by a formula term (a step or threshold within one grid step
+of the truth in the right variable, a power exponent within +-0.3; scripts/independent_campaigns/outside_model.py).
 """
 
 
@@ -103,7 +128,7 @@ def evaluate_targets(results):
                              measured="not run", met="-"))
             continue
         lab, k, n = measures(rs, cat)[idx]
-        met = "-" if test is None else ("yes" if test(k, n) else "no")
+        met = "-" if test is None or n == 0 else ("yes" if test(k, n) else "no")
         meas = pct(k, n)
         if cat == "single":  # on every gearbox
             per = {c: measures(_scored(results, cat, c), cat)[0] for c in {r["truth"]["case"] for r in rs}}
@@ -201,8 +226,8 @@ def write_proof_doc(path, results, cases_info, run):
         f"scores.md, failures.md) is in the run's OUT directory (`{run['out']}` for this run), not here.\n",
         "The full proof is `scripts/prove-diagnosis.sh --seeds 3` (every shipped case variant, every category; it "
         "rewrites this file and exits 1 when a target is not met). `scripts/prove-diagnosis.sh --short` (ctest "
-        "`prove_diagnosis_short`) runs a fixed set of 11 campaigns on the transfer gearbox (single, two, outside, "
-        "form, null) and fails when a null campaign is not `no_significant_mismatch` or when fewer than the share "
+        "`prove_diagnosis_short`) runs a fixed set of 14 campaigns on the transfer gearbox (single, two, outside, "
+        "form, null, the 3 x 3 synth campaign of issue 38, two outlier campaigns) and fails when a null campaign is not `no_significant_mismatch` or when fewer than the share "
         "stated in the script (85 %) of the others is correct.\n",
     ]
     targets = evaluate_targets(results)

@@ -10,6 +10,9 @@ import subprocess
 import time
 
 from .effects import ACCEPT
+from .outside_model import score_outside_model
+from .robustness import score_order, score_outliers
+from .synth_own import score_synth_own
 
 # Coarse families (what kind of thing went wrong), reported beside strict acceptance, never counted as correct.
 FAMILY = {
@@ -34,12 +37,13 @@ GOOD = {"correct_top", "correct_top_not_confident", "both_named", "all_three_nam
 DIAGNOSE_TIMEOUT_S = 900
 
 
-def run_diagnose(binary, config, cdir):
+def run_diagnose(binary, config, cdir, extra=()):
     t0 = time.time()
     out = cdir / "diagnose.json"
     if out.exists():
         out.unlink()  # never score a stale file
-    cmd = ["nice", "-n", "19", binary, "diagnose", str(config), str(cdir / "recordings.csv"), "--json", str(out)]
+    cmd = ["nice", "-n", "19", binary, "diagnose", str(config), str(cdir / "recordings.csv"), "--json", str(out),
+           *extra]
     try:
         r = subprocess.run(cmd, capture_output=True, text=True, timeout=DIAGNOSE_TIMEOUT_S)
     except subprocess.TimeoutExpired:
@@ -76,6 +80,14 @@ def equivalents(finding):
 
 
 def score(truth, diag):
+    """diag: the diagnose JSON, or for campaigns diagnosed several times (order) the list of them."""
+    if isinstance(diag, list):
+        bad = [d for d in diag if "error" in d]
+        res = score(truth, bad[0] if bad else diag[0])  # the first file's fields, for the tables
+        if not bad:
+            score_order(truth, diag, res)
+            res["correct"] = res["outcome"] == "correct"
+        return res
     eff = [e["name"] for e in truth["effects"]]
     res = {"verdict": diag.get("verdict", "error" if "error" in diag else "?"), "error": diag.get("error")}
     finds = diag.get("findings") or []
@@ -88,11 +100,20 @@ def score(truth, diag):
     res["fitted"] = first_param(finds[0]) if finds else (None, None)
     v = res["verdict"]
     cat = truth["category"]
-    acc = [ACCEPT[e] for e in eff]
+    acc = [ACCEPT.get(e, {e}) for e in eff]  # synth_own: the library effect itself
     res["top_ok"] = any(res["top"] in a for a in acc)
     res["param_ratio"] = None
     if res["error"]:
         res["outcome"], res["correct"] = "error", False
+        return res
+    if cat in ("synth_own", "order", "outliers"):
+        if cat == "synth_own":
+            score_synth_own(truth, diag, res)
+        elif cat == "outliers":
+            score_outliers(truth, diag, res)
+        else:
+            score_order(truth, [diag], res)
+        res["correct"] = res["outcome"] == "correct"
         return res
     if cat == "null":
         res["outcome"] = "correct" if v == NULL_VERDICT else ("false_alarm_named" if res["top"] else "false_alarm_unexplained")
@@ -103,6 +124,7 @@ def score(truth, diag):
             res["outcome"] = "wrong_confident_name"
         else:
             res["outcome"] = "correct_not_confident"
+        score_outside_model(truth, diag, res)
     elif cat == "single":
         if v == NULL_VERDICT:
             res["outcome"] = "missed"

@@ -14,6 +14,7 @@ CATEGORY_TITLES = {
     "single": "single in-library effect", "two": "two effects", "three": "three effects",
     "outside": "outside the library", "form": "model form", "form_effect": "model form + small effect",
     "multi_oil": "multi-oil", "null": "null",
+    "synth_own": "synth's own heat path", "order": "row order", "outliers": "outliers",
 }
 
 
@@ -96,7 +97,42 @@ def measures(rs, cat):
                 ("all three named (third)", o("all_three_named"), n)]
     if cat == "outside":
         return [("not confident (unexplained / partly explained)", o("correct_not_confident"), n),
-                ("wrong confident library name", o("wrong_confident_name"), n)]
+                ("wrong confident library name", o("wrong_confident_name"), n),
+                ("final model cross-validated residual <= 1.5 x true noise", c(lambda s: s.get("final_ok")), n),
+                ("form recovered by the remainder formula", c(lambda s: s.get("form_ok")), n),
+                ("remainder formula present", c(lambda s: s.get("formula")), n)]
+    if cat == "synth_own":
+        one = [r for r in rs if r["truth"].get("kind") != "mesh3x3"]
+        m3 = [r for r in rs if r["truth"].get("kind") == "mesh3x3"]
+        k = lambda sub, pred: sum(1 for r in sub if pred(r))
+        dec = [r for r in one if r["truth"].get("declared")]
+        est = [r for r in one if not r["truth"].get("declared")]
+        return [("right top finding with missing_physics", k(one, lambda r: r["score"]["correct"]), len(one)),
+                ("same, noise estimated (no declared uncertainty)", k(est, lambda r: r["score"]["correct"]), len(est)),
+                ("same, --loss-uncertainty declared", k(dec, lambda r: r["score"]["correct"]), len(dec)),
+                ("right top finding (any verdict)", k(one, lambda r: r["score"].get("top_ok")), len(one)),
+                ("3x3 mesh_friction=1.2: no false lead, noise >= floor, factor within 5 %",
+                 k(m3, lambda r: r["score"]["correct"]), len(m3))]
+    if cat == "order":
+        tri = [r for r in rs if r["truth"].get("kind") == "orderings"]
+        dr = [r for r in rs if r["truth"].get("kind") == "drift"]
+        k = lambda sub, pred: sum(1 for r in sub if pred(r["score"]))
+        return [("three orderings: same verdict and top finding", k(tri, lambda x: x.get("identical")), len(tri)),
+                ("three orderings: no drift / running-in hypothesis", k(tri, lambda x: x.get("no_order_hypothesis")),
+                 len(tri)),
+                ("three orderings: run_order.recorded false in the JSON", k(tri, lambda x: x.get("recorded_false")),
+                 len(tri)),
+                ("`run` column with a true drift: drift named", k(dr, lambda x: x.get("drift_named")), len(dr))]
+    if cat == "outliers":
+        cl = [r for r in rs if r["truth"].get("kind") == "clean"]
+        pl = [r for r in rs if r["truth"].get("kind") == "planted"]
+        sy = [r for r in rs if r["truth"].get("synth")]
+        return [("no row within 2.5 x the noise listed", c(lambda s: not s.get("false_outliers")), n),
+                ("campaigns without an outlier: none listed within 2.5 x the noise",
+                 sum(1 for r in cl if not r["score"].get("false_outliers")), len(cl)),
+                ("planted +20 % row listed", sum(1 for r in pl if r["score"].get("planted_listed")), len(pl)),
+                ("made by synth (3 x 3, 4 x 4): none listed within 2.5 x the noise",
+                 sum(1 for r in sy if not r["score"].get("false_outliers")), len(sy))]
     if cat == "form":
         return [("correct form (top finding)", o("correct"), n),
                 ("form named among the top finding's equivalents", o("named_among_equivalents"), n)]
@@ -239,6 +275,7 @@ def tabulate(results, cases_info):
                     names[r["score"]["top"]] = names.get(r["score"]["top"], 0) + 1
             p(f"| {'**all**' if e == 'all' else e} | {len(rs)} | {pct(cnt('correct_not_confident'), len(rs))} | "
               f"{cnt('wrong_confident_name')} | {cnt('missed')} | {', '.join(f'{k} {v}' for k, v in names.items()) or '-'} |")
+    out += issue38_tables(by("outside"), by("synth_own"), by("order"), by("outliers"))
     out += per_case_table("Null campaigns (correct = no_significant_mismatch)", by("null"), [
         ("correct", share(lambda x: x["outcome"] == "correct")), ("false alarm with a name", count("false_alarm_named")),
         ("false alarm without a name", count("false_alarm_unexplained")),
@@ -325,4 +362,66 @@ def skip_table(results):
            "|---|---|---|---|"]
     for (cat, why), ids in sorted(reasons.items()):
         out.append(f"| {CATEGORY_TITLES.get(cat, cat)} | {why} | {len(ids)} | {', '.join(ids[:3])} |")
+    return out
+
+
+def issue38_tables(outside, own, order, outl):
+    """Outside: modelled and form recovered per effect; synth_own per effect; order and outliers per campaign."""
+    out = []
+    if outside:
+        out += ["\n## Outside the library: the final model and the recovered form (issue 38)\n",
+                "final = cross-validated loss residual of library findings + remainder formula over the TRUE loss noise "
+                "(the report's own ratio in parentheses where given); form = the remainder formula's term recovers the "
+                "effect's shape (scripts/independent_campaigns/outside_model.py).\n",
+                "| effect | n | final <= 1.5 x noise | form recovered | formula present | median final / noise |",
+                "|---|---|---|---|---|---|"]
+        for e in OUTSIDE + ["all"]:
+            rs = outside if e == "all" else [r for r in outside if r["truth"]["effects"][0]["name"] == e]
+            if not rs:
+                continue
+            k = lambda key: sum(1 for r in rs if r["score"].get(key))
+            fin = [r["score"]["final_over_true_noise"] for r in rs if r["score"].get("final_over_true_noise") is not None]
+            out.append(f"| {'**all**' if e == 'all' else e} | {len(rs)} | {pct(k('final_ok'), len(rs))} | "
+                       f"{pct(k('form_ok'), len(rs))} | {k('formula')} | {f'{median(fin):.2f}' if fin else '-'} |")
+    if own:
+        out += ["\n## synth's own heat path (correct = right top finding AND missing_physics)\n",
+                "| effect | n | correct, noise estimated | correct, declared | right top (any verdict) | verdicts given |",
+                "|---|---|---|---|---|---|"]
+        for e in sorted({r["truth"]["synth_effect"] for r in own if r["truth"]["kind"] != "mesh3x3"}) + ["all"]:
+            rs = [r for r in own if r["truth"]["kind"] != "mesh3x3" and (e == "all" or r["truth"]["synth_effect"] == e)]
+            est = [r for r in rs if not r["truth"]["declared"]]
+            dec = [r for r in rs if r["truth"]["declared"]]
+            ok = lambda sub: pct(sum(1 for r in sub if r["score"]["correct"]), len(sub))
+            verdicts = {}
+            for r in rs:
+                verdicts[r["score"]["verdict"]] = verdicts.get(r["score"]["verdict"], 0) + 1
+            out.append(f"| {'**all**' if e == 'all' else e} | {len(rs)} | {ok(est)} | {ok(dec)} | "
+                       f"{pct(sum(1 for r in rs if r['score'].get('top_ok')), len(rs))} | "
+                       f"{', '.join(f'{k} {v}' for k, v in sorted(verdicts.items()))} |")
+        m3 = [r for r in own if r["truth"]["kind"] == "mesh3x3"]
+        if m3:
+            out += ["\n| 3 x 3 mesh_friction=1.2, 1.5 % (synth seed) | verdict | top | factor | loss noise used | false lead | correct |",
+                    "|---|---|---|---|---|---|---|"]
+            for r in m3:
+                s = r["score"]
+                f = s["fitted"][1] if s.get("top_ok") and s["fitted"] else None
+                ftxt = "-" if f is None else f"{f:.4f}"
+                ntxt = "-" if s.get("noise_used") is None else f"{100 * s['noise_used']:.2f} %"
+                out.append(f"| {r['id']} | {s['verdict']} | {s['top']} | {ftxt} | {ntxt} | "
+                           f"{'yes' if s.get('false_lead') else 'no'} | {'yes' if s['correct'] else 'no'} |")
+    if order:
+        out += ["\n## Row order (three orderings without a run column; a true drift with a `run` column)\n",
+                "| campaign | kind | per ordering: verdict/top | outcome | structure test along row order |",
+                "|---|---|---|---|---|"]
+        for r in order:
+            s = r["score"]
+            out.append(f"| {r['id']} | {r['truth']['kind']} | {'; '.join(s.get('per_ordering', [s['verdict']]))} | "
+                       f"{s['outcome']} | {s.get('structure_along_row_order', '-')} |")
+    if outl:
+        out += ["\n## Outliers (1.5 % loss noise; true noise draws known)\n",
+                "| campaign | listed rows | normal rows listed (abs(z) < 2.5) | planted row | outcome |", "|---|---|---|---|---|"]
+        for r in outl:
+            s = r["score"]
+            out.append(f"| {r['id']} | {s.get('listed')} | {s.get('false_outliers')} | "
+                       f"{r['truth'].get('planted_row') or '-'} | {s['outcome']} |")
     return out
