@@ -353,6 +353,7 @@ def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
         truth_rows.append(trow)
         if row is None:
             continue
+        row["run"] = str(k + 1)  # the test's place in the run order (a rig records it)
         rows.append(row)
         trow["null_oil_temp_C"] = steady_temperature(null_ctx, i, ta, [], k)  # the balance `diagnose` expects
         if case_model is not None:  # what `diagnose` compares with: the case's own form
@@ -362,7 +363,7 @@ def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
     why = below_noise(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, heat.kind == "fixed")
     if why:
         return None, why
-    fmt, unchanged = write_recordings(outdir, rows, fmt)
+    fmt, unchanged = write_recordings(outdir, rows, fmt, lead=["run"])
     size_loss, size_temp = visible_size([x for x in truth_rows if "dropped" not in x], heat.kind == "fixed")
     truth = {"case": spec["case"], "tag": spec["tag"], "seed": spec["seed"], "category": spec["category"],
              "effects": [{"name": e.name, "params": e.params, "truth_parameter": e.truth(ctx)} for e in effects],
