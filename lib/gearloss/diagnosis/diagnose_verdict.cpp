@@ -17,6 +17,12 @@ constexpr double kLossAtNoise = 1.5;
 // The share of a temperature remainder a heat path of another size (the oil's rise above the
 // ambient scaled by a factor) must explain to be named as such.
 constexpr double kHeatPathShare = 0.5;
+// A remainder left after a confident main finding is smaller: at most this many times the noise
+// (RMS beyond it), and at most kSmallerShare of what the findings explained (in units of each
+// channel's noise, the larger channel); else the findings are a partial explanation.
+constexpr double kSmallerMax = 3.0, kSmallerShare = 0.5;
+// A remainder below this multiple of the noise (RMS beyond it) is described as within the noise's size.
+constexpr double kWithinNoise = 0.1;
 
 // The oil temperature left after the findings, against the oil's predicted rise above the
 // ambient: a heat path (thermal resistance) that differs by a factor f leaves f times the rise.
@@ -55,30 +61,71 @@ void judge(Diagnosis& d, const Adequacy& ad, const DiagnoseOptions& opt, const E
         return;
     }
     // Present: the selection's evidence (BIC, cross-validation, resamples). The whole cause:
-    // what the findings leave is noise. A remainder only in the oil temperature, with the loss
-    // at the noise, leaves the main finding confident and is reported apart.
+    // what the findings leave is noise. With the loss at the noise, a smaller remainder (in the
+    // oil temperature, or one only the tests' combination sees) leaves the main finding
+    // confident and is reported apart, sized and located.
     const double loss_noise = ad.noise_loss.sigma;
     const bool loss_at_noise = ad.noise_loss.known() && !ad.loss_fails && ad.rms_loss <= kLossAtNoise * loss_noise &&
                                ad.fit_loss.p_value >= opt.confidence_level &&
                                ad.structure_loss.p_value >= opt.confidence_level;
+    // What fails with the loss at the noise: the oil temperature's own tests, or only the
+    // combination of all (no single test), a structure smaller than any test alone sees.
     const bool temperature_left = !ad.adequate && ad.temp_fails && loss_at_noise && ad.noise_temp.known();
-    d.verdict = ad.adequate || temperature_left ? "missing_physics" : "partly_explained";
+    const bool combination_left = !ad.adequate && !ad.temp_fails && loss_at_noise;
+    // The remainder beyond the noise in its channel, against what the findings explained.
+    double scale2 = 0;
+    for (const Obs& o : E.obs()) scale2 += o.scale * o.scale / static_cast<double>(E.obs().size());
+    const auto beyond = [](double rms, double sigma) { return std::sqrt(std::max(0.0, rms * rms / (sigma * sigma) - 1)); };
+    const auto explained = [](double before, double after, double sigma) {
+        return sigma > 0 ? std::sqrt(std::max(0.0, before * before - after * after)) / sigma : 0.0;
+    };
+    double explained_over_noise = explained(d.rmse_before, d.rmse_after, loss_noise * std::sqrt(scale2));
+    if (E.has_temperature() && ad.noise_temp.known())
+        explained_over_noise =
+            std::max(explained_over_noise, explained(d.temp_rmse_before, d.temp_rmse_after, ad.noise_temp.sigma));
+    const auto smaller = [&](double over_noise) {
+        return over_noise <= std::min(kSmallerMax, kSmallerShare * explained_over_noise);
+    };
+    const double left_temp = ad.noise_temp.known() ? beyond(ad.rms_temp, ad.noise_temp.sigma) : 0.0;
+    const double left_loss = ad.noise_loss.known() ? beyond(ad.rms_loss, loss_noise) : 0.0;
+    const bool apart = (temperature_left && smaller(left_temp)) || (combination_left && smaller(std::max(left_temp, left_loss)));
+    d.verdict = ad.adequate || apart ? "missing_physics" : "partly_explained";
     d.main_finding = {d.findings.front().effect, d.verdict == "missing_physics" ? "confident" : "tentative"};
-    if (temperature_left) {
+    // The channel of a remainder only the combination sees: the one with the smaller p-value.
+    const auto min_p = [](const adequacy::FitTest& f, const adequacy::StructureTest& st) {
+        return std::min(f.p_value, st.p_value);
+    };
+    const bool in_temperature = temperature_left || (combination_left && E.has_temperature() && ad.noise_temp.known() &&
+                                                     min_p(ad.fit_temp, ad.structure_temp) < min_p(ad.fit_loss, ad.structure_loss));
+    if (apart && combination_left && !in_temperature) {
+        Diagnosis::RemainingStructure r;
+        r.channel = "loss";
+        r.rms_over_noise = left_loss;
+        r.along = ad.structure_loss.p_value < ad.fit_loss.p_value ? ad.structure_loss.coordinate : "";
+        r.text = r.rms_over_noise >= kWithinNoise
+                     ? fmt::format("loss {:.2g} times the noise ({:.3g} %) RMS beyond it", r.rms_over_noise, 100 * loss_noise)
+                     : fmt::format("a loss structure within the noise's size ({:.3g} %)", 100 * loss_noise);
+        if (!r.along.empty()) r.text += ", along " + r.along;
+        d.remaining = "the main finding is confident (the loss is at the noise); a smaller structure remains, apart from it: " +
+                      r.text + "\n" + ad.text;
+        d.remaining_structure = std::move(r);
+    } else if (apart && in_temperature) {
         Diagnosis::RemainingStructure r;
         r.channel = "oil_temperature";
-        const double sigma = ad.noise_temp.sigma, beyond = std::sqrt(std::max(0.0, ad.rms_temp * ad.rms_temp - sigma * sigma));
-        r.rms_over_noise = beyond / sigma;
+        const double sigma = ad.noise_temp.sigma, excess = left_temp * sigma;  // K RMS beyond the noise
+        r.rms_over_noise = left_temp;
         const auto [factor, share] = heat_path_factor(E, pf, h);
         if (share >= kHeatPathShare) {
             r.along = "power";
             r.text = fmt::format("oil temperature {:.2g} K RMS beyond the noise ({:.2g} K), along power (the oil's rise above "
                                  "the ambient): the heat path differs by ~{:.0f} % ({} of the rise than the model's)",
-                                 beyond, sigma, 100 * std::abs(factor), factor > 0 ? "more" : "less");
+                                 excess, sigma, 100 * std::abs(factor), factor > 0 ? "more" : "less");
         } else {
-            r.along = ad.structure_temp.p_value < opt.adequacy_level ? ad.structure_temp.coordinate : "";
-            r.text = fmt::format("oil temperature {:.2g} K RMS beyond the noise ({:.2g} K){}", beyond, sigma,
-                                 r.along.empty() ? std::string() : ", along " + r.along);
+            r.along = ad.structure_temp.p_value < ad.fit_temp.p_value ? ad.structure_temp.coordinate : "";
+            r.text = r.rms_over_noise >= kWithinNoise
+                         ? fmt::format("oil temperature {:.2g} K RMS beyond the noise ({:.2g} K)", excess, sigma)
+                         : fmt::format("an oil temperature structure within the noise's size ({:.2g} K)", sigma);
+            if (!r.along.empty()) r.text += ", along " + r.along;
         }
         d.remaining = "the main finding is confident (the loss is at the noise); a smaller structure remains, apart from it: " +
                       r.text + "\n" + ad.text;
