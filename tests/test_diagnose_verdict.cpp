@@ -96,6 +96,37 @@ TEST_CASE("a small synth campaign names its single effect with confidence, again
     CHECK(floored >= 1);
 }
 
+TEST_CASE("a confident main finding, and a smaller structure left apart from it", "[diagnosis][verdict]") {
+    // Mesh friction 20 % high (loss RMSE ~60 W -> the noise, oil ~8 K too hot -> the noise),
+    // and the oil 1.5 K hotter at every test at 800 rpm than any candidate makes it (a rig
+    // effect at one speed). The loss is at the noise after the finding; what is left is a
+    // structure in the oil temperature along speed, 4 of 20 points 1.5 K off: RMS sqrt(4/20)
+    // x 1.5 = 0.67 K, about 1.5 times the noise beyond it. The verdict names the main finding
+    // with confidence and reports that structure apart, sized and located, with or without a
+    // declared noise.
+    const auto c = transfer();
+    const auto g = grid({400, 600, 800, 1000, 1200}, {100, 175, 250, 325});
+    auto rows = cells_of(synth(c, g, {{"mesh_friction", 1.2}}, 0.015, 6));
+    for (size_t k = 1; k < rows.size(); ++k)
+        if (std::abs(std::stod(rows[k][0]) - 800) < 1) rows[k][3] = std::to_string(std::stod(rows[k][3]) + 1.5);
+    const auto rec = diagnosis::read_recordings_text(csv_of(rows), "band.csv");
+    diagnosis::DiagnoseOptions declared;
+    declared.loss_uncertainty = 0.015;
+    declared.temp_uncertainty = 0.4;
+    for (const auto& opt : {diagnosis::DiagnoseOptions{}, declared}) {
+        const auto d = diagnosis::diagnose(c.model, rec, opt);
+        CHECK(d.verdict == "missing_physics");
+        CHECK(d.main_finding.effect == "mesh_friction");
+        CHECK(d.main_finding.confidence == "confident");
+        REQUIRE(d.remaining_structure);
+        CHECK(d.remaining_structure->channel == "oil_temperature");
+        CHECK(d.remaining_structure->along == "speed");
+        CHECK(d.remaining_structure->rms_over_noise > 1.0);
+        CHECK(d.remaining_structure->rms_over_noise < 3.0);
+        CHECK(contains(diagnosis::diagnosis_json(d), "\"remaining_structure\""));
+    }
+}
+
 TEST_CASE("run order: a run, date or time cell as a number that grows with the order", "[diagnosis][verdict]") {
     using diagnosis::run_order_key;
     CHECK(*run_order_key("run", "17") == 17);

@@ -85,6 +85,8 @@ void DiagnoseOptions::validate() const {
     if (max_findings < 1 || max_findings > 10) bad("max_findings", "give 1 to 10");
     if (!(loss_uncertainty >= 0 && loss_uncertainty <= 0.5)) bad("--loss-uncertainty", "give 0 to 50 % (0: estimated)");
     if (!(temp_uncertainty >= 0 && temp_uncertainty <= 20)) bad("--temp-uncertainty", "give 0 to 20 K (0: estimated)");
+    if (!(loss_noise_floor >= 0 && loss_noise_floor <= 0.5)) bad("loss_noise_floor", "give 0 to 50 % (0: none)");
+    if (!(temp_noise_floor >= 0 && temp_noise_floor <= 20)) bad("temp_noise_floor", "give 0 to 20 K (0: none)");
     if (!(adequacy_level > 0 && adequacy_level < 0.5)) bad("adequacy_level", "must be within 0..0.5");
     if (!(confidence_level >= adequacy_level && confidence_level < 0.5))
         bad("confidence_level", "must be within adequacy_level..0.5");

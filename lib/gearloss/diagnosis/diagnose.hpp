@@ -12,10 +12,13 @@
 // K-fold cross-validated gain, and stability across bootstrap resamples; each
 // addition is followed by a joint refit and a test of whether every earlier
 // effect is still needed. What the accepted hypothesis leaves is then tested
-// against the measurement noise (adequacy.hpp): a name is confident
-// (missing_physics) only when the remainder is noise and the tests had the power
-// to see one as large as the noise; otherwise the verdict is partly_explained and
-// says where the remainder lives, or that the campaign could not show it.
+// against the measurement noise (adequacy.hpp). Whether an effect is present and
+// whether it is the whole cause are two questions: a name is confident
+// (missing_physics) when the selection's evidence holds and what it leaves is noise,
+// or, with the loss at the noise, only a smaller structure reported apart (sized and
+// located); the report says separately whether the tests had the power to show the
+// findings to be the whole cause. Otherwise the verdict is partly_explained and says
+// where the remainder lives.
 #include <functional>
 #include <limits>
 #include <optional>
@@ -56,12 +59,13 @@ struct DiagnoseOptions {
     // than adequacy_level on purpose: naming a cause demands that nothing systematic is left,
     // and several tests each just short of failing are a remainder, not noise.
     double confidence_level = 0.05;
-    // ... and only when those tests could have seen a remainder: one of this RMS (a multiple of
-    // each channel's noise) must fail them in at least half such campaigns (adequacy.hpp
-    // detectable_remainder). With the noise estimated from a few points' neighbour differences
-    // a remainder as large as the noise itself passes unseen (3 x 3: about twice it); the
-    // findings are then named, but not as the whole cause (`partly_explained`, saying why).
-    // A declared noise (loss_uncertainty, temp_uncertainty) is known better, so tests more.
+    // The findings are shown to be the whole cause only when those tests could have seen a
+    // remainder: one of this RMS (a multiple of each channel's noise) must fail them in at least
+    // half such campaigns (adequacy.hpp detectable_remainder). With the noise estimated from a
+    // few points' neighbour differences a remainder as large as the noise itself passes unseen
+    // (3 x 3: about twice it); the findings are then still named with confidence (the effect is
+    // present), and the report says that these points cannot show it to be the whole cause
+    // (Diagnosis::completeness). A declared noise is known better, so tests more.
     double confident_detectable = 1.0;
     // Progress messages (a terminal shows them); called from the calling thread only.
     std::function<void(const std::string&)> progress;

@@ -101,7 +101,7 @@ void judge(Diagnosis& d, const Adequacy& ad, const DiagnoseOptions& opt, const E
         Diagnosis::RemainingStructure r;
         r.channel = "loss";
         r.rms_over_noise = left_loss;
-        r.along = ad.structure_loss.p_value < ad.fit_loss.p_value ? ad.structure_loss.coordinate : "";
+        r.along = ad.structure_loss.p_value < opt.confidence_level ? ad.structure_loss.coordinate : "";
         r.text = r.rms_over_noise >= kWithinNoise
                      ? fmt::format("loss {:.2g} times the noise ({:.3g} %) RMS beyond it", r.rms_over_noise, 100 * loss_noise)
                      : fmt::format("a loss structure within the noise's size ({:.3g} %)", 100 * loss_noise);
@@ -121,7 +121,7 @@ void judge(Diagnosis& d, const Adequacy& ad, const DiagnoseOptions& opt, const E
                                  "the ambient): the heat path differs by ~{:.0f} % ({} of the rise than the model's)",
                                  excess, sigma, 100 * std::abs(factor), factor > 0 ? "more" : "less");
         } else {
-            r.along = ad.structure_temp.p_value < ad.fit_temp.p_value ? ad.structure_temp.coordinate : "";
+            r.along = ad.structure_temp.p_value < opt.confidence_level ? ad.structure_temp.coordinate : "";
             r.text = r.rms_over_noise >= kWithinNoise
                          ? fmt::format("oil temperature {:.2g} K RMS beyond the noise ({:.2g} K)", excess, sigma)
                          : fmt::format("an oil temperature structure within the noise's size ({:.2g} K)", sigma);
