@@ -353,6 +353,8 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             s += ". The main finding is confident; apart from it a smaller structure remains: " + d.remaining_structure->text;
         else if (d.verdict == "missing_physics" && !d.completeness.empty() && ad.detectable > opt.confident_detectable)
             s += ". " + d.completeness;
+        else if (d.verdict == "partly_explained" && d.remaining.rfind("the main finding is not certain", 0) == 0)
+            s += ". But " + d.remaining;
         else if (d.verdict == "partly_explained")
             s += ". But what is left is not measurement noise: " + ad.text +
                  ". The names above are partial explanations, not the cause of the whole mismatch";
