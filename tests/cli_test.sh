@@ -87,14 +87,20 @@ check "synth exit 0" test $? -eq 0
 "$bin" diagnose "$src/configs/transfer-box.yaml" "$tmp/rec.csv" --json "$tmp/d.json" \
     --write-config "$tmp/cal.yaml" --residuals "$tmp/res.csv" > "$tmp/d.txt"
 check "diagnose exit 0" test $? -eq 0
-# 9 points with the noise estimated from them: the finding is named, not as the whole cause
-# (a remainder of about twice the noise would pass unseen); with the rig's noise declared
-# (synth's 1.5 % and 0.4 K) the tests see one of 0.85 times it: named with confidence.
+# 9 points with the noise estimated from them: the effect is present (named with confidence),
+# and the report says apart that these points cannot show it to be the whole cause (a
+# remainder of about twice the noise would pass unseen); with the rig's noise declared
+# (synth's 1.5 % and 0.4 K) the tests see one of 0.85 times it: shown to be the whole cause.
+# The file has no run, date or time column: the run order is not recorded.
 check "diagnose json keys" python3 -c "
 import json; d = json.load(open('$tmp/d.json'))
-assert d['verdict'] == 'partly_explained', d['verdict']
+assert d['verdict'] == 'missing_physics', d['verdict']
+assert d['main_finding'] == {'effect': 'constant_parasitic', 'confidence': 'confident'}, d.get('main_finding')
 assert d['adequacy']['detectable_remainder'] > 1.5, d['adequacy']
-assert 'estimated from 9 points' in d['summary'], d['summary']
+assert 'on 9 points' in d['completeness'] and '--loss-uncertainty' in d['completeness'], d['completeness']
+assert d['noise_used']['source'] in ('neighbour differences', 'floor') and d['noise_used']['why'], d['noise_used']
+assert d['noise_used']['loss_relative'] >= 0.01, d['noise_used']
+assert d['run_order'] == {'recorded': False, 'column': None}, d['run_order']
 f = d['findings'][0]
 assert f['effect'] == 'constant_parasitic'
 for k in ('description', 'parameters', 'rmse_before', 'rmse_after', 'cv_rmse_before', 'cv_rmse_after'): assert k in f, k
@@ -105,7 +111,17 @@ check "diagnose with declared noise is confident" python3 -c "
 import json; d = json.load(open('$tmp/d2.json'))
 assert d['verdict'] == 'missing_physics', d['verdict']
 assert d['findings'][0]['effect'] == 'constant_parasitic'
-assert 0.7 < d['adequacy']['detectable_remainder'] < 1.0, d['adequacy']"
+assert 0.7 < d['adequacy']['detectable_remainder'] < 1.0, d['adequacy']
+assert d['noise_used']['source'] == 'declared', d['noise_used']"
+# A run column gives the run order.
+python3 -c "
+rows = open('$tmp/rec.csv').read().split()
+print(rows[0] + ',run'); [print(r + ',' + str(k)) for k, r in enumerate(rows[1:], 1)]" > "$tmp/rec-run.csv"
+"$bin" diagnose "$src/configs/transfer-box.yaml" "$tmp/rec-run.csv" --json "$tmp/d3.json" > "$tmp/d3.txt"
+check "diagnose run column" python3 -c "
+import json; d = json.load(open('$tmp/d3.json'))
+assert d['run_order'] == {'recorded': True, 'column': 'run'}, d['run_order']"
+check "diagnose text says the run order" grep -q 'run order: from the .run. column' "$tmp/d3.txt"
 check "calibrated config loads" bash -c "'$bin' check '$tmp/cal.yaml' > /dev/null"
 check "residuals written" test "$(wc -l < "$tmp/res.csv")" -eq 10
 # Malformed recordings: exit 2 naming the file and line.

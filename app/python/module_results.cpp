@@ -232,6 +232,37 @@ py::dict diagnosis_dict(const diagnosis::Diagnosis& d) {
     py::list outliers;
     for (const auto& o : d.outliers) outliers.append(py::make_tuple(o.row, o.reason));
     out["outliers"] = outliers;
+    // The noise the verdict was judged against, the main finding's confidence, a smaller
+    // structure left apart from it, and the run order (as in `diagnose --json`).
+    py::dict noise;
+    noise["loss_relative"] = d.noise_used.loss_relative;
+    noise["source"] = d.noise_used.source;
+    noise["why"] = d.noise_used.why;
+    noise["oil_temperature_K"] = d.has_temperature ? py::cast(d.noise_used.temp_K) : py::none();
+    out["noise_used"] = noise;
+    if (d.main_finding.effect.empty()) {
+        out["main_finding"] = py::none();
+    } else {
+        py::dict m;
+        m["effect"] = d.main_finding.effect;
+        m["confidence"] = d.main_finding.confidence;
+        out["main_finding"] = m;
+    }
+    out["completeness"] = d.completeness;
+    if (d.remaining_structure) {
+        py::dict r;
+        r["channel"] = d.remaining_structure->channel;
+        r["rms_over_noise"] = d.remaining_structure->rms_over_noise;
+        r["along"] = d.remaining_structure->along;
+        r["text"] = d.remaining_structure->text;
+        out["remaining_structure"] = r;
+    } else {
+        out["remaining_structure"] = py::none();
+    }
+    py::dict run_order;
+    run_order["recorded"] = d.run_order.recorded;
+    run_order["column"] = d.run_order.recorded ? py::cast(d.run_order.column) : py::none();
+    out["run_order"] = run_order;
     if (d.remainder) {
         py::dict r;
         r["formula"] = d.remainder->formula;

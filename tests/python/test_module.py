@@ -259,6 +259,9 @@ class Diagnosis(Tmp):
         self.assertEqual(d.effects, [x["effect"] for x in j["findings"]])
         self.assertAlmostEqual(d.rmse_after_W, j["rmse_after"], delta=1e-9 * j["rmse_after"])
         self.assertEqual(d.text, stdout)
+        self.assertEqual(d.main_finding, j.get("main_finding"))
+        self.assertEqual(d.run_order, j["run_order"])
+        self.assertEqual(d.noise_used["source"], j["noise_used"]["source"])
 
     def test_bad_recordings(self):
         bad = os.path.join(self.tmp, "bad.csv")

@@ -188,7 +188,9 @@ class Diagnosis:
     ``remaining``, ``findings`` (list of :class:`Finding`, the named effects),
     ``candidates`` (dicts, best first), ``rmse_before_W``, ``rmse_after_W`` (the fit's
     improvement), ``cv_rmse_after_W``, ``temp_rmse_before_K``, ``temp_rmse_after_K``,
-    ``adequacy``, ``outliers`` ((row, reason) pairs), ``remainder_hypothesis``, ``oils``,
+    ``adequacy``, ``noise_used`` (the noise the verdict was judged against and why),
+    ``main_finding`` (effect and confidence), ``completeness``, ``remaining_structure``,
+    ``run_order``, ``outliers`` ((row, reason) pairs), ``remainder_hypothesis``, ``oils``,
     ``oil_differences``, ``warnings``, ``recordings_warnings``, ``points``, ``residuals``
     (columns as ``--residuals`` writes them: a DataFrame with pandas, else a dict of
     lists), ``text`` (the CLI's report).

@@ -85,6 +85,8 @@ void DiagnoseOptions::validate() const {
     if (max_findings < 1 || max_findings > 10) bad("max_findings", "give 1 to 10");
     if (!(loss_uncertainty >= 0 && loss_uncertainty <= 0.5)) bad("--loss-uncertainty", "give 0 to 50 % (0: estimated)");
     if (!(temp_uncertainty >= 0 && temp_uncertainty <= 20)) bad("--temp-uncertainty", "give 0 to 20 K (0: estimated)");
+    if (!(loss_noise_floor >= 0 && loss_noise_floor <= 0.5)) bad("loss_noise_floor", "give 0 to 50 % (0: none)");
+    if (!(temp_noise_floor >= 0 && temp_noise_floor <= 20)) bad("temp_noise_floor", "give 0 to 20 K (0: none)");
     if (!(adequacy_level > 0 && adequacy_level < 0.5)) bad("adequacy_level", "must be within 0..0.5");
     if (!(confidence_level >= adequacy_level && confidence_level < 0.5))
         bad("confidence_level", "must be within adequacy_level..0.5");
@@ -123,6 +125,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             o.T_oil = r.oil_temp ? *r.oil_temp : 0.0;
             o.stabilised = r.stabilised;
             o.drift = r.stabilisation_drift;
+            if (r.run_order) o.run = *r.run_order;
             std::string why = recorded_fault(m, o);
             double L = 0, T = 0;
             if (why.empty()) why = evaluate_point(m, ps, neutral, o, L, T);
@@ -130,7 +133,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
                 why = "its residual is not a finite number";
             if (!why.empty()) {
                 if (unused.empty()) first_unused = k;
-                unused.push_back({o.row, "not used: " + why});
+                unused.push_back({o.row, "not used: " + why, {}, {}});
                 continue;
             }
             obs.push_back(o);
@@ -194,6 +197,12 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     d.fit_points = static_cast<int>(E.obs().size());
     d.bootstrap = opt.bootstrap;
     d.has_temperature = E.has_temperature();
+    d.run_order.recorded = run_order_recorded(F);
+    if (d.run_order.recorded) d.run_order.column = rec.run_order_column;
+    else if (!rec.run_order_column.empty())
+        d.warnings.push_back(fmt::format("the {} column does not give every usable point its place in the run order: "
+                                         "the row order is not taken as the run order",
+                                         rec.run_order_column));
     const auto& all = E.all();
 
     // The baseline is the case as described, including any calibration it carries.
@@ -263,31 +272,8 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     d.adequacy_loss = channel(ad.noise_loss, ad.fit_loss, ad.structure_loss);
     d.adequacy_temp = channel(ad.noise_temp, ad.fit_temp, ad.structure_temp);
     d.detectable = ad.detectable;
-    // What the findings leave passes the tests, but the tests could not have seen a remainder
-    // of the noise's size: the findings are named, not as the whole cause.
-    const bool weak_test = ad.adequate && !(ad.detectable <= opt.confident_detectable);
-    std::string weak_text;
-    if (weak_test) {
-        const bool estimated = ad.noise_loss.source != "declared" || (E.has_temperature() && ad.noise_temp.source != "declared");
-        weak_text = fmt::format(
-            "What the findings leave passes the tests against the noise, but {} {} points those tests see little: a "
-            "remainder of {:.2g} times the noise would pass them in half such campaigns (a confident name needs {:.2g}). "
-            "{} or record more points to test whether the findings are the whole cause",
-            estimated ? "with the noise estimated from" : "on", d.fit_points, ad.detectable, opt.confident_detectable,
-            estimated ? "Declare the rig's measurement uncertainty (--loss-uncertainty, --temp-uncertainty)" : "Repeat points");
-    }
-    if (!d.findings.empty()) {
-        d.verdict = ad.adequate && !weak_test ? "missing_physics" : "partly_explained";
-        if (!ad.adequate)
-            d.remaining = "a systematic residual remains after the findings:\n" + ad.text + "\n" + locate(F, after_all, base_all, model).text;
-        else if (weak_test)
-            d.remaining = "not shown to be the whole cause. " + weak_text;
-    } else if (!ad.adequate) {
-        d.verdict = "unexplained_mismatch";
-        d.remaining = ad.text + "\n" + d.location;
-    } else {
-        d.verdict = "no_significant_mismatch";
-    }
+    // Is an effect present (the selection), and is it the whole cause (the adequacy)?
+    judge(d, ad, opt, E, pf, base, d.findings.empty() ? std::string() : locate(F, after_all, base_all, model).text);
     if (d.verdict == "partly_explained" || d.verdict == "unexplained_mismatch") {
         // What is left, as a formula over the operating point (a hypothesis for the engineer).
         std::vector<double> resid, scale;
@@ -301,56 +287,17 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             f.torque_Nm.push_back(o.torque);
             f.oil_temp_C.push_back(T - 273.15);
             f.viscosity_cSt.push_back(point_viscosity(E, o, T));
-            f.order.push_back(o.row);
+            if (d.run_order.recorded) f.order.push_back(o.run);  // else no run-order term
         }
         auto p = hypothesis::propose(resid, scale, f);
         if (p.found) d.remainder = std::move(p);
     }
 
-    // Outliers against the final model (robust z-scores), plus tests the log criterion flagged.
-    {
-        std::vector<double> eP, eT;
-        for (int i : F.all()) {
-            const auto& o = F.obs()[i];
-            eP.push_back((o.loss - after_all.loss[i]) / o.scale);
-            if (o.T_evidence && (base_all.unstabilised.empty() || !base_all.unstabilised[i])) eT.push_back(o.T_oil - after_all.temp[i]);
-        }
-        const auto [mP, sP] = robust_centre_scale(eP, 0.004);
-        const auto [mT, sT] = robust_centre_scale(eT, 0.15);
-        for (int i : F.all()) {
-            const auto& o = F.obs()[i];
-            std::vector<std::string> why;
-            if (!o.stabilised)
-                why.push_back(fmt::format("never stabilised: (T_oil - T_room) varied {:.2f} K over the last 30 min", o.drift));
-            if (!base_all.unstabilised.empty() && base_all.unstabilised[i])
-                why.push_back(fmt::format("oil {:.1f} K {} than the heat balance of its measured loss: the test was still "
-                                          "{} (unstabilised)",
-                                          std::abs(after_all.temp[i] - o.T_oil), o.T_oil < after_all.temp[i] ? "colder" : "hotter",
-                                          o.T_oil < after_all.temp[i] ? "warming up" : "cooling down"));
-            const double zP = ((o.loss - after_all.loss[i]) / o.scale - mP) / sP;
-            if (std::abs(zP) > 4.5)
-                why.push_back(fmt::format("loss {:+.1f} W ({:+.1f} %) away from the model and its neighbours", o.loss - after_all.loss[i],
-                                          100 * (o.loss - after_all.loss[i]) / o.scale));
-            if (o.T_evidence && (base_all.unstabilised.empty() || !base_all.unstabilised[i])) {
-                const double zT = (o.T_oil - after_all.temp[i] - mT) / sT;
-                if (std::abs(zT) > 4.5) {
-                    const double dLz = zP;
-                    why.push_back(fmt::format("oil temperature {:+.1f} K away from the model{}", o.T_oil - after_all.temp[i],
-                                              (o.T_oil < after_all.temp[i] && dLz > -1) ? " while its loss is not low: loss and "
-                                                                                   "temperature disagree (still warming up?)"
-                                                                                 : ""));
-                }
-            }
-            if (!why.empty()) {
-                std::string r = why[0];
-                for (size_t k = 1; k < why.size(); ++k) r += "; " + why[k];
-                d.outliers.push_back({o.row, r});
-            }
-        }
-        if (!unused.empty()) {
-            d.outliers.insert(d.outliers.end(), unused.begin(), unused.end());
-            std::stable_sort(d.outliers.begin(), d.outliers.end(), [](const Outlier& a, const Outlier& b) { return a.row < b.row; });
-        }
+    // Outliers against the final model and the noise in use, plus tests the log criterion flagged.
+    d.outliers = noise_outliers(F, after_all, base_all, ad);
+    if (!unused.empty()) {
+        d.outliers.insert(d.outliers.end(), unused.begin(), unused.end());
+        std::stable_sort(d.outliers.begin(), d.outliers.end(), [](const Outlier& a, const Outlier& b) { return a.row < b.row; });
     }
     // Every number reported is finite (the rows that could not be compared are not used).
     for (double v : {d.rmse_before, d.rmse_after, d.cv_rmse_after, d.temp_rmse_before, d.temp_rmse_after})
@@ -376,9 +323,7 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
             const auto& f = d.findings[k];
             if (k == 0) s += baseline_clause + " -> ";
             else s += "; then ";
-            const char* verb = d.verdict == "missing_physics" ? "was left out"
-                               : weak_test                    ? "explains it as far as these points can tell"
-                                                              : "explains part of it";
+            const char* verb = d.verdict == "missing_physics" ? "was left out" : "explains part of it";
             const std::string name = f.oil.empty() ? f.effect : f.effect + " of oil " + f.oil;
             if (f.equivalent.empty()) {
                 s += fmt::format("{} {} ({})", name, verb, f.description);
@@ -404,8 +349,12 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
                 s += fmt::format(", oil temperature RMSE {:.2f} K -> {:.2f} K", f.temp_rmse_before, f.temp_rmse_after);
             if (!f.equivalent.empty()) s += fmt::format(". To separate them: {}", f.separating_measurement);
         }
-        if (d.verdict == "partly_explained" && weak_test)
-            s += ". " + weak_text + ". The names above may be the whole cause or part of it";
+        if (d.remaining_structure)
+            s += ". The main finding is confident; apart from it a smaller structure remains: " + d.remaining_structure->text;
+        else if (d.verdict == "missing_physics" && !d.completeness.empty() && ad.detectable > opt.confident_detectable)
+            s += ". " + d.completeness;
+        else if (d.verdict == "partly_explained" && d.remaining.rfind("the main finding is not certain", 0) == 0)
+            s += ". But " + d.remaining;
         else if (d.verdict == "partly_explained")
             s += ". But what is left is not measurement noise: " + ad.text +
                  ". The names above are partial explanations, not the cause of the whole mismatch";

@@ -12,10 +12,13 @@
 // K-fold cross-validated gain, and stability across bootstrap resamples; each
 // addition is followed by a joint refit and a test of whether every earlier
 // effect is still needed. What the accepted hypothesis leaves is then tested
-// against the measurement noise (adequacy.hpp): a name is confident
-// (missing_physics) only when the remainder is noise and the tests had the power
-// to see one as large as the noise; otherwise the verdict is partly_explained and
-// says where the remainder lives, or that the campaign could not show it.
+// against the measurement noise (adequacy.hpp). Whether an effect is present and
+// whether it is the whole cause are two questions: a name is confident
+// (missing_physics) when the selection's evidence holds and what it leaves is noise,
+// or, with the loss at the noise, only a smaller structure reported apart (sized and
+// located); the report says separately whether the tests had the power to show the
+// findings to be the whole cause. Otherwise the verdict is partly_explained and says
+// where the remainder lives.
 #include <functional>
 #include <limits>
 #include <optional>
@@ -41,6 +44,12 @@ struct DiagnoseOptions {
     // Declared measurement noise (one standard deviation): the loss as a share of the recorded
     // loss, the oil temperature in K. 0: estimated from the recordings (adequacy.hpp).
     double loss_uncertainty = 0, temp_uncertainty = 0;
+    // Without a declared noise, a small campaign's estimate (a few neighbour differences) is
+    // bounded below by these: the loss of a rig is a small difference of two large measured
+    // powers, known to about 1 % of itself at best; an equilibrium oil temperature is defined to
+    // the stabilisation criterion's tenths of a kelvin (Pereira 2017, sec. 3.5.2: 0.5 K over
+    // 30 min). The report says when the floor was the noise used.
+    double loss_noise_floor = 0.01, temp_noise_floor = 0.2;
     // Level of each adequacy test (goodness of fit and structure, per channel), and of their
     // combination for the claim that there is a mismatch at all: the null model is rejected
     // only on strong evidence.
@@ -50,12 +59,13 @@ struct DiagnoseOptions {
     // than adequacy_level on purpose: naming a cause demands that nothing systematic is left,
     // and several tests each just short of failing are a remainder, not noise.
     double confidence_level = 0.05;
-    // ... and only when those tests could have seen a remainder: one of this RMS (a multiple of
-    // each channel's noise) must fail them in at least half such campaigns (adequacy.hpp
-    // detectable_remainder). With the noise estimated from a few points' neighbour differences
-    // a remainder as large as the noise itself passes unseen (3 x 3: about twice it); the
-    // findings are then named, but not as the whole cause (`partly_explained`, saying why).
-    // A declared noise (loss_uncertainty, temp_uncertainty) is known better, so tests more.
+    // The findings are shown to be the whole cause only when those tests could have seen a
+    // remainder: one of this RMS (a multiple of each channel's noise) must fail them in at least
+    // half such campaigns (adequacy.hpp detectable_remainder). With the noise estimated from a
+    // few points' neighbour differences a remainder as large as the noise itself passes unseen
+    // (3 x 3: about twice it); the findings are then still named with confidence (the effect is
+    // present), and the report says that these points cannot show it to be the whole cause
+    // (Diagnosis::completeness). A declared noise is known better, so tests more.
     double confident_detectable = 1.0;
     // Progress messages (a terminal shows them); called from the calling thread only.
     std::function<void(const std::string&)> progress;
@@ -101,6 +111,9 @@ struct Candidate {
 struct Outlier {
     int row;
     std::string reason;
+    // The row's residual from the model (less the campaign's median) over the noise in use;
+    // a row is an outlier in a channel only beyond kOutlierSigmas of that noise.
+    std::optional<double> loss_deviation_over_noise, temp_deviation_over_noise;
 };
 
 struct PointResidual {
@@ -145,6 +158,37 @@ struct Diagnosis {
     } adequacy_loss, adequacy_temp;
     // The fit tests' joint power: the remainder (RMS over the noise) they see half the time.
     double detectable = std::numeric_limits<double>::infinity();
+    // Which noise the verdict was tested against, and why that one (declared, estimated, or the
+    // small-campaign floor: DiagnoseOptions::loss_noise_floor).
+    struct NoiseUsed {
+        double loss_relative = 0, temp_K = 0;
+        std::string source, why, temp_source, temp_why;
+    } noise_used;
+    // Whether an effect is present and whether it is the whole cause are two questions. The
+    // main finding (the first) is `confident` when the verdict is missing_physics, else
+    // `tentative`; empty effect: none named.
+    struct MainFinding {
+        std::string effect, confidence;
+    } main_finding;
+    // After a confident main finding, a smaller structure left (sized and located), reported
+    // apart from it: the loss at the noise, the oil temperature beyond it (a heat path that
+    // differs a little from the model's).
+    struct RemainingStructure {
+        std::string channel;        // "loss" | "oil_temperature"
+        double rms_over_noise = 0;  // RMS beyond the noise, in units of the noise
+        std::string along;          // "power" | "speed" | "torque" | "oil temperature" | "run order" | ""
+        std::string text;
+    };
+    std::optional<RemainingStructure> remaining_structure;
+    // Whether the findings were shown to be the whole cause (the tests could have seen a
+    // remainder of the noise's size), in words; empty without findings.
+    std::string completeness;
+    // The run order: from a `run`, `date` or `time` column (a raw log: its time stamps); not
+    // recorded, no drift or running-in hypothesis is formed.
+    struct RunOrder {
+        bool recorded = false;
+        std::string column;
+    } run_order;
     // For a remainder no candidate explains (partly_explained, unexplained_mismatch): a compact
     // formula by sparse regression over the operating point, a hypothesis, never a finding.
     std::optional<hypothesis::Proposal> remainder;

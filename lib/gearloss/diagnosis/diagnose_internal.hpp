@@ -5,6 +5,7 @@
 #include <memory>
 #include <numbers>
 #include <functional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,6 +20,9 @@ namespace gearloss::diagnosis::detail {
 constexpr double to_rpm = 30.0 / std::numbers::pi;
 constexpr double kFloorLoss = 0.002;  // relative loss residual floor (0.2 %)
 constexpr double kFloorTemp = 0.05;   // K
+// A noise estimated with fewer degrees of freedom than this is a small campaign's: bounded
+// below by DiagnoseOptions::loss_noise_floor / temp_noise_floor (assess).
+constexpr double kSmallCampaignDof = 10;
 
 struct Obs {
     int row;
@@ -29,6 +33,7 @@ struct Obs {
     bool stabilised;
     double drift;
     int oil = 0;       // index into the campaign's oils (0: the case's oil)
+    double run = std::numeric_limits<double>::quiet_NaN();  // run order where recorded (else NaN)
 };
 
 struct Pred {
@@ -260,6 +265,8 @@ struct ChannelStats {
 };
 
 ChannelStats channel_rmse(const Engine& E, const Pred& p, const Hypothesis& h);
+// Every point carries its run order (a `run`, `date` or `time` column, or a raw log).
+bool run_order_recorded(const Engine& E);
 
 // The adequacy of a hypothesis' residuals against the noise (adequacy.hpp), per channel.
 struct Adequacy {
@@ -270,6 +277,9 @@ struct Adequacy {
     // The fit tests' joint power at the confidence level (adequacy::detectable_remainder).
     double detectable = std::numeric_limits<double>::infinity();
     bool adequate = true;
+    bool loss_fails = false, temp_fails = false;  // the channel's own tests reject (Holm)
+    double rms_loss = 0, rms_temp = 0;            // RMS of the residuals (relative; K)
+    std::string noise_loss_why, noise_temp_why;   // which noise, and why that one
     std::string text;  // what is left and where, when not adequate
 };
 // Each test at opt.adequacy_level, and Fisher's combination of the tests' p-values
@@ -287,6 +297,18 @@ struct Location {
 Location locate(const Engine& E, const Pred& p, const Hypothesis& h, const solver::Model& model);
 // The kinematic viscosity [mm^2/s] of a point's oil at T (the point's own oil in a multi-oil campaign).
 double point_viscosity(const Engine& E, const Obs& o, double T);
+
+// diagnose_verdict.cpp. The verdict from the findings and the adequacy of what they leave, with
+// the noise used, the main finding's confidence, a smaller structure left after it and whether
+// the findings were shown to be the whole cause (`remaining_location`: where the residual after
+// them lives, for a partial explanation). Needs d.findings and d.location.
+void judge(Diagnosis& d, const Adequacy& ad, const DiagnoseOptions& opt, const Engine& E, const Pred& pf,
+           const Hypothesis& h, const std::string& remaining_location);
+// A residual beyond this many times the noise in use (or the residuals' robust spread, when larger).
+constexpr double kOutlierSigmas = 4.5;
+// Rows whose residuals after the findings are outliers against the noise in use, and rows
+// flagged as never stabilised or unstabilised.
+std::vector<Outlier> noise_outliers(const Engine& F, const Pred& after, const Hypothesis& h, const Adequacy& ad);
 
 // diagnose_oils.cpp: multi-oil campaigns. The oils of a campaign: [0] the case's, then each
 // oil file of the recordings' `oil` column (paths relative to the recordings file).

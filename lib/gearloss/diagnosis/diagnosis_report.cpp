@@ -81,6 +81,16 @@ std::string diagnosis_text(const Diagnosis& d) {
     if (std::isfinite(d.detectable))
         s += fmt::format("       power: a remainder of {:.2g} times the noise fails the fit test{} in half such campaigns\n",
                          d.detectable, d.has_temperature ? "s" : "");
+    s += fmt::format("noise used: loss {:.3g} %, {}\n", 100 * d.noise_used.loss_relative, d.noise_used.why);
+    if (d.has_temperature)
+        s += fmt::format("            oil temperature {:.3g} K, {}\n", d.noise_used.temp_K, d.noise_used.temp_why);
+    s += d.run_order.recorded
+             ? fmt::format("run order: from the `{}` column\n", d.run_order.column)
+             : std::string("run order: not recorded (no run, date or time column): the rows may be in any order, so no "
+                           "drift or running-in hypothesis is formed\n");
+    if (!d.main_finding.effect.empty())
+        s += fmt::format("main finding: {} ({}){}\n", d.main_finding.effect, d.main_finding.confidence,
+                         d.completeness.empty() ? "" : "; " + d.completeness);
     s += "\ncandidates (delta BIC, > 10 is very strong evidence):\n";
     for (const auto& c : d.candidates) {
         if (c.rejected.empty()) s += fmt::format("  {:<24} {:8.1f}   fitted {:.4g}\n", c.effect, c.delta_bic, c.value);
@@ -123,6 +133,26 @@ std::string diagnosis_json(const Diagnosis& d) {
     channel("loss_relative", d.adequacy_loss);
     if (d.has_temperature) channel("oil_temperature_K", d.adequacy_temp);
     if (std::isfinite(d.detectable)) adequacy["detectable_remainder"] = d.detectable;
+    // The noise the verdict was tested against and why (declared, estimated, or the floor).
+    auto& noise = j["noise_used"];
+    noise["loss_relative"] = d.noise_used.loss_relative;
+    noise["source"] = d.noise_used.source;
+    noise["why"] = d.noise_used.why;
+    if (d.has_temperature) {
+        noise["oil_temperature_K"] = d.noise_used.temp_K;
+        noise["oil_temperature_source"] = d.noise_used.temp_source;
+        noise["oil_temperature_why"] = d.noise_used.temp_why;
+    }
+    if (!d.main_finding.effect.empty())
+        j["main_finding"] = {{"effect", d.main_finding.effect}, {"confidence", d.main_finding.confidence}};
+    if (!d.completeness.empty()) j["completeness"] = d.completeness;
+    if (d.remaining_structure)
+        j["remaining_structure"] = {{"channel", d.remaining_structure->channel},
+                                    {"rms_over_noise", d.remaining_structure->rms_over_noise},
+                                    {"along", d.remaining_structure->along},
+                                    {"text", d.remaining_structure->text}};
+    j["run_order"] = {{"recorded", d.run_order.recorded},
+                      {"column", d.run_order.recorded ? nlohmann::ordered_json(d.run_order.column) : nlohmann::ordered_json(nullptr)}};
     if (d.remainder) {
         auto& r = j["remainder_hypothesis"];
         r["formula"] = d.remainder->formula;
@@ -177,7 +207,13 @@ std::string diagnosis_json(const Diagnosis& d) {
         findings.push_back(std::move(o));
     }
     auto& outliers = j["outliers"] = nlohmann::ordered_json::array();
-    for (const auto& o : d.outliers) outliers.push_back({{"row", o.row}, {"reason", o.reason}});
+    for (const auto& o : d.outliers) {
+        nlohmann::ordered_json x{{"row", o.row}};
+        if (o.loss_deviation_over_noise) x["loss_deviation_over_noise"] = *o.loss_deviation_over_noise;
+        if (o.temp_deviation_over_noise) x["temp_deviation_over_noise"] = *o.temp_deviation_over_noise;
+        x["reason"] = o.reason;
+        outliers.push_back(std::move(x));
+    }
     auto& candidates = j["candidates"] = nlohmann::ordered_json::array();
     for (const auto& c : d.candidates) {
         nlohmann::ordered_json o;

@@ -1,4 +1,5 @@
 #include "gearloss/diagnosis/recordings.hpp"
+#include "gearloss/diagnosis/run_order.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -58,6 +59,8 @@ struct ColumnDef {
 std::optional<ColumnDef> column_definition(const std::string& name, const std::string& file, int line, int col) {
     if (name == "label") return ColumnDef{"label"};
     if (name == "oil") return ColumnDef{"oil_file"};  // the oil of each test (multi-oil campaigns)
+    for (const char* c : kRunOrderColumns)  // the order of the tests (run_order.hpp)
+        if (name == c) return ColumnDef{std::string("order_") + c};
     for (const auto& q : kQuantityColumns) {
         const std::string prefix = q.prefix;
         if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
@@ -308,6 +311,42 @@ void check_output_signs(const std::string& file, const Table& t, const std::vect
                                        minority - kDuplicateWarnings));
 }
 
+const char* run_order_format(const std::string& c) {
+    if (c == "run") return "number";
+    if (c == "date") return "date YYYY-MM-DD[ hh:mm[:ss]]";
+    return "clock time hh:mm[:ss], date and time YYYY-MM-DD hh:mm, or number";
+}
+
+// The run order from the first of `run`, `date` (with `time` as its clock, when both are
+// there) or `time` that the file has: a cell that is not such a value is an error at it.
+void read_run_order(const std::string& file, const Table& t, Recordings& rec) {
+    for (const char* c : kRunOrderColumns) {
+        const auto it = t.col.find(std::string("order_") + c);
+        if (it == t.col.end()) continue;
+        const auto clock = t.col.find("order_time");
+        const bool with_clock = std::string(c) == "date" && clock != t.col.end();
+        for (size_t r = 0; r < t.rows.size(); ++r) {
+            const auto key = run_order_key(c, t.rows[r][it->second]);
+            if (!key)
+                throw InputError(file, t.lines[r], static_cast<int>(it->second + 1), c,
+                                 fmt::format("'{}' is not a {}: the column records the order of the tests (leave it "
+                                             "out when that is not known)",
+                                             io::excerpt(t.rows[r][it->second]), run_order_format(c)));
+            double v = *key;
+            if (with_clock) {
+                const auto tod = run_order_key("time", t.rows[r][clock->second]);
+                if (!tod)
+                    throw InputError(file, t.lines[r], static_cast<int>(clock->second + 1), "time",
+                                     fmt::format("'{}' is not a clock time hh:mm[:ss]", io::excerpt(t.rows[r][clock->second])));
+                v += *tod;
+            }
+            rec.points[r].run_order = v;
+        }
+        rec.run_order_column = c;
+        return;
+    }
+}
+
 void require(const std::string& file, const Table& t, const char* key, const char* name) {
     if (!t.col.count(key)) throw InputError(file, 1, 0, name, std::string("required column '") + name + "' is missing");
 }
@@ -385,11 +424,13 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
             rec.points.push_back(p);
         }
         check_output_signs(file, t, speed_out, rec.warnings);
+        read_run_order(file, t, rec);
         return rec;
     }
 
     // Raw log: split into tests at set-point changes, keep the last 30 min of each.
     rec.from_log = true;
+    rec.run_order_column = "time";  // its time stamps order the tests
     if (t.col.count("oil_file"))
         throw InputError(file, 1, static_cast<int>(t.col["oil_file"] + 1), "oil",
                          "the oil column is read in steady-point recordings; give a raw log per oil");
@@ -457,6 +498,7 @@ Recordings read_recordings_text(const std::string& text, const std::string& file
         ++number;
         RecordedPoint p;
         p.row = number;
+        p.run_order = number;
         p.line = s[a].line;
         p.label = fmt::format("test {} (lines {}-{})", number, s[a].line, s[b - 1].line);
         const double t_end = s[b - 1].time;

@@ -20,6 +20,8 @@ struct RecordedPoint {
     std::optional<double> oil_temp;      // K
     std::optional<double> ambient_temp; // K
     std::optional<double> torque_out, speed_out;
+    // Where the run order is recorded (Recordings::run_order_column): a number that grows with it.
+    std::optional<double> run_order;
     bool stabilised = true;       // false: a log test that failed the criterion
     double stabilisation_drift = 0;  // K over the last 30 min (log tests)
 };
@@ -31,6 +33,9 @@ struct Recordings {
     // Findings about the recordings themselves (each names file:line, and the column where one
     // cell is at fault), and unknown or repeated rows.
     std::vector<std::string> warnings;
+    // The column that records the order of the tests (run_order.hpp): "run", "date" or "time"
+    // (a raw log: "time", its time stamps); empty: not recorded, the row order means nothing.
+    std::string run_order_column;
     int speed_out_column = 0;      // 1-based; 0: no output speed recorded
     std::string speed_out_header;  // as written
 };
