@@ -36,6 +36,15 @@ std::string num(double v) {
 
 std::string safe_name(const Component& c) { return io::excerpt(c.name, 60); }
 
+std::string quoted(const std::string& s, size_t max) {
+    std::string out = "\"";
+    for (const char ch : io::excerpt(s, max)) {
+        if (ch == '"' || ch == '\\') out += '\\';
+        out += ch;
+    }
+    return out + "\"";
+}
+
 std::string src(const Component& c, const std::string& attribute) {
     const Attribute* a = c.find(attribute);
     std::string s = "REXS " + std::to_string(c.id) + " " + attribute;
@@ -84,13 +93,23 @@ int Mapper::shaft_index_of(std::int64_t id) const {
 
 // Component types of gear stages the loss model cannot represent: worm, bevel, hypoid and
 // crossed-axis stages, and planetary stages (not mapped yet).
-void Mapper::refuse_unsupported() const {
+void Mapper::refuse_unsupported() {
     static const char* const refused[] = {"worm", "bevel", "hypoid", "crossed", "planet", "spiral", "face_gear"};
+    // The stage is named first (the worm_stage rather than its gear data), then any other part.
+    for (const bool stages_only : {true, false})
+        for (const auto& c : m.components)
+            for (const char* r : refused)
+                if (c.type.find(r) != std::string::npos && (!stages_only || c.type.ends_with("_stage")))
+                    m.fail(c, "a " + c.type + " is not represented by gearloss's loss model (cylindrical gear stages "
+                                  "only); the model is not imported (docs/rexs.md)");
+    // Couplings, clutches and synchronisers carry losses the imported case does not count: said, not dropped.
+    static const char* const unmapped[] = {"coupling", "clutch", "synchron"};
     for (const auto& c : m.components)
-        for (const char* r : refused)
-            if (c.type.find(r) != std::string::npos)
-                m.fail(c, "a " + c.type + " is not represented by gearloss's loss model (cylindrical gear stages "
-                              "only); the model is not imported (docs/rexs.md)");
+        for (const char* u : unmapped)
+            if (c.type.find(u) != std::string::npos) {
+                warn(c, "not mapped: its losses are not counted in the imported case");
+                break;
+            }
 }
 
 void Mapper::read_shafts() {
@@ -154,6 +173,7 @@ void Mapper::read_gears() {
         if (!z) m.fail(*c, "attribute 'number_of_teeth' is missing");
         // ISO 21771 (as REXS): an internal gear has a negative number of teeth.
         g.internal = *z < 0;
+        if (std::abs(*z) < 3 || std::abs(*z) > 10000) m.fail(*c, "number_of_teeth " + std::to_string(*z) + " is not a gear's");
         g.z = static_cast<int>(std::abs(*z));
         g.mn = required_quantity(m, *c, "normal_module", Quantity::length);
         g.b = required_quantity(m, *c, "face_width", Quantity::length);
@@ -312,9 +332,9 @@ ImportResult map_to_case(const Model& m, const ImportOptions& options) {
     y.comment(0, "Each value names the REXS component id and attribute it came from; 'assumed' marks what REXS does not");
     y.comment(0, "carry and the loss model needs (docs/rexs.md). Check with: gearloss check THIS_FILE");
     const auto units = m.of_type("gear_unit");
-    y.line(0, "name: \"" + (units.empty() ? std::string("REXS gearbox") : detail::safe_name(*units.front())) + " (REXS)\"",
+    y.line(0, "name: " + detail::quoted((units.empty() ? std::string("REXS gearbox") : units.front()->name) + " (REXS)"),
            units.empty() ? "" : "REXS " + std::to_string(units.front()->id) + " gear_unit name");
-    y.line(0, "oil: \"" + options.oil_reference + "\"",
+    y.line(0, "oil: " + detail::quoted(options.oil_reference, 4096),
            options.write_oil ? "the REXS lubricant, written beside this file" : "given with --oil (the REXS lubricant is not used)");
     y.blank();
     // Materials of the gears that reference one (REXS reference relation gear -> material).

@@ -26,6 +26,8 @@ private:
 std::string num(double v);
 // "REXS 15 number_of_teeth" ("REXS <id> <attribute> [<unit>]" when the attribute has a unit).
 std::string src(const Component& c, const std::string& attribute);
+// A YAML double-quoted scalar of `s` (at most `max` characters, control bytes shown as '?').
+std::string quoted(const std::string& s, size_t max = 60);
 // A component name safe for a YAML comment (no control bytes, at most 60 characters).
 std::string safe_name(const Component& c);
 
@@ -67,7 +69,7 @@ struct Mapper {
     void warn(const Component& c, const std::string& text);
     int shaft_index_of(std::int64_t id) const;
 
-    void refuse_unsupported() const;
+    void refuse_unsupported();
     void read_shafts();
     void read_gears();
     void choose_input_output();

@@ -73,7 +73,7 @@ void Mapper::write_bearings(YamlOut& y) {
                                 "(its speed is that shaft's, not the difference of the two)",
                                 *inner, *outer, s.comp->id));
         const double u = required_quantity(m, c, u_attr, Quantity::length);
-        if (u < -1e-9 || u > s.length() + 1e-9)
+        if (!s.sections.empty() && (u < -1e-9 || u > s.length() + 1e-9))
             m.fail(c, fmt::format("{} = {:g} mm lies outside shaft {} (0 to {:g} mm)", u_attr, u * 1e3, s.comp->id,
                                   s.length() * 1e3));
         const auto axial = text(m, c, "axial_force_absorption");
@@ -90,7 +90,7 @@ void Mapper::write_bearings(YamlOut& y) {
         if (designation) {
             const auto key = bearings::designation_key(*designation);
             if (const io::CatalogueEntry* e = key ? cat.find(key->key) : nullptr) {
-                y.line(4, "designation: \"" + io::excerpt(*designation, 40) + "\"",
+                y.line(4, "designation: " + quoted(*designation),
                        src(c, "catalogue_designation") + " (catalogue row " + e->designation + ")");
                 const double d = bore_given ? *bore_given : bore_shaft.value_or(e->d);
                 if (std::abs(d - e->d) > 1e-6)
@@ -256,7 +256,7 @@ std::string Mapper::oil_yaml() const {
     const Component& c = *list.front();
     YamlOut y;
     y.comment(0, "The lubricant of the REXS model " + io::excerpt(m.file, 120) + ", imported by gearloss import.");
-    y.line(0, "name: \"" + safe_name(c) + "\"", "REXS " + std::to_string(c.id) + " lubricant name");
+    y.line(0, "name: " + quoted(c.name), "REXS " + std::to_string(c.id) + " lubricant name");
     // The base oil: the ISO 6336 lubricant type when given, else the basis when it is mineral.
     static const std::pair<const char*, const char*> iso_types[] = {
         {"mineral_oil", "mineral"}, {"polyalfaolefin", "PAO"}, {"non_water_soluble_polyglycol", "PAG"},
