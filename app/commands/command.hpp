@@ -28,5 +28,6 @@ std::unique_ptr<Command> make_cycle_command();
 std::unique_ptr<Command> make_merge_command();
 std::unique_ptr<Command> make_check_command();
 std::unique_ptr<Command> make_report_command();
+std::unique_ptr<Command> make_import_command();
 
 }  // namespace gearloss::app

@@ -39,6 +39,8 @@ public:
     // Up to n printed designations whose keys are closest to `key`.
     std::vector<std::string> closest(const std::string& key, size_t n) const;
     size_t size() const { return by_key_.size(); }
+    // Every row by key (for a search by type and bore: the REXS importer's assumed bearings).
+    const std::map<std::string, CatalogueEntry>& entries() const { return by_key_; }
     const std::vector<std::string>& files() const { return files_; }
     // The same files as paths to read (for the case hash): files() shows them machine-independently.
     const std::vector<std::string>& paths() const { return paths_; }

@@ -1,0 +1,288 @@
+// A REXS model as a gearloss case: bearings, seals, housing and thermal data, operating points
+// and the oil file (case_mapper.hpp). What REXS does not carry is written as an assumed value
+// with its reason.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "gearloss/bearings/designation.hpp"
+#include "gearloss/core/errors.hpp"
+#include "gearloss/io/bearing_catalogue.hpp"
+#include "gearloss/io/csv_read.hpp"
+#include "gearloss/rexs/mapper_internal.hpp"
+
+namespace gearloss::rexs::detail {
+namespace {
+
+// REXS bearing_type enum values -> gearloss bearing types (those the SKF (2004) model has).
+std::optional<bearings::BearingType> type_of_rexs(const std::string& t) {
+    using B = bearings::BearingType;
+    if (t == "radial_grooved_ball_bearing") return B::deep_groove_ball;
+    if (t == "angular_contact_ball_bearing") return B::angular_contact_ball;
+    if (t == "four_point_contact_ball_bearing") return B::four_point_contact;
+    if (t == "radial_self_aligning_ball_bearing") return B::self_aligning_ball;
+    if (t == "radial_roller_bearing") return B::cylindrical_roller;
+    if (t == "radial_needle_roller_bearing") return B::needle_roller;
+    if (t == "radial_tapered_roller_bearing") return B::tapered_roller;
+    if (t == "radial_self_aligning_roller_bearing") return B::spherical_roller;
+    if (t == "axial_grooved_ball_bearing") return B::thrust_ball;
+    if (t == "axial_roller_bearing") return B::cylindrical_roller_thrust;
+    return std::nullopt;
+}
+
+// The catalogue row of a type and bore with the smallest outer diameter (the lightest series).
+const io::CatalogueEntry* lightest_row(const io::BearingCatalogue& cat, bearings::BearingType t, double d) {
+    const io::CatalogueEntry* best = nullptr;
+    for (const auto& [key, e] : cat.entries())
+        if (e.type == t && std::abs(e.d - d) < 1e-6 && (!best || e.D < best->D)) best = &e;
+    return best;
+}
+
+}  // namespace
+
+void Mapper::write_bearings(YamlOut& y) {
+    static const char* const kinds[] = {"rolling_bearing_with_catalog_geometry", "rolling_bearing_with_detailed_geometry",
+                                        "concept_bearing"};
+    const io::BearingCatalogue& cat = io::shipped_bearing_catalogue("bearings (REXS import)");
+    y.line(0, "bearings:");
+    int written = 0;
+    for (const auto& c : m.components) {
+        if (std::find_if(std::begin(kinds), std::end(kinds), [&](const char* k) { return c.type == k; }) == std::end(kinds))
+            continue;
+        const auto sides = m.relations_with("side", "assembly", c.id);
+        if (sides.empty()) {
+            warn(c, "no side relation places the bearing on a shaft: not imported");
+            continue;
+        }
+        const Relation& side = *sides.front();
+        const auto inner = side.ref("inner_part");
+        const auto outer = side.ref("outer_part");
+        int si = inner ? shaft_index_of(*inner) : -1;
+        std::string u_attr = "u_coordinate_on_shaft_inner_side";
+        if (si < 0 && outer && shaft_index_of(*outer) >= 0) {
+            si = shaft_index_of(*outer);  // outer-ring rotation: the shaft is the outer part
+            u_attr = "u_coordinate_on_shaft_outer_side";
+        }
+        if (si < 0) m.fail(c, "neither side of the bearing is a shaft");
+        const Shaft& s = shafts[static_cast<size_t>(si)];
+        if (inner && outer && shaft_index_of(*inner) >= 0 && shaft_index_of(*outer) >= 0)
+            warn(c, fmt::format("the bearing runs between shafts {} and {}: it is placed on shaft {} against the housing "
+                                "(its speed is that shaft's, not the difference of the two)",
+                                *inner, *outer, s.comp->id));
+        const double u = required_quantity(m, c, u_attr, Quantity::length);
+        if (!s.sections.empty() && (u < -1e-9 || u > s.length() + 1e-9))
+            m.fail(c, fmt::format("{} = {:g} mm lies outside shaft {} (0 to {:g} mm)", u_attr, u * 1e3, s.comp->id,
+                                  s.length() * 1e3));
+        const auto axial = text(m, c, "axial_force_absorption");
+        const bool locating = axial && *axial != "no_direction";
+        const auto bore_given = quantity(m, c, "inner_diameter", Quantity::length);
+        const auto bore_shaft = s.diameter_at(u);
+        const std::string name = "bearing_" + std::to_string(c.id);
+        y.line(2, "- name: " + name, "REXS " + std::to_string(c.id) + " " + c.type + " '" + safe_name(c) + "'");
+        y.line(4, "shaft: " + s.name, "REXS side relation " + std::to_string(side.id));
+        y.line(4, "position: " + num(u * 1e3) + " mm", src(c, u_attr));
+        if (locating) y.line(4, "locating: true", src(c, "axial_force_absorption") + " " + io::excerpt(*axial, 30));
+        ++written;
+        const auto designation = text(m, c, "catalogue_designation");
+        if (designation) {
+            const auto key = bearings::designation_key(*designation);
+            if (const io::CatalogueEntry* e = key ? cat.find(key->key) : nullptr) {
+                y.line(4, "designation: " + quoted(*designation),
+                       src(c, "catalogue_designation") + " (catalogue row " + e->designation + ")");
+                const double d = bore_given ? *bore_given : bore_shaft.value_or(e->d);
+                if (std::abs(d - e->d) > 1e-6)
+                    warn(c, fmt::format("catalogue bore {:g} mm of {} differs from the {:g} mm the model gives", e->d * 1e3,
+                                        e->designation, d * 1e3));
+                continue;
+            }
+            warn(c, "designation '" + io::excerpt(*designation, 40) + "' is not in the bearing catalogue (" +
+                        cat.summary() + "): imported as an assumed bearing of its bore");
+        }
+        // An assumed bearing of the bore the model gives (its inner_diameter, else the shaft's
+        // diameter at the bearing): REXS type when given, else a radial-only concept bearing is a
+        // cylindrical roller bearing and one taking axial load a deep groove ball bearing.
+        if (!bore_given && !bore_shaft) m.fail(c, "no inner_diameter and no shaft section at the bearing: its bore is unknown");
+        const double d = bore_given ? *bore_given : *bore_shaft;
+        const std::string bore_src = bore_given ? src(c, "inner_diameter")
+                                                : fmt::format("shaft {} outer diameter at the bearing", s.comp->id);
+        std::optional<bearings::BearingType> type;
+        std::string type_src;
+        if (const auto t = text(m, c, "bearing_type")) {
+            type = type_of_rexs(*t);
+            if (!type) m.fail(c, "bearing_type '" + io::excerpt(*t, 40) + "' has no SKF (2004) friction model in gearloss");
+            type_src = src(c, "bearing_type") + " " + *t;
+        } else {
+            type = locating ? bearings::BearingType::deep_groove_ball : bearings::BearingType::cylindrical_roller;
+            type_src = std::string("assumed: REXS gives no type; ") + (locating ? "takes axial load" : "radial only");
+        }
+        y.line(4, std::string("type: ") + bearings::to_string(*type), type_src);
+        y.line(4, "d: " + num(d * 1e3) + " mm", bore_src);
+        const auto D_given = quantity(m, c, "outer_diameter", Quantity::length);
+        const auto B_given = quantity(m, c, "width", Quantity::length);
+        const io::CatalogueEntry* row = lightest_row(cat, *type, d);
+        if (D_given) y.line(4, "D: " + num(*D_given * 1e3) + " mm", src(c, "outer_diameter"));
+        else if (row) y.line(4, "D: " + num(row->D * 1e3) + " mm", "assumed: catalogue row " + row->designation + " (same type and bore, lightest series)");
+        else y.line(4, "D: " + num(d * 1.5e3) + " mm", "assumed: 1.5 d (no catalogue row of this type and bore)");
+        if (B_given) y.line(4, "B: " + num(*B_given * 1e3) + " mm", src(c, "width"));
+        else if (row) y.line(4, "B: " + num(row->B * 1e3) + " mm", "assumed: catalogue row " + row->designation);
+        if (row) {
+            y.line(4, "series: \"" + row->skf_series + "\"", "assumed: SKF (2004) series of catalogue row " + row->designation);
+            if (row->C0) y.line(4, "C0: " + num(*row->C0 * 1e-3) + " kN", "assumed: catalogue row " + row->designation);
+            if (row->Y && *type == bearings::BearingType::tapered_roller)
+                y.line(4, "Y: " + num(*row->Y), "assumed: catalogue row " + row->designation);
+        } else if (*type == bearings::BearingType::deep_groove_ball) {
+            m.fail(c, fmt::format("no catalogue deep groove ball bearing of bore {:g} mm gives the static rating C0 the "
+                                  "friction model needs",
+                                  d * 1e3));
+        }
+    }
+    if (written == 0) y.line(2, "[]");
+    y.blank();
+}
+
+void Mapper::write_seals(YamlOut& y) {
+    // REXS 1.x describes no shaft seals; a gearbox has a radial lip seal where the input and
+    // output shafts leave the casing.
+    y.line(0, "seals:", "assumed: REXS carries no seals; one lip seal on the input and one on the output shaft");
+    for (int i : {input, output}) {
+        const Shaft& s = shafts[static_cast<size_t>(i)];
+        const double d = s.min_diameter();
+        if (!(d > 0)) continue;
+        y.line(2, "- {name: seal_" + s.name + ", shaft: " + s.name + ", diameter: " + num(d * 1e3) + " mm}",
+               fmt::format("assumed: smallest diameter of shaft {} (its end)", s.comp->id));
+    }
+    y.blank();
+}
+
+void Mapper::write_housing_thermal(YamlOut& y) {
+    // The box around the gears and shafts (REXS gear_casing carries no geometry): in the transverse
+    // plane each shaft's largest tip circle plus 20 mm clearance, along the shafts their extent.
+    const Shaft& in = shafts[static_cast<size_t>(input)];
+    double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9, z0 = 1e9, z1 = -1e9;
+    double lowest_y = 1e9, lowest_r = 0, lowest_m = 0;
+    for (size_t i = 0; i < shafts.size(); ++i) {
+        const Shaft& s = shafts[i];
+        double r = 0.5 * s.min_diameter(), mn = 0;
+        for (const auto& g : gears)
+            if (g.shaft == static_cast<int>(i) && g.tip_radius_estimate() > r) {
+                r = g.tip_radius_estimate();
+                mn = g.mn;
+            }
+        x0 = std::min(x0, s.x - in.x - r - 0.02);
+        x1 = std::max(x1, s.x - in.x + r + 0.02);
+        y0 = std::min(y0, s.y - in.y - r - 0.02);
+        y1 = std::max(y1, s.y - in.y + r + 0.02);
+        z0 = std::min(z0, s.u_start);
+        z1 = std::max(z1, s.u_start + s.length());
+        if (mn > 0 && s.y - in.y - r < lowest_y - lowest_r) {
+            lowest_y = s.y - in.y;
+            lowest_r = r;
+            lowest_m = mn;
+        }
+    }
+    const double a = x1 - x0, b = y1 - y0, c = std::max(z1 - z0, 0.05);
+    const double area = 2 * (a * b + b * c + c * a);
+    // Dip lubrication: the lowest gear dips three normal modules (within the usual 2..5 m_n).
+    const double level = lowest_y - lowest_r + 3 * lowest_m;
+    const double volume = a * c * std::max(level - y0, 0.0);
+    y.line(0, "housing:");
+    y.line(2, "oil_volume: " + fmt::format("{:.2g}", volume * 1e3) + " L",
+           fmt::format("assumed: the box {:.0f} x {:.0f} mm (transverse, along the shafts) filled to the oil level", a * 1e3, c * 1e3));
+    y.line(2, "oil_level: " + num(std::round(level * 1e4) / 10) + " mm",
+           "assumed: the lowest gear dips 3 m_n (REXS gives no oil level)");
+    y.blank();
+    // One lubricant temperature in every load case: a temperature-controlled run at that temperature.
+    std::set<double> temperatures;
+    for (const auto& lc : m.load_cases)
+        for (const auto& lcc : lc.components)
+            if (lcc.find("temperature_lubricant"))
+                temperatures.insert(required_quantity(m, lcc, "temperature_lubricant", Quantity::temperature));
+    y.line(0, "thermal:");
+    if (temperatures.size() == 1) {
+        y.line(2, "mode: fixed", "REXS load cases give one lubricant temperature");
+        y.line(2, "oil_temperature: " + num(*temperatures.begin() - 273.15) + " degC", "REXS load cases temperature_lubricant");
+    } else {
+        y.line(2, "mode: stabilised", temperatures.empty() ? "REXS gives no lubricant temperature"
+                                                          : "REXS load cases give several lubricant temperatures");
+    }
+    y.line(2, "ambient: 20 degC", "assumed: room temperature");
+    y.line(2, "heat_rejection:");
+    y.line(4, fmt::format("housing: {{area: {:.2g} m^2, emissivity: 0.9, height: {:.2g} m}}", area, b),
+           "assumed: surface of the box around the gears; painted cast housing");
+    y.blank();
+}
+
+void Mapper::write_operating(YamlOut& y) {
+    // Load cases: the input shaft's speed and the torque of the external load that defines it.
+    const Shaft& in = shafts[static_cast<size_t>(input)];
+    std::vector<std::pair<double, double>> points;
+    std::vector<std::string> sources;
+    for (const auto& lc : m.load_cases) {
+        const Component* s = lc.find(in.comp->id);
+        double n = 0, t = 0;  // 0: not given
+        if (s)
+            if (const auto v = quantity(m, *s, "rotational_speed", Quantity::rotational_speed)) n = std::abs(*v);
+        for (const Relation* r : m.relations_with("assembly", "assembly", in.comp->id))
+            if (const auto p = r->ref("part"); p && m.at(*p).type == "external_load")
+                if (const Component* l = lc.find(*p))
+                    if (const auto v = quantity(m, *l, "torque_around_u_axis", Quantity::torque)) t = std::abs(*v);
+        if (n > 0 && t > 0) {
+            points.emplace_back(n, t);
+            sources.push_back(std::to_string(lc.id));
+        }
+    }
+    y.line(0, "operating:");
+    if (!points.empty()) {
+        std::string list, ids;
+        for (const auto& [n, t] : points)
+            list += fmt::format("{}[{} rpm, {} N*m]", list.empty() ? "" : ", ", num(n * 60 / (2 * std::numbers::pi)), num(t));
+        for (const auto& id : sources) ids += (ids.empty() ? "" : ", ") + id;
+        y.line(2, "points: [" + list + "]",
+               fmt::format("REXS load cases {} (shaft {} rotational_speed, its external load torque_around_u_axis)", ids,
+                           in.comp->id));
+    } else {
+        y.line(2, "speeds: [500 rpm, 1000 rpm, 1500 rpm, 3000 rpm]", "assumed: REXS gives no load case");
+        y.line(2, "torques: [50 N*m, 100 N*m, 200 N*m]", "assumed: REXS gives no load case");
+    }
+}
+
+std::string Mapper::oil_yaml() const {
+    const auto list = m.of_type("lubricant");
+    if (list.empty())
+        m.fail("the model has no lubricant component: give an oil file with --oil");
+    const Component& c = *list.front();
+    YamlOut y;
+    y.comment(0, "The lubricant of the REXS model " + io::excerpt(m.file, 120) + ", imported by gearloss import.");
+    y.line(0, "name: " + quoted(c.name), "REXS " + std::to_string(c.id) + " lubricant name");
+    // The base oil: the ISO 6336 lubricant type when given, else the basis when it is mineral.
+    static const std::pair<const char*, const char*> iso_types[] = {
+        {"mineral_oil", "mineral"}, {"polyalfaolefin", "PAO"}, {"non_water_soluble_polyglycol", "PAG"},
+        {"water_soluble_polyglycol", "PAG_water_soluble"}, {"phosphate_ester", "phosphate_ester"},
+        {"traction_fluid", "traction_fluid"}};
+    const auto iso = text(m, c, "lubricant_type_iso_6336_2006");
+    const auto basis = text(m, c, "basis");
+    const char* base = nullptr;
+    for (const auto& [rexs_type, gearloss_base] : iso_types)
+        if (iso && *iso == rexs_type) base = gearloss_base;
+    if (base) y.line(0, std::string("base: ") + base, src(c, "lubricant_type_iso_6336_2006") + " " + *iso);
+    else if (basis && *basis == "mineral") y.line(0, "base: mineral", src(c, "basis"));
+    else y.line(0, "base: mineral", basis ? "assumed: REXS basis '" + io::excerpt(*basis, 30) + "' names no base oil gearloss knows"
+                                          : "assumed: REXS gives no base oil type");
+    const double nu40 = required_quantity(m, c, "viscosity_at_40_degree_celsius", Quantity::kinematic_viscosity);
+    const double nu100 = required_quantity(m, c, "viscosity_at_100_degree_celsius", Quantity::kinematic_viscosity);
+    if (!(nu40 > nu100 && nu100 > 0)) m.fail(c, "the viscosity at 40 degC must exceed the one at 100 degC");
+    y.line(0, "viscosity:");
+    y.line(2, "law: astm_d341", "two points: the ASTM D341 (Walther) line");
+    y.line(2, "points:");
+    y.line(4, "- [40 degC, " + num(nu40 * 1e6) + " cSt]", src(c, "viscosity_at_40_degree_celsius"));
+    y.line(4, "- [100 degC, " + num(nu100 * 1e6) + " cSt]", src(c, "viscosity_at_100_degree_celsius"));
+    if (const auto rho = quantity(m, c, "density_at_15_degree_celsius", Quantity::density))
+        y.line(0, "density: {value: " + num(*rho) + " kg/m^3, at: 15 degC}", src(c, "density_at_15_degree_celsius"));
+    else y.line(0, "density: {value: 880 kg/m^3, at: 15 degC}", "assumed: REXS gives no density (a mineral gear oil)");
+    return y.str();
+}
+
+}  // namespace gearloss::rexs::detail
