@@ -190,9 +190,13 @@ ReportSummary summarise(const ReportData& d) {
     }, false);
     const size_t best = best_of(rs, [](const auto& a, const auto& b) { return a.efficiency > b.efficiency; }, true);
     const size_t worst = best_of(rs, [](const auto& a, const auto& b) { return a.efficiency < b.efficiency; }, true);
-    if (rated < rs.size()) s.key_points.push_back(key_point("rated (highest input power)", rs[rated], rated));
-    if (best < rs.size()) s.key_points.push_back(key_point("best efficiency", rs[best], best));
-    if (worst < rs.size() && worst != best) s.key_points.push_back(key_point("worst efficiency", rs[worst], worst));
+    // One row per point: a point that is two of them is named so once.
+    if (rated < rs.size())
+        s.key_points.push_back(key_point(std::string("rated (highest input power)") + (rated == best ? ", best efficiency" : "") +
+                                             (rated == worst && worst != best ? ", worst efficiency" : ""),
+                                         rs[rated], rated));
+    if (best < rs.size() && best != rated) s.key_points.push_back(key_point("best efficiency", rs[best], best));
+    if (worst < rs.size() && worst != best && worst != rated) s.key_points.push_back(key_point("worst efficiency", rs[worst], worst));
 
     // The ranking over the points where every oil has values.
     std::vector<const OilMap*> maps{&d.reference_map};

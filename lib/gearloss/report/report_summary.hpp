@@ -42,7 +42,7 @@ struct OilRank {
 struct ReportSummary {
     double ratio_i = 0;           // n_in / n_out (signed: negative when the output turns the other way)
     std::string ratio_name;       // gearbox.ratio of a multi-speed case, or empty
-    std::vector<KeyPoint> key_points;  // rated, best, worst (those that exist, without repeats)
+    std::vector<KeyPoint> key_points;  // rated, best, worst (those that exist; a point that is two is one row)
     std::vector<size_t> split_mechanisms;  // mechanisms in the loss split (not zero everywhere)
     std::vector<size_t> zero_mechanisms;   // mechanisms at 0 W at every point with values
     // Oil temperature over the points with values [degC], and the limit.
