@@ -1,6 +1,7 @@
-// gearloss report: one self-contained HTML page about a case (lib/gearloss/report/): the case
-// as given, derived geometry and checks, model forms, maps of efficiency, oil temperature and
-// the loss breakdown, the model-form spread and the comparison with other oils.
+// gearloss report: one self-contained HTML page about a case (lib/gearloss/report/): a summary,
+// maps of efficiency, oil temperature and the loss breakdown, the comparison with other oils,
+// the model-form spread, the model forms, the case as given and its checks; --pdf prints it
+// with headless Chromium (report/pdf_print.hpp).
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "commands/grid_overrides.hpp"
@@ -20,14 +21,16 @@ constexpr GridOverrides::Examples kReportExamples{"600,700,800rpm", "150,200,250
 class ReportCommand final : public Command {
 public:
     CLI::App* add_to(CLI::App& app) override {
-        auto* s = app.add_subcommand("report", "one self-contained HTML page: the case, derived geometry and checks, model "
-                                               "forms, efficiency / oil-temperature / loss maps, form spread, oil comparison");
+        auto* s = app.add_subcommand("report", "one self-contained HTML page (and its PDF): a summary (ratio, rated, best and "
+                                               "worst points with the loss split, thermal limit, oils ranked), efficiency / "
+                                               "oil-temperature / loss maps with their values, oil comparison, form spread, "
+                                               "model forms, the case and its checks");
         s->add_option("config", common_.config, "gearbox case (YAML)")->required();
         s->add_option("--ratio", common_.ratio, "select a ratio defined under gearbox.ratios");
         s->add_option("--oil-temp", common_.oil_temp, "fixed oil temperature (e.g. 70degC): no thermal solve");
         s->add_option("--oil", oils_, "compare the case's oil with this oil file (YAML); give once per oil");
         grid_.add_to(*s, "override the input speeds, e.g. 600,700,800rpm", "override the input torques, e.g. 150,200,250Nm");
-        s->add_option("-o,--output", out_, "output HTML file ('-' = stdout)");
+        s->add_option("-o,--output", out_, "output HTML file ('-' = stdout); -o, --pdf or both");
         s->add_option("--pdf", pdf_, "also print the page to this PDF file with headless Chromium (chromium --headless "
                                      "--print-to-pdf; $CHROMIUM names another browser)");
         s->add_option("--threads", threads_, "threads (default: all cores)")->check(CLI::Range(1, 1024));

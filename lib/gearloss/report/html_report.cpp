@@ -31,7 +31,7 @@ tr.gl-assumed td{background:#fffbea}.gl-warn{color:#8a4b00}.gl-note{color:#555;f
 .gl-worse{color:#b2182b;font-weight:600}.gl-better{color:#2166ac;font-weight:600}
 footer{margin-top:40px;padding-bottom:30px;color:#555;font-size:12px;border-top:1px solid #ccc}
 #gl-status[data-status=error]{color:#b00;font-weight:600}
-.gl-table td{overflow-wrap:anywhere}.gl-keypoints td,.gl-ranking td{white-space:nowrap}
+.gl-table td{overflow-wrap:break-word}.gl-table td.gl-path,.gl-summary code{overflow-wrap:anywhere}.gl-keypoints td,.gl-ranking td{white-space:nowrap}
 .gl-zero{background:#fff;border-left:3px solid #999;padding:4px 10px}
 .gl-cell{font-size:9.5px;font-family:system-ui,sans-serif;pointer-events:none}
 .gl-values{padding:0 8px 6px}.gl-values p{margin:2px 0;font-size:11px}
@@ -99,7 +99,7 @@ std::string case_section(const ReportData& d) {
         s += "<table class=\"gl-table\"><thead><tr><th></th><th>key</th><th>value</th><th>reason</th><th>where</th></tr></thead><tbody>";
         for (const auto& a : d.assumed)
             s += fmt::format("<tr class=\"gl-assumed\"><td><span class=\"gl-flag\">ASSUMED</span></td><td><code>{}</code></td>"
-                             "<td>{}</td><td>{}</td><td>{}</td></tr>",
+                             "<td>{}</td><td>{}</td><td class=\"gl-path\">{}</td></tr>",
                              escape_html(a.key), escape_html(a.value), escape_html(a.reason), escape_html(a.location));
         s += "</tbody></table></details>\n";
     }

@@ -82,7 +82,7 @@ std::string grid_text(const ReportData& d, const ReportSummary& s) {
     return t;
 }
 
-std::string thermal_limit_text(const ReportData& d, const ReportSummary& s) {
+std::string thermal_limit_text(const ReportSummary& s) {
     std::string t = "the oil's permissible sump temperature <b>" + degC(s.oil_limit_C) + "</b>: ";
     if (s.above_limit == 0 && s.no_equilibrium == 0) {
         if (s.with_values == 0) return t + "no point with values";
@@ -98,7 +98,6 @@ std::string thermal_limit_text(const ReportData& d, const ReportSummary& s) {
     for (size_t i = 0; i < parts.size(); ++i) t += (i ? "; " : "") + parts[i];
     if (std::isfinite(s.lowest_beyond_W)) t += "; from " + kW(s.lowest_beyond_W) + " input power";
     if (std::isfinite(s.highest_admissible_W)) t += "; highest admissible point " + kW(s.highest_admissible_W);
-    (void)d;
     return t;
 }
 
@@ -249,7 +248,7 @@ std::string summary_section(const ReportData& d, const ReportSummary& s) {
     row("oil temperature", d.fixed_oil_temperature || s.with_values == 0
                                ? escape_html(d.thermal)
                                : fmt::format("stabilised: <b>{}&#8230;{}</b> over the map", degC(s.oil_temp_min_C), degC(s.oil_temp_max_C)));
-    row("thermal limit", thermal_limit_text(d, s));
+    row("thermal limit", thermal_limit_text(s));
     std::string oils = fmt::format("<b>{}</b>: {}", 1 + d.comparisons.size(), oil_label(d.reference_map));
     for (const auto& c : d.comparisons) oils += ", " + oil_label(c);
     row("oils compared", d.comparisons.empty() ? "1 (give <code>--oil FILE</code> to compare)" : oils);
