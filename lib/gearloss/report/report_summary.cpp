@@ -140,10 +140,11 @@ std::string ranking_table(const ReportSummary& s) {
     for (size_t i = 0; i < s.oils.size(); ++i) {
         const auto& o = s.oils[i];
         const double dP = ref ? o.mean_total_W - ref->mean_total_W : kNaN;
+        const std::string difference = o.reference ? "&#8211;" : fmt::format("{}{}", dP > 0 ? "+" : "", display_number(dP, 3));
         h += fmt::format("<tr><td>{}</td><td>{} <span class=\"gl-muted\">({})</span>{}</td><td><b>{}</b></td><td>{}</td>"
                          "<td>{}</td><td>{}</td></tr>",
                          i + 1, escape_html(o.name), escape_html(o.source), o.reference ? " (reference)" : "",
-                         display_number(o.mean_total_W, 4), o.reference ? "&#8211;" : (dP > 0 ? "+" : "") + display_number(dP, 3),
+                         display_number(o.mean_total_W, 4), difference,
                          percent(o.mean_efficiency), display_number(o.max_oil_temp_C, 3));
     }
     return h + "</tbody></table>\n";
