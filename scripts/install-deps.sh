@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages gearloss builds with; does nothing when they are present.
 set -euo pipefail
-packages=(g++ cmake make libeigen3-dev libcli11-dev libyaml-cpp-dev libfmt-dev catch2 libboost-dev python3 python3-dev python3-matplotlib python3-numpy python3-pandas ccache nlohmann-json3-dev chromium pybind11-dev python3-pybind11 libpugixml-dev libzip-dev)
+packages=(g++ cmake make libeigen3-dev libcli11-dev libyaml-cpp-dev libfmt-dev catch2 libboost-dev python3 python3-dev python3-matplotlib python3-numpy python3-pandas ccache nlohmann-json3-dev chromium poppler-utils pybind11-dev python3-pybind11 libpugixml-dev libzip-dev)
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -8,6 +8,7 @@ import csv
 import html
 import io
 import json
+import math
 import os
 import re
 import subprocess
@@ -187,6 +188,157 @@ check("bad --speed: exit 2 naming the option", r.returncode == 2 and "--speed" i
 check("bad --speed: existing output untouched", open(target).read() == "previous")
 r = run("report", case, *grid, "--no-spread", "-o", "-")
 check("'-' writes the page to stdout", r.returncode == 0 and r.stdout.startswith("<!DOCTYPE html>") and r.stdout.rstrip().endswith("</html>"))
+
+# 7. The first screen: a summary with its numbers printed, checked against `gearloss map` CSV
+#    (another route through the program) and against hand calculations.
+def table_rows(page, css_class):
+    """Rows of the table of class `css_class` as lists of cell texts (tags stripped, entities decoded)."""
+    m = re.search(r'<table class="gl-table %s"[^>]*>(.*?)</table>' % re.escape(css_class), page, re.S)
+    rows = []
+    for tr in re.findall(r"<tr[^>]*>(.*?)</tr>", m.group(1) if m else "", re.S):
+        cells = re.findall(r"<t[hd][^>]*>(.*?)</t[hd]>", tr, re.S)
+        rows.append([html.unescape(re.sub(r"<[^>]+>", "", c)).replace("\xa0", " ").strip() for c in cells])
+    return rows
+
+
+def summary_row(page, name):
+    for row in table_rows(page, "gl-summary"):
+        if row and row[0] == name:
+            return row[1]
+    return ""
+
+
+def printed(text, value, digits=None, decimals=None):
+    """`text` is `value` written with `digits` significant digits or `decimals` decimals (half a unit of
+    the last digit, plus the CSV's own rounding, which the caller folds into `value`'s tolerance)."""
+    try:
+        shown = float(text.replace("%", "").replace("+", "").strip())
+    except ValueError:
+        return False
+    if decimals is None:
+        decimals = max(0, digits - 1 - int(math.floor(math.log10(abs(value))))) if value else digits - 1
+    return abs(shown - value) <= 0.5 * 10.0 ** (-decimals) * (1 + 1e-6) + 1e-6 * abs(value)
+
+
+check("summary before the maps, the maps before the case as given",
+      0 < page.find('id="summary"') < page.find('id="maps"') < page.find('id="case"') < page.find('id="checks"'))
+check("no assumed value before the maps", page.find('class="gl-assumed"') > page.find('id="maps"'))
+# Ratio of the transfer box in 'low' by hand from the teeth: wheels 5-3 (17 -> 28) then 2-1 (23 -> 32):
+# n_out/n_in = 17/28 * 23/32 = 0.436384, i = n_in/n_out = 2.29156 (printed with 4 digits: 2.292).
+ratio = summary_row(page, "ratio")
+check("ratio: i = n_in/n_out printed", re.search(r"i = nin/nout = 2\.292\b", ratio) is not None, ratio)
+check("ratio: the named ratio and n_out/n_in", "'low'" in ratio and "0.436384" in ratio, ratio)
+check("oils compared counts both oils", summary_row(page, "oils compared").startswith("2: 75W90-A"), summary_row(page, "oils compared"))
+# Oil temperature over the map: the CSV's least and greatest, 3 significant digits.
+temps = [float(row["oil_temp_C"]) for row in ref_rows if row["oil_temp_C"]]
+m = re.search(r"stabilised: ([\d.]+) °C…([\d.]+) °C over the map", summary_row(page, "oil temperature"))
+check("oil temperature range printed", m is not None and printed(m.group(1), min(temps), 3) and printed(m.group(2), max(temps), 3),
+      summary_row(page, "oil temperature"))
+# Thermal limit: the oil's permissible temperature as the loader assumed it (oil.max_temperature).
+limit = float(assumed["oil.max_temperature"]["value"].split()[0])
+check("thermal limit names the oil's permissible temperature",
+      f"permissible sump temperature {limit:g} °C" in summary_row(page, "thermal limit"), summary_row(page, "thermal limit"))
+# Key points: the rated point has the greatest input power n*T (by hand from the CSV's speed and torque;
+# of two equal, the faster); best and worst are the CSV's greatest and least efficiency.
+keyrows = table_rows(page, "gl-keypoints")
+header = re.search(r'<table class="gl-table gl-keypoints">.*?</thead>', page, re.S)
+split_columns = re.findall(r'data-column="([^"]+)"', header.group(0) if header else "")
+with_eff = [row for row in ref_rows if row["efficiency"]]
+power = lambda row: float(row["speed_in_rpm"]) * float(row["torque_in_Nm"])
+expected = {"rated (highest input power)": max((row for row in ref_rows if row["P_total_W"]),
+                                               key=lambda row: (power(row), float(row["speed_in_rpm"]))),
+            "best efficiency": max(with_eff, key=lambda row: float(row["efficiency"])),
+            "worst efficiency": min(with_eff, key=lambda row: float(row["efficiency"]))}
+# One row per point: a point that is two of them is named so once ("rated (...), best efficiency").
+roles = {}
+for role, row in expected.items():
+    roles.setdefault(id(row), []).append(role)
+rows_by_role = {}
+for role, row in expected.items():
+    rows_by_role[", ".join(roles[id(row)])] = row
+check("one key point row per point, rated first", [r[0] for r in keyrows[1:]] == list(rows_by_role), str([r[0] for r in keyrows]))
+for row in keyrows[1:]:
+    want = rows_by_role.get(row[0])
+    if not want:
+        continue
+    check(f"{row[0]}: speed and torque", float(row[1]) == round(float(want["speed_in_rpm"])) and float(row[2]) == float(want["torque_in_Nm"]), str(row))
+    check(f"{row[0]}: input power [kW] = n T pi/30", printed(row[3], power(want) * math.pi / 30 / 1000, 4), str(row))
+    check(f"{row[0]}: efficiency [%]", printed(row[4], 100 * float(want["efficiency"]), decimals=2), f'{row[4]} vs {want["efficiency"]}')
+    check(f"{row[0]}: total loss", printed(row[6], float(want["P_total_W"]), 4), f'{row[6]} vs {want["P_total_W"]}')
+    for j, col in enumerate(split_columns):
+        value, _, share = row[7 + j].partition(" (")
+        P, total = float(want[col]), float(want["P_total_W"])
+        check(f"{row[0]}: {col} and its share", printed(value, P, 4) and printed(share.rstrip(" %)"), 100 * P / total, decimals=1),
+              f"{row[7 + j]} vs {P} of {total}")
+# Mechanisms that are 0 W at every point (the CSV's all-zero columns) are named in one line, not drawn.
+zero_columns = [c for c in loss_columns if c != "P_total_W" and all(float(row[c]) == 0 for row in ref_rows if row[c])]
+drawn = re.findall(r'<svg class="gl-map" id="map-loss-([^"]+)"', page)
+check("the transfer box has all-zero mechanisms (windage among them)", "P_windage_W" in zero_columns, str(zero_columns))
+check("windage listed as zero everywhere", "windage: 0 W everywhere" in page)
+check("one line names every all-zero mechanism", page.count(": 0 W everywhere") >= len(zero_columns) and
+      max(line.count(": 0 W everywhere") for line in re.findall(r'<p class="gl-zero">(.*?)</p>', page)) == len(zero_columns))
+check("no map of an all-zero mechanism", "windage" not in drawn and len(drawn) == len(loss_columns) - 1 - len(zero_columns), str(drawn))
+check("the loss split leaves out the all-zero mechanisms", not set(split_columns) & set(zero_columns) and len(split_columns) > 0, str(split_columns))
+# The oil ranking: lowest mean total loss (over the points where both oils have values) first.
+both = [(a, b) for a, b in zip(ref_rows, b_rows) if a["P_total_W"] and b["P_total_W"]]
+mean_a = sum(float(a["P_total_W"]) for a, _ in both) / len(both)
+mean_b = sum(float(b["P_total_W"]) for _, b in both) / len(both)
+ranking = table_rows(page, "gl-ranking")[1:]
+order = ["75W90-A", "75W140-A"] if mean_a <= mean_b else ["75W140-A", "75W90-A"]
+check("oils ranked by mean total loss", [r[1].split(" (")[0] for r in ranking] == order, str(ranking))
+check("ranking means printed", len(ranking) == 2 and all(printed(r[2], mean_a if r[1].startswith("75W90-A") else mean_b, 4) for r in ranking), str(ranking))
+# Values printed in the cells (readable without hovering, and in print): every point of the
+# efficiency and total-loss maps, equal to the CSV.
+def cell_labels(page, svg_id):
+    m = re.search(r'<svg class="gl-map" id="%s".*?</svg>' % re.escape(svg_id), page, re.S)
+    return {int(i): v for i, v in re.findall(r'class="gl-cell"[^>]*data-i="(\d+)">([^<]+)</text>', m.group(0) if m else "")}
+
+labels = cell_labels(page, "map-efficiency")
+check("every efficiency cell prints its value", sorted(labels) == [i for i, row in enumerate(ref_rows) if row["efficiency"]], str(labels))
+check("efficiency labels equal the CSV (4 digits)", all(printed(v, 100 * float(ref_rows[i]["efficiency"]), 4) for i, v in labels.items()), str(labels))
+labels = cell_labels(page, "map-total-loss")
+check("total loss labels equal the CSV (3 digits)", len(labels) == len(both) and
+      all(printed(v, float(ref_rows[i]["P_total_W"]), 3) for i, v in labels.items()), str(labels))
+# The assumed values and the check dump are collapsed below the results, the dump's lines wrapped.
+check("assumed values collapsed", re.search(r'<details id="assumed"><summary>Assumed values: \d+ values', page) is not None)
+check("check dump collapsed", '<details id="check-dump"><summary>' in page and '<details id="check-dump" open' not in page)
+check("long lines wrap", re.search(r"pre\{[^}]*white-space:pre-wrap", page) is not None)
+check("print style keeps figures whole", re.search(r"@media print\{.*\.gl-figure\{break-inside:avoid", page, re.S) is not None)
+
+# 8. A grid whose cells are too small for labels: a table of values under each map.
+speeds = ",".join(str(n) for n in range(500, 4001, 250)) + "rpm"   # 15 speeds
+torques = ",".join(str(t) for t in range(0, 401, 20)) + "Nm"        # 21 torques
+r = run("report", case, "--speed", speeds, "--torque", torques, "--oil-temp", "70degC", "--no-spread", "-o", os.path.join(tmp, "big.html"))
+big = open(os.path.join(tmp, "big.html"), encoding="utf-8").read() if r.returncode == 0 else ""
+check("large grid report exits 0", r.returncode == 0, r.stderr)
+check("no labels in cells too small", cell_labels(big, "map-efficiency") == {})
+big_rows = {(round(float(row["speed_in_rpm"])), float(row["torque_in_Nm"])): row
+            for row in map_csv(case, "--speed", speeds, "--torque", torques, "--oil-temp", "70degC")}
+table = re.search(r'<table class="gl-table gl-values-table" data-map="map-total-loss">(.*?)</table>', big, re.S)
+check("a table of values under the total-loss map", table is not None)
+rows = [[html.unescape(re.sub(r"<[^>]+>", "", c)) for c in re.findall(r"<t[hd][^>]*>(.*?)</t[hd]>", tr, re.S)]
+        for tr in re.findall(r"<tr>(.*?)</tr>", table.group(1) if table else "", re.S)]
+shown_speeds = [int(x) for x in rows[0][1:]] if rows else []
+check("the table keeps the first and last speed, at most 12", shown_speeds[:1] == [500] and shown_speeds[-1:] == [4000] and len(shown_speeds) <= 12, str(shown_speeds))
+compared = 0
+for row in rows[1:]:
+    for n, text in zip(shown_speeds, row[1:]):
+        want = big_rows[(n, float(row[0]))]["P_total_W"]
+        compared += 1
+        check(f"table value at {n} rpm {row[0]} N m", printed(text, float(want), 3) if want else text in ("n.e.", "o.r.", "–"), f"{text} vs {want}")
+check("the table has rows, the first and last torque", compared > 100 and rows[1][0] == "400" and rows[-1][0] == "0", str(compared))
+check("the page says which part the table shows", "12 of 15 speeds and 16 of 21 torques, evenly spread" in big)
+
+# 9. --pdf without a browser: an error naming the option, before any solving; no file written.
+target = os.path.join(tmp, "nopdf.html")
+r = run("report", case, *grid, "--no-spread", "-o", target, "--pdf", os.path.join(tmp, "x.pdf"),
+        env={"PATH": "/nonexistent", "HOME": tmp})
+check("--pdf without chromium: exit 2 naming --pdf", r.returncode == 2 and "--pdf" in r.stderr and "Chromium" in r.stderr, r.stderr)
+check("--pdf without chromium: no file written", not os.path.exists(target) and not os.path.exists(os.path.join(tmp, "x.pdf")))
+r = run("report", case, *grid, "--no-spread", "--pdf", os.path.join(tmp, "x.pdf"), env={"PATH": "/usr/bin:/bin", "CHROMIUM": "/no/such/chromium"})
+check("--pdf with a wrong CHROMIUM: exit 2 naming it", r.returncode == 2 and "CHROMIUM=/no/such/chromium" in r.stderr, r.stderr)
+r = run("report", case, *grid, "--no-spread")
+check("neither -o nor --pdf: exit 2 naming --output", r.returncode == 2 and "--output" in r.stderr, r.stderr)
 
 print(f"report_content: {passed} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)

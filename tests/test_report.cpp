@@ -1,13 +1,18 @@
 // The HTML report's renderer (lib/gearloss/report/): escaping, colour sense, the flags of
 // assumed values, the embedded data against the map machinery, self-containment. The CLI
 // and the rendering in a browser are tested by tests/report_content.py and report_render.sh.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <regex>
 
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/report/html.hpp"
 #include "gearloss/report/html_report.hpp"
+#include "gearloss/report/map_values.hpp"
+#include "gearloss/report/pdf_print.hpp"
+#include "gearloss/report/report_summary.hpp"
 #include "gearloss/report/report_run.hpp"
 #include "gearloss/report/svg_map.hpp"
 #include "test_support.hpp"
@@ -83,8 +88,13 @@ TEST_CASE("report: the page's data are the map machinery's numbers", "[report]")
         CHECK(cols["efficiency"][i].get<double>() == Approx(rs[i].efficiency).epsilon(1e-12));
         CHECK(cols["status"][i] == solver::status_text(rs[i]));
     }
-    // One map per mechanism besides efficiency, temperature and total loss; no spread, no oil.
-    CHECK(data["map_count"] == 3 + k.model.mechanisms.size());
+    // One map per mechanism that has a loss somewhere besides efficiency, temperature and total
+    // loss; no spread, no oil.
+    size_t lossy = 0;
+    for (size_t q = 0; q < k.model.mechanisms.size(); ++q)
+        lossy += std::any_of(rs.begin(), rs.end(), [q](const auto& r) { return r.losses.power[q] != 0; });
+    CHECK(lossy < k.model.mechanisms.size());  // the transfer box has no windage, clutch or auxiliary loss
+    CHECK(data["map_count"] == 3 + lossy);
     CHECK(page.find("fixed at 80.0 degC") != std::string::npos);
 }
 
@@ -137,4 +147,103 @@ TEST_CASE("report: a grid beyond 32 x 32 points is down-sampled evenly, ends kep
     for (const auto& n : d.sweep_notes) noted |= n.find("5000 points (100 speeds x 50 torques)") != std::string::npos;
     CHECK(noted);
     CHECK(report::html_report(d).find("computes every point") != std::string::npos);
+}
+
+TEST_CASE("report: printed cell values and whether they fit their cells", "[report]") {
+    CHECK(report::label_text(97.8349, 4) == "97.83");
+    CHECK(report::label_text(1234.4, 3) == "1234");  // no decimals at or above the digits asked
+    CHECK(report::label_text(45.67, 3) == "45.7");
+    CHECK(report::label_text(0.012345, 3) == "0.012");  // at most 3 decimals
+    CHECK(report::label_text(-0.0001, 3) == "0.000");   // no "-0.000"
+    CHECK(report::label_text(NAN, 3).empty());
+    // "97.83": 5 characters of 0.6 x 9.5 px plus 4 px of margin = 32.5 px wide, 12.5 px high.
+    report::MapField f;
+    f.values = {97.8349, NAN};
+    f.label_digits = 4;
+    CHECK(report::labels_fit(f, 33, 13));
+    CHECK(!report::labels_fit(f, 32, 13));
+    CHECK(!report::labels_fit(f, 33, 12));
+    // 3 x 3 points on a 380 x 260 px plot: cells of 127 x 87 px, labels fit; 40 speeds: 9.5 px, they do not.
+    report::MapAxes a;
+    a.speeds_rpm = {500, 1500, 3000};
+    a.torques_Nm = {50, 150, 300};
+    for (double n : a.speeds_rpm)
+        for (double T : a.torques_Nm) a.points.emplace_back(n, T);
+    f.values.assign(9, 97.5);
+    f.states.assign(9, report::CellState::value);
+    f.id = "m";
+    CHECK(report::cell_labels_shown(a, f));
+    CHECK(report::values_table(a, f).empty());
+    const std::string svg = report::svg_map(a, f);
+    CHECK(std::regex_search(svg, std::regex(R"(class="gl-cell" fill="#[0-9a-f]{3}" data-i="8">97\.50</text>)")));
+    a.speeds_rpm.clear();
+    a.points.clear();
+    for (int i = 0; i < 40; ++i) a.speeds_rpm.push_back(500 + 100 * i);
+    for (double n : a.speeds_rpm)
+        for (double T : a.torques_Nm) a.points.emplace_back(n, T);
+    f.values.assign(120, 97.5);
+    f.states.assign(120, report::CellState::value);
+    CHECK(!report::cell_labels_shown(a, f));
+    const std::string table = report::values_table(a, f);
+    CHECK(table.find("12 of 40 speeds and 3 of 3 torques") != std::string::npos);
+    CHECK(table.find("<th>500</th>") != std::string::npos);   // the first speed kept
+    CHECK(table.find("<th>4400</th>") != std::string::npos);  // and the last
+}
+
+TEST_CASE("report: the summary's ratio, key points, zero mechanisms and oils against the solved points", "[report]") {
+    const auto d = small_report({test_support::source_path("configs/oils/75W140-A.yaml")});
+    const auto s = report::summarise(d);
+    // 'low' by hand from the teeth: 17 -> 28 then 23 -> 32, n_out/n_in = 17/28 * 23/32 = 0.4363839,
+    // i = 2.291560.
+    CHECK(s.ratio_i == Approx(28.0 / 17 * 32 / 23).epsilon(1e-9));
+    CHECK(s.ratio_name == "low");
+    // At a fixed 80 degC every point has values; rated: 3000 rpm x 300 N m, the last point,
+    // which is also the best (one row, named so); the worst is another.
+    const auto& rs = d.reference_map.results;
+    size_t best = 0, worst = 0;
+    for (size_t i = 0; i < rs.size(); ++i) {
+        if (rs[i].efficiency > rs[best].efficiency) best = i;
+        if (rs[i].efficiency < rs[worst].efficiency) worst = i;
+    }
+    REQUIRE(best == 8);
+    REQUIRE(worst != 8);
+    REQUIRE(s.key_points.size() == 2);
+    CHECK(s.key_points[0].index == 8);
+    CHECK(s.key_points[0].role == "rated (highest input power), best efficiency");
+    CHECK(s.key_points[0].speed_rpm == Approx(3000));
+    CHECK(s.key_points[0].torque_Nm == Approx(300));
+    CHECK(s.key_points[1].index == worst);
+    CHECK(s.key_points[1].role == "worst efficiency");
+    // Zero mechanisms: those whose loss is 0 at all nine points, and only those.
+    const auto& m = d.reference_map.model;
+    for (size_t k = 0; k < m.mechanisms.size(); ++k) {
+        const bool zero = std::all_of(rs.begin(), rs.end(), [k](const auto& r) { return r.losses.power[k] == 0; });
+        CHECK(zero == (std::find(s.zero_mechanisms.begin(), s.zero_mechanisms.end(), k) != s.zero_mechanisms.end()));
+    }
+    const std::string page = report::html_report(d);
+    CHECK(page.find("windage: 0 W everywhere") != std::string::npos);
+    CHECK(page.find("id=\"map-loss-windage\"") == std::string::npos);
+    // Two oils, ranked by their mean total loss over the nine points.
+    REQUIRE(s.oils.size() == 2);
+    double a = 0, b = 0;
+    for (size_t i = 0; i < rs.size(); ++i) a += rs[i].losses.total(), b += d.comparisons[0].results[i].losses.total();
+    CHECK(s.oils[0].mean_total_W == Approx(std::min(a, b) / 9).epsilon(1e-12));
+    CHECK(s.oils[0].reference == (a <= b));
+    CHECK(page.find("<td>oils compared</td><td><b>2</b>: 75W90-A") != std::string::npos);
+}
+
+TEST_CASE("report: --pdf without Chromium is an error naming the option", "[report]") {
+    const char* old = std::getenv("CHROMIUM");
+    const std::string saved = old ? old : "";
+    ::setenv("CHROMIUM", "/no/such/chromium", 1);
+    CHECK(report::find_chromium().empty());
+    try {
+        report::print_pdf("<html></html>", "--pdf");
+        FAIL("no error");
+    } catch (const InputError& e) {
+        CHECK(e.key == "--pdf");
+        CHECK(std::string(e.what()).find("CHROMIUM=/no/such/chromium") != std::string::npos);
+    }
+    if (old) ::setenv("CHROMIUM", saved.c_str(), 1);
+    else ::unsetenv("CHROMIUM");
 }

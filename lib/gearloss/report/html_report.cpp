@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <fmt/format.h>
 
+#include "gearloss/io/json_text.hpp"
 #include "gearloss/io/reports.hpp"
 #include "gearloss/report/html.hpp"
 #include "gearloss/report/report_maps.hpp"
+#include "gearloss/report/report_summary.hpp"
 
 namespace gearloss::report {
 namespace {
@@ -17,7 +19,8 @@ body{font:14px/1.45 system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;margin:
 header,main,footer{max-width:1280px;margin:0 auto;padding:0 24px}
 header{padding-top:16px}h1{font-size:22px;margin:8px 0}h2{font-size:18px;border-bottom:1px solid #ccc;padding-bottom:4px;margin-top:32px}
 h3{font-size:15px;margin-top:20px}nav a{margin-right:14px}code,pre{font-family:ui-monospace,Menlo,Consolas,monospace;font-size:12.5px}
-pre{background:#fff;border:1px solid #ddd;padding:10px;overflow-x:auto}
+pre{background:#fff;border:1px solid #ddd;padding:10px;white-space:pre-wrap;overflow-wrap:anywhere}
+details{margin:8px 0}details>summary{cursor:pointer;font-weight:600}
 .gl-table{border-collapse:collapse;background:#fff;margin:8px 0}.gl-table td,.gl-table th{border:1px solid #ddd;padding:3px 8px;text-align:left;vertical-align:top}
 .gl-table th{background:#f0f0f0}.gl-summary td:first-child{color:#555}
 .gl-flag{display:inline-block;background:#fff3cd;color:#7a5a00;border:1px solid #e0c060;border-radius:3px;padding:0 5px;font-size:11px;font-weight:600}
@@ -28,6 +31,21 @@ tr.gl-assumed td{background:#fffbea}.gl-warn{color:#8a4b00}.gl-note{color:#555;f
 .gl-worse{color:#b2182b;font-weight:600}.gl-better{color:#2166ac;font-weight:600}
 footer{margin-top:40px;padding-bottom:30px;color:#555;font-size:12px;border-top:1px solid #ccc}
 #gl-status[data-status=error]{color:#b00;font-weight:600}
+.gl-table td{overflow-wrap:break-word}.gl-table td.gl-path,.gl-summary code{overflow-wrap:anywhere}.gl-keypoints td,.gl-ranking td{white-space:nowrap}
+.gl-zero{background:#fff;border-left:3px solid #999;padding:4px 10px}
+.gl-cell{font-size:9.5px;font-family:system-ui,sans-serif;pointer-events:none}
+.gl-values{padding:0 8px 6px}.gl-values p{margin:2px 0;font-size:11px}
+.gl-values-table{font-size:11px;margin:0}.gl-values-table td,.gl-values-table th{padding:1px 5px;text-align:right}
+.gl-values-table td.gl-limit{outline:1.5px solid #d00;outline-offset:-2px}
+@media print{
+@page{size:A4;margin:12mm}
+*{-webkit-print-color-adjust:exact;print-color-adjust:exact}
+body{background:#fff;font-size:11px}header,main,footer{max-width:none;padding:0}nav{display:none}
+h2{margin-top:18px;break-after:avoid}h3{break-after:avoid}
+.gl-figure{break-inside:avoid;max-width:100%;border-color:#bbb}svg.gl-map{max-width:100%;height:auto}
+.gl-table tr{break-inside:avoid}.gl-keypoints,.gl-ranking,.gl-summary{font-size:10px}
+#summary{break-after:page}
+}
 )css";
 
 // First in <head>: every script error and console error from here on is recorded.
@@ -70,45 +88,20 @@ constexpr const char* kStatusScript = R"js(
 
 std::string case_name(const ReportData& d) { return d.reference.model.name; }
 
-std::string summary_table(const ReportData& d) {
-    const auto& k = d.reference;
-    size_t with_values = 0, no_eq = 0, out = 0, above = 0;
-    for (const auto& r : d.reference_map.results) {
-        with_values += solver::has_values(r.status);
-        no_eq += r.status == solver::PointStatus::no_equilibrium;
-        out += r.status == solver::PointStatus::out_of_range;
-        above += r.status == solver::PointStatus::above_oil_limit;
-    }
-    std::string s = "<table class=\"gl-table gl-summary\">";
-    const auto row = [&](const std::string& a, const std::string& b) { s += "<tr><td>" + a + "</td><td>" + b + "</td></tr>"; };
-    row("case file", "<code>" + escape_html(k.file) + "</code>");
-    row("name", escape_html(case_name(d)));
-    if (!d.title.empty()) row("title", escape_html(d.title));
-    row("oil", escape_html(d.reference_map.oil_name) + " <span class=\"gl-muted\">(" + escape_html(d.reference_map.source) + ")</span>");
-    row("oil temperature", escape_html(d.thermal));
-    row("ratio", k.model.ratio.empty() ? "&#8211;" : escape_html(k.model.ratio) + fmt::format(" (n_out/n_in = {})", display_number(k.model.layout.ratio, 6)));
-    row("operating points", fmt::format("{} ({}); {} with values, {} without equilibrium, {} out of range, {} above the oil's limit",
-                                        k.grid.size(), k.grid.is_grid ? fmt::format("{} speeds &#215; {} torques", k.grid.speeds.size(), k.grid.torques.size()) : "point list",
-                                        with_values, no_eq, out, above));
-    row("oils compared", fmt::format("{}", d.comparisons.size()));
-    row("case hash", "<code>" + escape_html(d.case_hash) + "</code>");
-    return s + "</table>\n";
-}
-
 std::string case_section(const ReportData& d) {
     std::string s = "<section id=\"case\"><h2>The case</h2>\n";
-    for (const auto& n : d.sweep_notes) s += "<p class=\"gl-note\">" + escape_html(n) + "</p>\n";
-    s += "<h3>Assumed values</h3>\n";
     if (d.assumed.empty()) {
-        s += "<p>None: every value the model needs is given by the case or its oil file.</p>\n";
+        s += "<p>Assumed values: none; every value the model needs is given by the case or its oil file.</p>\n";
     } else {
-        s += "<p>Values the case does not give, filled in by the loader (<span class=\"gl-flag\">ASSUMED</span>):</p>"
-             "<table class=\"gl-table\"><thead><tr><th></th><th>key</th><th>value</th><th>reason</th><th>where</th></tr></thead><tbody>";
+        s += fmt::format("<details id=\"assumed\"><summary>Assumed values: {} values the case does not give, filled in by the "
+                         "loader (<span class=\"gl-flag\">ASSUMED</span>)</summary>",
+                         d.assumed.size());
+        s += "<table class=\"gl-table\"><thead><tr><th></th><th>key</th><th>value</th><th>reason</th><th>where</th></tr></thead><tbody>";
         for (const auto& a : d.assumed)
             s += fmt::format("<tr class=\"gl-assumed\"><td><span class=\"gl-flag\">ASSUMED</span></td><td><code>{}</code></td>"
-                             "<td>{}</td><td>{}</td><td>{}</td></tr>",
+                             "<td>{}</td><td>{}</td><td class=\"gl-path\">{}</td></tr>",
                              escape_html(a.key), escape_html(a.value), escape_html(a.reason), escape_html(a.location));
-        s += "</tbody></table>\n";
+        s += "</tbody></table></details>\n";
     }
     s += fmt::format("<details><summary>Values as given in <code>{}</code> ({} values)</summary>\n", escape_html(d.reference.file),
                      d.given.size());
@@ -131,7 +124,7 @@ std::string checks_section(const ReportData& d) {
         for (const auto& x : w) s += "<li class=\"gl-warn\">" + escape_html(x) + "</li>";
         s += "</ul>\n";
     }
-    s += "<details open><summary>As <code>gearloss check</code> prints it</summary><pre>" +
+    s += "<details id=\"check-dump\"><summary>As <code>gearloss check</code> prints it</summary><pre class=\"gl-dump\">" +
          escape_html(io::check_report(d.reference)) + "</pre></details></section>\n";
     return s;
 }
@@ -179,7 +172,28 @@ std::string footer(const ReportData& d) {
 }
 
 // The data behind the page, for its own check and for readers who want the numbers.
-ordered_json page_data(const ReportData& d, size_t map_count) {
+ordered_json summary_json(const ReportData& d, const ReportSummary& s) {
+    ordered_json j;
+    j["ratio_i"] = io::json_number(s.ratio_i);
+    j["ratio_name"] = s.ratio_name;
+    j["oil_limit_C"] = io::json_number(s.oil_limit_C);
+    ordered_json points = ordered_json::array();
+    for (const auto& p : s.key_points)
+        points.push_back({{"role", p.role}, {"index", p.index}, {"speed_in_rpm", p.speed_rpm}, {"torque_in_Nm", p.torque_Nm},
+                          {"efficiency", io::json_number(p.efficiency)}, {"oil_temp_C", p.oil_temp_C}, {"P_total_W", p.total_W}});
+    j["key_points"] = std::move(points);
+    ordered_json zero = ordered_json::array();
+    for (size_t k : s.zero_mechanisms) zero.push_back(d.reference_map.model.mechanisms[k].name());
+    j["zero_mechanisms"] = std::move(zero);
+    ordered_json oils = ordered_json::array();
+    for (const auto& o : s.oils)
+        oils.push_back({{"name", o.name}, {"source", o.source}, {"reference", o.reference},
+                        {"mean_P_total_W", io::json_number(o.mean_total_W)}, {"points", o.points}});
+    j["oil_ranking"] = std::move(oils);
+    return j;
+}
+
+ordered_json page_data(const ReportData& d, const ReportSummary& summary, size_t map_count) {
     ordered_json j;
     j["format"] = "gearloss-report/1";
     j["gearloss_version"] = d.version;
@@ -188,6 +202,7 @@ ordered_json page_data(const ReportData& d, size_t map_count) {
     j["thermal"] = {{"mode", d.fixed_oil_temperature ? "fixed" : "stabilised"}, {"description", d.thermal}};
     j["grid"] = {{"is_grid", d.reference.grid.is_grid}, {"points", d.reference.grid.size()}};
     j["map_count"] = map_count;
+    j["summary"] = summary_json(d, summary);
     ordered_json oils = ordered_json::array();
     const auto add = [&](const OilMap& m, const char* role) {
         oils.push_back({{"name", m.oil_name}, {"source", m.source}, {"role", role}, {"map", map_columns(m)}});
@@ -204,19 +219,22 @@ ordered_json page_data(const ReportData& d, size_t map_count) {
 
 std::string html_report(const ReportData& d) {
     const MapAxes axes = map_axes(d.reference.grid);
-    std::string body = case_section(d) + checks_section(d) + model_section(d) + maps_section(d, axes) +
-                       spread_section(d, axes) + comparison_section(d, axes);
+    // The results first (summary, maps, oils, spread), then what they rest on (forms, the case, checks).
+    const ReportSummary summary = summarise(d);
+    std::string body = summary_section(d, summary) + maps_section(d, axes, summary) + comparison_section(d, axes) +
+                       spread_section(d, axes) + model_section(d) + case_section(d) + checks_section(d);
     size_t maps = 0;
     for (size_t at = body.find("class=\"gl-map\""); at != std::string::npos; at = body.find("class=\"gl-map\"", at + 1)) ++maps;
     const std::string name = escape_html(case_name(d));
     std::string page = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
                        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
     page += "<title>gearloss report: " + name + "</title>\n<script>" + kErrorCapture + "</script>\n<style>" + kStyle + "</style>\n";
-    page += "</head><body>\n" + svg_pattern_defs() + "\n<header><h1>gearloss report: " + name + "</h1>\n" + summary_table(d);
-    page += "<nav><a href=\"#case\">case</a><a href=\"#checks\">geometry and checks</a><a href=\"#model\">model forms</a>"
-            "<a href=\"#maps\">maps</a><a href=\"#spread\">form spread</a><a href=\"#oils\">oil comparison</a></nav></header>\n";
+    page += "</head><body>\n" + svg_pattern_defs() + "\n<header><h1>gearloss report: " + name + "</h1>\n";
+    page += "<nav><a href=\"#summary\">summary</a><a href=\"#maps\">maps</a><a href=\"#oils\">oil comparison</a>"
+            "<a href=\"#spread\">form spread</a><a href=\"#model\">model forms</a><a href=\"#case\">case</a>"
+            "<a href=\"#checks\">geometry and checks</a></nav></header>\n";
     page += "<main>\n" + body + "</main>\n" + footer(d);
-    page += "<script type=\"application/json\" id=\"gl-data\">" + json_for_script(page_data(d, maps)) + "</script>\n";
+    page += "<script type=\"application/json\" id=\"gl-data\">" + json_for_script(page_data(d, summary, maps)) + "</script>\n";
     page += std::string("<script>") + kStatusScript + "</script>\n</body></html>\n";
     return page;
 }

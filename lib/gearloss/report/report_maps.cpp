@@ -1,11 +1,13 @@
 #include "gearloss/report/report_maps.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
 
 #include "gearloss/io/json_text.hpp"
 #include "gearloss/report/html.hpp"
+#include "gearloss/report/map_values.hpp"
 #include <numbers>
 
 namespace gearloss::report {
@@ -39,6 +41,19 @@ MapField field_of(const std::vector<solver::PointResult>& rs, std::string title,
 
 double efficiency_percent(const solver::PointResult& r) { return r.has_efficiency ? 100.0 * r.efficiency : kNaN; }
 
+// An efficiency map prints 4 significant digits (97.84 %): 3 would hide most of the map's range.
+MapField efficiency_field(MapField f) {
+    f.label_digits = 4;
+    return f;
+}
+
+// Whether mechanism k is 0 W at every point with values of a map.
+bool zero_everywhere(const std::vector<solver::PointResult>& rs, size_t k) {
+    return std::all_of(rs.begin(), rs.end(), [k](const solver::PointResult& r) {
+        return !solver::has_values(r.status) || std::fabs(r.losses.power[k]) <= 1e-9;
+    });
+}
+
 // The difference oil k - reference of a quantity, point by point; a point without values in
 // either map has none (and the state of whichever lacks them).
 template <class Get>
@@ -59,7 +74,7 @@ MapField difference(const std::vector<solver::PointResult>& ref, const std::vect
 
 std::string figure(const MapAxes& axes, MapField f, const std::string& id, const std::string& caption = {}) {
     f.id = id;
-    std::string s = "<figure class=\"gl-figure\">" + svg_map(axes, f);
+    std::string s = "<figure class=\"gl-figure\">" + svg_map(axes, f) + values_table(axes, f);
     if (!caption.empty()) s += "<figcaption>" + caption + "</figcaption>";
     return s + "</figure>\n";
 }
@@ -99,15 +114,16 @@ MapAxes map_axes(const io::OperatingGrid& grid) {
     return a;
 }
 
-std::string maps_section(const ReportData& d, const MapAxes& axes) {
+std::string maps_section(const ReportData& d, const MapAxes& axes, const ReportSummary& summary) {
     const auto& rs = d.reference_map.results;
     const auto& m = d.reference_map.model;
     std::string s = "<section id=\"maps\"><h2>Maps over the operating points</h2>\n";
-    s += fmt::format("<p>Oil {}; oil temperature {}. Each cell is one computed point (hover for its value); the colour "
-                     "scales span the values with the outer 2&#160;% clipped.</p>\n",
+    s += fmt::format("<p>Oil {}; oil temperature {}. Each cell is one computed point, its value printed in the cell (or in "
+                     "the table under the picture when the cells are too small; hover a cell for its value and status); "
+                     "the colour scales span the values with the outer 2&#160;% clipped.</p>\n",
                      oil_label(d.reference_map), escape_html(d.thermal));
     s += "<div class=\"gl-grid\">";
-    s += figure(axes, field_of(rs, "efficiency", "%", efficiency_percent), "map-efficiency");
+    s += figure(axes, efficiency_field(field_of(rs, "efficiency", "%", efficiency_percent)), "map-efficiency");
     const std::string t_title = d.fixed_oil_temperature ? "oil temperature, " + d.thermal : "stabilised oil temperature";
     const std::string t_caption =
         d.fixed_oil_temperature
@@ -117,8 +133,11 @@ std::string maps_section(const ReportData& d, const MapAxes& axes) {
     s += figure(axes, field_of(rs, t_title, "degC", [](const auto& r) { return r.oil_temperature - 273.15; }),
                 "map-oil-temperature", escape_html(t_caption));
     s += figure(axes, field_of(rs, "total loss", "W", [](const auto& r) { return r.losses.total(); }), "map-total-loss");
-    s += "</div>\n<h3>Loss breakdown per mechanism</h3>\n<div class=\"gl-grid\">";
-    for (size_t k = 0; k < m.mechanisms.size(); ++k) {
+    s += "</div>\n<h3>Loss breakdown per mechanism</h3>\n";
+    if (const std::string z = zero_mechanisms_line(d, summary); !z.empty())
+        s += "<p class=\"gl-zero\">Not drawn, zero at every point: " + z + ".</p>\n";
+    s += "<div class=\"gl-grid\">";
+    for (size_t k : summary.split_mechanisms) {
         const auto& mech = m.mechanisms[k];
         const std::string title = fmt::format("{} loss ({})", mech.label(), mech.column());
         s += figure(axes, field_of(rs, title, "W", [k](const auto& r) { return r.losses.power[k]; }),
@@ -212,17 +231,24 @@ std::string comparison_section(const ReportData& d, const MapAxes& axes) {
             s += figure(axes, difference(ref.results, k.results, "oil temperature difference " + name + " - " + ref.oil_name,
                                          "K", ColourSense::higher_is_worse, [](const auto& r) { return r.oil_temperature; }),
                         fmt::format("map-oil{}-dT", j + 1));
-        s += figure(axes, difference(ref.results, k.results, "efficiency difference " + name + " - " + ref.oil_name,
-                                     "points of %", ColourSense::higher_is_better, efficiency_percent),
+        s += figure(axes, efficiency_field(difference(ref.results, k.results, "efficiency difference " + name + " - " + ref.oil_name,
+                                                  "points of %", ColourSense::higher_is_better, efficiency_percent)),
                     fmt::format("map-oil{}-deta", j + 1));
         s += "</div>\n<details><summary>loss difference per mechanism</summary><div class=\"gl-grid\">";
+        std::string zero;
         for (size_t q = 0; q < ref.model.mechanisms.size(); ++q) {
             const auto& mech = ref.model.mechanisms[q];
+            if (zero_everywhere(ref.results, q) && zero_everywhere(k.results, q)) {
+                zero += (zero.empty() ? "" : "; ") + escape_html(mech.label()) + ": 0 W everywhere with both oils";
+                continue;
+            }
             s += figure(axes, difference(ref.results, k.results, fmt::format("{} loss difference ({})", mech.label(), mech.column()),
                                          "W", ColourSense::higher_is_worse, [q](const auto& r) { return r.losses.power[q]; }),
                         fmt::format("map-oil{}-d-{}", j + 1, mech.name()));
         }
-        s += "</div></details>\n";
+        s += "</div>";
+        if (!zero.empty()) s += "<p class=\"gl-zero\">Not drawn: " + zero + ".</p>";
+        s += "</details>\n";
     }
     return s + "</section>\n";
 }

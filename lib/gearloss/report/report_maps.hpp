@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gearloss/report/report_data.hpp"
+#include "gearloss/report/report_summary.hpp"
 #include "gearloss/report/svg_map.hpp"
 
 namespace gearloss::report {
@@ -16,7 +17,9 @@ namespace gearloss::report {
 MapAxes map_axes(const io::OperatingGrid& grid);
 
 // The HTML (headings, notes and inline SVG pictures) of each section.
-std::string maps_section(const ReportData& d, const MapAxes& axes);
+// The maps of the mechanisms that are zero everywhere (summary.zero_mechanisms) are not drawn:
+// one line names them.
+std::string maps_section(const ReportData& d, const MapAxes& axes, const ReportSummary& summary);
 std::string spread_section(const ReportData& d, const MapAxes& axes);
 std::string comparison_section(const ReportData& d, const MapAxes& axes);
 

@@ -8,6 +8,7 @@
 #include "gearloss/io/sweep.hpp"
 #include "gearloss/map/form_spread.hpp"
 #include "gearloss/map/output_metadata.hpp"
+#include "gearloss/report/map_values.hpp"
 
 namespace gearloss::report {
 namespace {
@@ -45,17 +46,6 @@ std::string oil_sweep_note(const std::vector<io::SweepAxis>& axes) {
 
 bool is_oil_sweep(const std::vector<io::SweepAxis>& axes) {
     return axes.size() == 1 && axes[0].paths.size() == 1 && axes[0].paths[0] == "oil";
-}
-
-// `count` indices spread evenly over 0..n-1, both ends kept (all of them when n <= count).
-std::vector<size_t> even_indices(size_t n, size_t count) {
-    std::vector<size_t> at;
-    if (n <= count) {
-        for (size_t i = 0; i < n; ++i) at.push_back(i);
-        return at;
-    }
-    for (size_t k = 0; k < count; ++k) at.push_back((k * (n - 1) + (count - 1) / 2) / (count - 1));
-    return at;
 }
 
 // The grid a report shows: the case's up to kMaxReportPoints; a larger one down-sampled (a

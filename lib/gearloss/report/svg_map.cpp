@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "gearloss/report/html.hpp"
+#include "gearloss/report/map_values.hpp"
 
 namespace gearloss::report {
 namespace {
@@ -116,6 +117,32 @@ struct Scale {
 };
 
 std::string px(double v) { return fmt::format("{:.1f}", v); }
+
+// The plot's extent of a grid in data units: the union of the cells.
+struct GridFrame {
+    std::vector<std::pair<double, double>> ex, ey;  // per speed, per torque: cell edges
+    Scale sx, sy;
+};
+GridFrame grid_frame(const MapAxes& axes) {
+    GridFrame g{cell_edges(axes.speeds_rpm), cell_edges(axes.torques_Nm), {}, {}};
+    double x0 = g.ex[0].first, x1 = g.ex[0].second, y0 = g.ey[0].first, y1 = g.ey[0].second;
+    for (const auto& [a, b] : g.ex) x0 = std::min(x0, a), x1 = std::max(x1, b);
+    for (const auto& [a, b] : g.ey) y0 = std::min(y0, a), y1 = std::max(y1, b);
+    g.sx = {x0, x1, kLeft, kLeft + kPlotW};
+    g.sy = {y0, y1, kTop + kPlotH, kTop};
+    return g;
+}
+
+bool is_drawable_grid(const MapAxes& axes) { return axes.is_grid && !axes.speeds_rpm.empty() && !axes.torques_Nm.empty(); }
+
+// Black or white, whichever reads better on a cell of colour "#rrggbb" (relative luminance,
+// ITU-R BT.709 weights).
+const char* label_colour(const std::string& fill) {
+    if (fill.size() != 7 || fill[0] != '#') return "#000";
+    const unsigned v = static_cast<unsigned>(std::stoul(fill.substr(1), nullptr, 16));
+    const Rgb c = hex(v);
+    return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b < 128 ? "#fff" : "#000";
+}
 
 const char* state_text(CellState s) {
     switch (s) {
@@ -233,7 +260,7 @@ std::string colour_bar_svg(const MapField& f, const Range& r) {
 }
 
 // The legend: computed points, and each state without a colour value that occurs.
-std::string legend_svg(const MapField& f, bool grid, int& rows) {
+std::string legend_svg(const MapField& f, bool grid, bool labelled, int& rows) {
     std::string s;
     double y = kLegendTop;
     auto entry = [&](const std::string& swatch, const std::string& text) {
@@ -242,8 +269,13 @@ std::string legend_svg(const MapField& f, bool grid, int& rows) {
         y += 18;
         ++rows;
     };
-    entry(fmt::format(R"(<circle cx="{}" cy="{}" r="2.2" fill="#000" stroke="#fff" stroke-width="0.8"/>)", px(kLeft + 8), px(y)),
-          grid ? "computed point (cell centre, its value); lines: contours at the colour bar's ticks" : "computed point");
+    if (labelled)
+        entry(fmt::format(R"(<text x="{}" y="{}" text-anchor="middle" class="gl-legend">12.3</text>)", px(kLeft + 8), px(y + 4)),
+              "computed point: its value at the cell centre; lines: contours at the colour bar's ticks");
+    else
+        entry(fmt::format(R"(<circle cx="{}" cy="{}" r="2.2" fill="#000" stroke="#fff" stroke-width="0.8"/>)", px(kLeft + 8), px(y)),
+              grid ? "computed point (values: the table below); lines: contours at the bar's ticks"
+                   : "computed point (values: the table below)");
     auto has = [&](CellState st) { return std::find(f.states.begin(), f.states.end(), st) != f.states.end(); };
     auto box = [&](const char* fill, const char* stroke) {
         return fmt::format(R"(<rect x="{}" y="{}" width="16" height="11" fill="{}" stroke="{}"/>)", px(kLeft), px(y - 5.5),
@@ -302,6 +334,15 @@ std::string svg_pattern_defs() {
            R"(</defs></svg>)";
 }
 
+bool cell_labels_shown(const MapAxes& axes, const MapField& f) {
+    if (!is_drawable_grid(axes)) return false;
+    const GridFrame g = grid_frame(axes);
+    double w = kPlotW, h = kPlotH;
+    for (const auto& [a, b] : g.ex) w = std::min(w, g.sx(b) - g.sx(a));
+    for (const auto& [a, b] : g.ey) h = std::min(h, g.sy(a) - g.sy(b));
+    return labels_fit(f, w, h);
+}
+
 std::string svg_map(const MapAxes& axes, const MapField& f) {
     const Range r = colour_range(f);
     const auto colour = [&](double v) { return scale_colour(f.sense, unit_position(v, r.lo, r.hi)); };
@@ -315,26 +356,32 @@ std::string svg_map(const MapAxes& axes, const MapField& f) {
         if (f.states[i] != CellState::value) t += std::string(std::isfinite(f.values[i]) ? " (" : "(") + state_text(f.states[i]) + ")";
         return "<title>" + t + "</title>";
     };
-    if (axes.is_grid && !axes.speeds_rpm.empty() && !axes.torques_Nm.empty()) {
-        const auto ex = cell_edges(axes.speeds_rpm), ey = cell_edges(axes.torques_Nm);
-        double x0 = ex[0].first, x1 = ex[0].second, y0 = ey[0].first, y1 = ey[0].second;
-        for (const auto& [a, b] : ex) x0 = std::min(x0, a), x1 = std::max(x1, b);
-        for (const auto& [a, b] : ey) y0 = std::min(y0, a), y1 = std::max(y1, b);
-        sx = {x0, x1, kLeft, kLeft + kPlotW};
-        sy = {y0, y1, kTop + kPlotH, kTop};
+    const bool labelled = cell_labels_shown(axes, f);
+    std::string labels;  // the value of each cell, drawn over everything else in the plot
+    if (is_drawable_grid(axes)) {
+        const GridFrame g = grid_frame(axes);
+        const auto& ex = g.ex;
+        const auto& ey = g.ey;
+        sx = g.sx;
+        sy = g.sy;
         const size_t nt = axes.torques_Nm.size();
         std::string limits;  // outlines of the cells above the oil's limit, drawn over the cells
         for (size_t i = 0; i < axes.points.size(); ++i) {
             const size_t is = i / nt, it = i % nt;
             const double xa = sx(ex[is].first), xb = sx(ex[is].second), ya = sy(ey[it].second), yb = sy(ey[it].first);
             const bool has = std::isfinite(f.values[i]);
+            const std::string fill = has ? colour(f.values[i]) : state_fill(f.states[i]);
             body += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="{}">{}</rect>)", px(xa), px(ya),
-                                px(xb - xa + 0.4), px(yb - ya + 0.4), has ? colour(f.values[i]) : state_fill(f.states[i]),
-                                cell_title(i));
+                                px(xb - xa + 0.4), px(yb - ya + 0.4), fill, cell_title(i));
             if (f.states[i] == CellState::above_oil_limit)
                 limits += fmt::format(R"(<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#d00" stroke-width="1.2"/>)",
                                       px(xa + 0.6), px(ya + 0.6), px(xb - xa - 1.2), px(yb - ya - 1.2));
-            dots += fmt::format("M{} {}h0", px(sx(axes.points[i].first)), px(sy(axes.points[i].second)));
+            if (labelled && has)
+                labels += fmt::format(R"(<text x="{}" y="{}" text-anchor="middle" class="gl-cell" fill="{}" data-i="{}">{}</text>)",
+                                      px(sx(axes.points[i].first)), px(sy(axes.points[i].second) + 3.3), label_colour(fill), i,
+                                      label_text(f.values[i], f.label_digits));
+            else
+                dots += fmt::format("M{} {}h0", px(sx(axes.points[i].first)), px(sy(axes.points[i].second)));
         }
         // Contours through the nodes in ascending order of each axis.
         std::vector<size_t> os(axes.speeds_rpm.size()), ot(nt);
@@ -353,6 +400,7 @@ std::string svg_map(const MapAxes& axes, const MapField& f) {
         body += limits;
         if (!lines.empty())
             body += fmt::format(R"(<path d="{}" fill="none" stroke="#000" stroke-opacity="0.45" stroke-width="0.9"/>)", lines);
+        body += labels;
     } else if (!axes.points.empty()) {
         double x0 = axes.points[0].first, x1 = x0, y0 = axes.points[0].second, y1 = y0;
         for (const auto& [n, T] : axes.points) x0 = std::min(x0, n), x1 = std::max(x1, n), y0 = std::min(y0, T), y1 = std::max(y1, T);
@@ -371,7 +419,7 @@ std::string svg_map(const MapAxes& axes, const MapField& f) {
         }
     }
     int rows = 0;
-    const std::string legend = legend_svg(f, axes.is_grid, rows);
+    const std::string legend = legend_svg(f, axes.is_grid, labelled, rows);
     const double height = kLegendTop + rows * 18 + 4;
     std::string s = fmt::format(R"(<svg class="gl-map" id="{}" width="{}" height="{}" )"
                                 R"(viewBox="0 0 {} {}" role="img" aria-label="{}">)",

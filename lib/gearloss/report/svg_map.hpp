@@ -1,9 +1,10 @@
 #pragma once
 // One quantity over the operating points of a case as an inline SVG picture: a heat map of
-// the speed x torque grid (each computed point at the centre of its cell, marked by a dot),
-// contour lines at the colour bar's ticks, the colour bar with its unit, axis labels, and a
-// legend for the points without values (no equilibrium, out of range) and those above the
-// oil's permissible temperature. A point list (no grid) is drawn as coloured dots.
+// the speed x torque grid (each computed point at the centre of its cell, marked by its value
+// printed in the cell where it fits, else by a dot), contour lines at the colour bar's ticks,
+// the colour bar with its unit, axis labels, and a legend for the points without values (no
+// equilibrium, out of range) and those above the oil's permissible temperature. A point list
+// (no grid) is drawn as coloured dots.
 // Colours: a sequential scale for a quantity, a diverging one for a difference, with red
 // always meaning worse and blue better (ColourSense).
 #include <string>
@@ -32,10 +33,16 @@ struct MapField {
     std::vector<double> values;     // per point; NaN = no value
     std::vector<CellState> states;  // per point
     std::string id;                 // the <svg>'s id (unique in the page)
+    int label_digits = 3;           // significant digits of the printed values (map_values.hpp)
 };
 
-// The picture (an <svg> element). Titles and units are escaped here.
+// The picture (an <svg> element). Titles and units are escaped here. Each cell of a grid
+// carries its value as a label when every label fits in its cell (cell_labels_shown);
+// otherwise the page prints a table beside the picture (map_values.hpp).
 std::string svg_map(const MapAxes& axes, const MapField& field);
+
+// Whether svg_map prints the values in the cells of this picture.
+bool cell_labels_shown(const MapAxes& axes, const MapField& field);
 
 // The fill patterns the pictures refer to (no equilibrium, out of range): one hidden <svg>
 // to be placed once in the page before the maps.
