@@ -7,5 +7,6 @@ cd "$(dirname "$0")/.."
 build=${BUILD_DIR:-build}
 launcher=()
 command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=${BUILD_TYPE:-Release} "${launcher[@]}" ${CMAKE_EXTRA:-} > /dev/null
+# Tests and the Python module on (a build folder configured by scripts/run-example.sh has them off).
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=${BUILD_TYPE:-Release} -DBUILD_TESTING=ON -DGEARLOSS_PYTHON=ON "${launcher[@]}" ${CMAKE_EXTRA:-} > /dev/null
 cmake --build "$build" -j "$(nproc)"

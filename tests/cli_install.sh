@@ -7,7 +7,8 @@
 #    must come from the installed data; the summary equals the build tree's;
 #  - GEARLOSS_DATA_DIR pointing at an empty folder: exit 2 and a message naming the variable
 #    and the folder; a copy of the binary with no data beside it names the places it
-#    searched, and runs with GEARLOSS_DATA_DIR set to the installed data.
+#    searched, and runs with GEARLOSS_DATA_DIR set to the installed data;
+#  - the installed share/gearloss/slurm-map.sh finds the installed binary from a spooled copy.
 # Everything is written inside a temporary folder, removed on exit.
 # Usage: cli_install.sh BUILD_DIR SOURCE_DIR
 source "$(dirname "$0")/cli_common.sh" "$@"
@@ -87,6 +88,23 @@ rc=$?
 check "the case's own cycles/ first, no data folder needed: exit 0" test $rc -eq 0
 [ $rc -eq 0 ] || cat "$tmp/local.err"
 check "the case's own cycles/: same summary" cmp -s "$tmp/local.txt" "$tmp/built.txt"
+
+# The installed Slurm array script names the installed binary (sbatch runs a spooled copy of
+# it, which cannot look beside itself): run as a copy elsewhere, with no GEARLOSS, no gearloss
+# on PATH and a submit folder without a build, it still finds it (array environment emulated).
+check "installed slurm-map.sh" test -x "$prefix/share/gearloss/slurm-map.sh"
+check "installed slurm-map.sh names the installed binary" grep -qF "installed_bin=\"$prefix/bin/gearloss\"" "$prefix/share/gearloss/slurm-map.sh"
+mkdir -p "$tmp/spool"
+cp "$prefix/share/gearloss/slurm-map.sh" "$tmp/spool/slurm_script"
+(cd "$tmp/elsewhere" && env -u GEARLOSS PATH=/usr/bin:/bin SLURM_SUBMIT_DIR="$tmp/elsewhere" SLURM_JOB_ID=7 \
+    SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_MAX=2 SLURM_ARRAY_TASK_STEP=1 SLURM_ARRAY_TASK_COUNT=2 \
+    bash "$tmp/spool/slurm_script" "$src/configs/transfer-box.yaml" "$tmp/shards" --speed 1000,2000rpm --torque 100Nm \
+    > "$tmp/slurm.txt" 2>&1)
+rc=$?
+check "installed slurm-map.sh: exit 0" test $rc -eq 0
+[ $rc -eq 0 ] || cat "$tmp/slurm.txt"
+check "installed slurm-map.sh: used the installed binary" grep -qF "($prefix/bin/gearloss)" "$tmp/slurm.txt"
+check "installed slurm-map.sh: shard 2/2 written" grep -q "^# gearloss shard 2/2:" "$tmp/shards/shard-2.csv"
 
 echo "$pass passed, $fail failed"
 test $fail -eq 0

@@ -231,7 +231,7 @@ double pearson(const std::vector<double>& x, const std::vector<double>& y) {
 
 }  // namespace
 
-Location locate(const Engine& E, const Pred& p, const Hypothesis& h, const solver::Model& model) {
+Location locate(const Engine& E, const Pred& p, const Hypothesis& h, const solver::Model& /*model*/) {
     const auto& obs = E.obs();
     std::vector<double> lnn, tq, visc, dL, dT, lnnT, tqT, viscT;
     for (size_t i = 0; i < obs.size(); ++i) {

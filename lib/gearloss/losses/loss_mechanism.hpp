@@ -95,8 +95,8 @@ struct Parameter {
     // name it reports ("windage") and what a departure from nominal means physically. Its
     // bounds for a campaign are relative (an added loss up to a few times the recorded one),
     // within [lower, upper].
-    std::string effect;          // empty: not a candidate
-    std::string left_out;        // "air/oil-mist drag of the rotating gears, ..."
+    std::string effect = {};     // empty: not a candidate
+    std::string left_out = {};   // "air/oil-mist drag of the rotating gears, ..."
     // Whether the term may differ from oil to oil (a multi-oil campaign fits it per oil).
     bool oil_dependent = false;
     // The form that reads this setting ("fernandes_mixed"); empty: every form. A setting its

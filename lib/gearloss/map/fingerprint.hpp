@@ -25,19 +25,19 @@ struct Fnv1a {
 
 // What a map job is computed from besides its rows' keys (the CLI fills it in).
 struct JobInputs {
-    std::string config;                      // case file: its text and every file it names
-    std::string oil_file;                    // --oil ("" = none): its content
-    std::optional<double> oil_temperature;   // --oil-temp as resolved [K]
-    std::string ratio;                       // --ratio ("" = none)
+    std::string config = {};                 // case file: its text and every file it names
+    std::string oil_file = {};               // --oil ("" = none): its content
+    std::optional<double> oil_temperature = {};  // --oil-temp as resolved [K]
+    std::string ratio = {};                  // --ratio ("" = none)
     std::string format = "csv";              // --format
     bool detail = false;                     // --detail
     std::string version = GEARLOSS_VERSION;  // another release may compute other rows
     // The case already parsed, as (key path, node) pairs to walk for the files it names
     // (io::Sweep::as_written: the case, then its sweep block under "sweep"); empty: the
     // file is parsed here.
-    std::vector<std::pair<std::string, YAML::Node>> parsed;
+    std::vector<std::pair<std::string, YAML::Node>> parsed = {};
     // named_files(...) when the caller has it already (it costs a file lookup per value).
-    std::optional<std::vector<std::pair<std::string, std::string>>> files;
+    std::optional<std::vector<std::pair<std::string, std::string>>> files = {};
 };
 
 class Fingerprint {

@@ -23,18 +23,18 @@ struct MetadataOil {
 };
 
 struct MetadataRequest {
-    std::string command;                    // "map", "compare", ...
-    std::vector<std::string> command_line;  // argv as given
-    std::vector<std::string> columns;       // the CSV header, in order
-    std::vector<std::string> text_columns;  // columns holding text (unit null) besides status and sweep labels
-    std::vector<MetadataOil> oils;          // compare: every oil, the reference first (then "oils" replaces "oil")
+    std::string command = {};               // "map", "compare", ...
+    std::vector<std::string> command_line = {};  // argv as given
+    std::vector<std::string> columns = {};  // the CSV header, in order
+    std::vector<std::string> text_columns = {};  // columns holding text (unit null) besides status and sweep labels
+    std::vector<MetadataOil> oils = {};     // compare: every oil, the reference first (then "oils" replaces "oil")
     // Unit of a column whose name does not say it (column_unit's answer otherwise).
-    std::vector<std::pair<std::string, std::string>> units;
+    std::vector<std::pair<std::string, std::string>> units = {};
     // Replaces the "thermal" object when not null (a drive cycle: "mode": "transient").
-    nlohmann::ordered_json thermal;
+    nlohmann::ordered_json thermal = {};
     // Every ratio the output covers when it is more than the case's one (a loss table, a drive
     // cycle): the title lists them and "ratio" gives their names instead of one ratio.
-    std::vector<std::string> ratios;
+    std::vector<std::string> ratios = {};
 };
 
 // The unit a column's name carries ("P_mesh_W": "W", "oil_temp_C": "degC", "Torque Loss [Nm]":
