@@ -69,7 +69,6 @@ int decimals(std::string_view number) {
     return std::clamp(d, 0, 17);
 }
 
-std::string excerpt(std::string_view s) { return s.size() > 60 ? std::string(s.substr(0, 60)) + "..." : std::string(s); }
 
 bool same_unit(std::string_view a, std::string_view b) {
     if (a == b) return true;
@@ -91,7 +90,7 @@ std::string range_unit(std::string_view item) {
 }
 
 std::vector<std::string> expand_range(std::string_view item, std::string_view default_unit, std::size_t max_items) {
-    const std::string what = "'" + excerpt(trim(item)) + "'";
+    const std::string what = "'" + message_excerpt(trim(item)) + "'";
     const auto parts = read_parts(item);
     if (!parts)
         throw UnitError(what + " is not a range: write START:STOP:STEP, three numbers and a unit, e.g. '300:3000:100rpm'");
@@ -111,8 +110,8 @@ std::vector<std::string> expand_range(std::string_view item, std::string_view de
     if (step.value < 0.0)
         throw UnitError(what + ": the STEP is negative; a range counts up from START to STOP with a positive STEP");
     if (stop.value < start.value)
-        throw UnitError(what + ": empty range, STOP " + std::string(stop.number) + " is below START " +
-                        std::string(start.number));
+        throw UnitError(what + ": empty range, STOP " + message_excerpt(stop.number) + " is below START " +
+                        message_excerpt(start.number));
     // STOP belongs to the range when a whole number of steps reaches it within 1e-9 of a step
     // ("0:1:0.1" has 11 items although 10 * 0.1 is not exactly 1 in binary).
     const double steps = (stop.value - start.value) / step.value;

@@ -311,6 +311,8 @@ std::string_view trim(std::string_view s) {
 
 }  // namespace
 
+std::string message_excerpt(std::string_view s) { return excerpt(s); }
+
 UnitFactor parse_unit(std::string_view expr) {
     expr = trim(expr);
     // "C" alone is degrees Celsius as well (recordings headers write oil_temp_C; "70C" on the
