@@ -24,7 +24,7 @@ public:
         s->add_option("recordings", recordings_, "recordings CSV: steady points or a raw rig log (time_s column)")->required();
         s->add_option("--json", json_, "write the diagnosis as JSON to this file");
         s->add_option("--write-config", write_config_, "write the calibrated case file");
-        s->add_option("--residuals", residuals_, "write per-point residuals before/after (CSV, for scripts/plot-residuals.py)");
+        s->add_option("--residuals", residuals_, "write per-point residuals before/after (CSV, for scripts/plot.sh diagnose)");
         s->add_option("--bootstrap", bootstrap_, "bootstrap resamples for the stability check")->check(CLI::Range(4, 1000));
         s->add_option("--threads", threads_, "threads (default: all cores)")->check(threads_check());
         s->add_option("--loss-uncertainty", loss_uncertainty_,

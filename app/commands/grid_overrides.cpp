@@ -6,8 +6,10 @@
 namespace gearloss::app {
 
 void GridOverrides::add_to(CLI::App& sub, const std::string& speed_help, const std::string& torque_help) {
-    speed_option_ = sub.add_option("--speed", speeds_, speed_help);
-    torque_option_ = sub.add_option("--torque", torques_, torque_help);
+    // Every list takes ranges too (units/ranges.hpp): say so once, here.
+    speed_option_ = sub.add_option("--speed", speeds_, speed_help + " (a list, a range START:STOP:STEP such as "
+                                                                    "300:3000:100rpm, or both: 0,300:3000:100rpm)");
+    torque_option_ = sub.add_option("--torque", torques_, torque_help + " (a list or a range, e.g. 50:400:50Nm)");
 }
 
 bool GridOverrides::speeds_given() const { return speed_option_ && speed_option_->count() > 0; }

@@ -57,7 +57,8 @@ public:
             ->check(CLI::IsMember({"csv", "vecto", "table", "co2mpas"}));
         oil_temps_option_ = s->add_option("--oil-temps", oil_temps_, "oil temperatures of --format table (default: 20 degC "
                                                                      "to the oil's limit in 20 K steps) or the cold and hot "
-                                                                     "references of --format co2mpas (default 40,80degC)");
+                                                                     "references of --format co2mpas (default 40,80degC); a list "
+                                                                     "or a range, e.g. 20:120:20degC");
         s->footer("Examples:\n  gearloss map configs/transfer-box.yaml --speed 600,700,800rpm --torque 150,200,250Nm -o out.csv\n"
                   "  gearloss map configs/manual-6speed.yaml --format vecto --oil-temp 70degC -o manual.vtlm   "
                   "(manual_g1.vtlm ... manual_g6.vtlm)");

@@ -1,4 +1,6 @@
 // gearloss synth: synthetic recordings from the model with concealed effects and noise.
+#include <fmt/format.h>
+
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "commands/grid_overrides.hpp"
@@ -14,13 +16,14 @@ public:
         auto* s = app.add_subcommand("synth", "synthetic recordings from the model with concealed effects and noise");
         add_common_options(*s, common_);
         s->add_option("--effect", effects_, "concealed effect NAME=VALUE (repeatable), e.g. windage=30W, torque_sensor_gain=1.03, unstabilised_test=2");
-        s->add_option("--noise-loss", noise_loss_, "loss noise, one standard deviation (e.g. 1.5%)");
-        s->add_option("--noise-temp", noise_temp_, "oil temperature noise (e.g. 0.4K)");
+        s->add_option("--noise-loss", noise_loss_, "loss noise, one standard deviation (default " + noise_loss_ + ")");
+        s->add_option("--noise-temp", noise_temp_, "oil temperature noise, one standard deviation (default " + noise_temp_ + ")");
         s->add_option("--seed", seed_, "random seed");
         s->add_option("--format", format_, "steady (points) or log (0.5 Hz rig log)")->check(CLI::IsMember({"steady", "log"}));
         grid_.add_to(*s, "override the input speeds", "override the input torques");
         s->add_option("-o,--output", out_, "output CSV ('-' = stdout)");
-        s->footer("Example: gearloss synth configs/transfer-box.yaml --effect windage=25W --seed 3 -o rec.csv");
+        s->footer(diagnosis::effects_help() +
+                  "\nExample: gearloss synth configs/transfer-box.yaml --effect windage=25W --seed 3 -o rec.csv");
         return s;
     }
 
@@ -43,7 +46,8 @@ private:
     CommonOptions common_;
     GridOverrides grid_;
     std::vector<std::string> effects_;
-    std::string noise_loss_ = "1.5%", noise_temp_ = "0.4 K", format_ = "steady", out_ = "-";
+    std::string noise_loss_ = fmt::format("{:g}%", 100 * diagnosis::SynthOptions{}.noise_loss),
+                noise_temp_ = fmt::format("{:g} K", diagnosis::SynthOptions{}.noise_temp), format_ = "steady", out_ = "-";
     unsigned seed_ = 1;
 };
 

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "gearloss/diagnosis/diagnose_internal.hpp"
+#include "gearloss/diagnosis/p_value_text.hpp"
 #include "gearloss/model/validate.hpp"
 
 namespace gearloss::diagnosis::detail {
@@ -165,10 +166,10 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
         r.noise_text = n.known() ? fmt::format("{:.3g} {} ({})", n.sigma * unit_scale, unit, n.source) : "unknown";
         if (n.known()) {
             p_values.push_back(fit.p_value);
-            tested.push_back(fmt::format("{} fit p = {:.2g}", what, fit.p_value));
+            tested.push_back(fmt::format("{} fit {}", what, p_value_text(fit.p_value)));
         }
         p_values.push_back(st.p_value);
-        tested.push_back(fmt::format("{} structure p = {:.2g}", what, st.p_value));
+        tested.push_back(fmt::format("{} structure {}", what, p_value_text(st.p_value)));
         results.push_back(std::move(r));
     };
     test(cl, oil_l, A.noise_loss, A.fit_loss, A.structure_loss, opt.loss_uncertainty, kFloorLoss, opt.loss_noise_floor, "loss",
@@ -186,10 +187,10 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
         (r.what == std::string("loss") ? A.loss_fails : A.temp_fails) = true;
         std::string s = fmt::format("{} residual RMS {:.3g} {} against a noise of {}", r.what, r.rms * r.unit_scale, r.unit,
                                     r.noise_text);
-        if (r.bad_fit) s += fmt::format(", p = {:.2g}", r.fit->p_value);
+        if (r.bad_fit) s += ", " + p_value_text(r.fit->p_value);
         if (r.bad_structure)
-            s += fmt::format("; systematic along {} (a smoother explains {:.0f} % of it, p = {:.2g})", r.structure->coordinate,
-                             100 * r.structure->gain, r.structure->p_value);
+            s += fmt::format("; systematic along {} (a smoother explains {:.0f} % of it, {})", r.structure->coordinate,
+                             100 * r.structure->gain, p_value_text(r.structure->p_value));
         left.push_back(s);
     }
     if (p_values.size() > 1) {
@@ -199,8 +200,8 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
             std::string list;
             for (const auto& t : tested) list += (list.empty() ? "" : ", ") + t;
             left.push_back(fmt::format("no single test fails at {:g} (Holm over {} tests), but together they do (Fisher's "
-                                       "combination, p = {:.2g} < {:g}): {}",
-                                       level, p_values.size(), A.combined_p, combined_level, list));
+                                       "combination, {} < {:g}): {}",
+                                       level, p_values.size(), p_value_text(A.combined_p), combined_level, list));
         }
     }
     for (const auto& s : left) A.text += (A.text.empty() ? "" : "\n") + s;

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "gearloss/diagnosis/p_value_text.hpp"
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/json_text.hpp"
@@ -70,13 +71,14 @@ std::string diagnosis_text(const Diagnosis& d) {
                          d.remainder->formula, d.remainder->cv_rmse_before, d.remainder->cv_rmse_after);
         for (const auto& n : d.remainder->nearest) s += "  resembles: " + n + "\n";
     }
-    s += fmt::format("\nnoise: loss {:.3g} % ({}), test of what is left: fit p = {:.2g}, structure p = {:.2g}{}\n",
-                     100 * d.adequacy_loss.noise, d.adequacy_loss.noise_source, d.adequacy_loss.fit_p,
-                     d.adequacy_loss.structure_p,
+    s += fmt::format("\nnoise: loss {:.3g} % ({}), test of what is left: fit {}, structure {}{}\n",
+                     100 * d.adequacy_loss.noise, d.adequacy_loss.noise_source, p_value_text(d.adequacy_loss.fit_p),
+                     p_value_text(d.adequacy_loss.structure_p),
                      d.adequacy_loss.structure_along.empty() ? "" : " (along " + d.adequacy_loss.structure_along + ")");
     if (d.has_temperature)
-        s += fmt::format("       oil temperature {:.3g} K ({}), fit p = {:.2g}, structure p = {:.2g}{}\n", d.adequacy_temp.noise,
-                         d.adequacy_temp.noise_source, d.adequacy_temp.fit_p, d.adequacy_temp.structure_p,
+        s += fmt::format("       oil temperature {:.3g} K ({}), fit {}, structure {}{}\n", d.adequacy_temp.noise,
+                         d.adequacy_temp.noise_source, p_value_text(d.adequacy_temp.fit_p),
+                         p_value_text(d.adequacy_temp.structure_p),
                          d.adequacy_temp.structure_along.empty() ? "" : " (along " + d.adequacy_temp.structure_along + ")");
     if (std::isfinite(d.detectable))
         s += fmt::format("       power: a remainder of {:.2g} times the noise fails the fit test{} in half such campaigns\n",

@@ -59,6 +59,29 @@ std::pair<std::string, double> parse_effect_assignment(const solver::Model& mode
     return {name, q.value};
 }
 
+std::string effects_help() {
+    const solver::Model every_mechanism;  // every registered mechanism, parameters and forms as published
+    const SynthOptions defaults;
+    std::string scales, forms;
+    for (const auto& e : candidate_effects(every_mechanism)) {
+        if (e.discrete()) {
+            const size_t line = forms.size() - std::min(forms.size(), forms.rfind('\n') + 1);  // this line's length
+            forms += (forms.empty() ? "  " : line + e.id.size() > 96 ? ",\n  " : ", ") + e.id;
+            continue;
+        }
+        const std::string unit = e.unit.empty() ? "" : " " + e.unit;
+        scales += fmt::format("  {:<26} default {:g}{}{}\n", e.id, e.neutral, unit,
+                              e.kind == EffectKind::pointwise ? " (a number of points)"
+                              : e.upper > e.lower         ? fmt::format(", {:g} to {:g}{}", e.lower, e.upper, unit)
+                                                          : "");
+    }
+    return "Effects (--effect NAME=VALUE; the default leaves the model as the case describes it):\n" + scales +
+           "  Forms (NAME=1: a published form other than the case's; here those of a case with the default forms):\n" +
+           forms +
+           fmt::format("\nDefault noise: --noise-loss {:g}% of the loss, --noise-temp {:g} K (one standard deviation).\n",
+                       100 * defaults.noise_loss, defaults.noise_temp);
+}
+
 void SynthOptions::validate() const {
     const auto bad = [](const char* key, const std::string& message) { throw InputError("", 0, 0, key, message); };
     if (!(noise_loss >= 0 && noise_loss <= 0.5)) bad("--noise-loss", "must be between 0 and 50 %");

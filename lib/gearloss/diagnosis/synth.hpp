@@ -29,4 +29,11 @@ std::string synthesize(const solver::Model& model, const io::OperatingGrid& grid
 // Parses "NAME=VALUE[unit]" for --effect (NAME a candidate of the model: effects.hpp).
 std::pair<std::string, double> parse_effect_assignment(const solver::Model& model, const std::string& text);
 
+// The effects `--effect` accepts, one per line with its unit and the value that leaves the model
+// unchanged (its default), then the forms, and the default noise (`synth --help`): generated from
+// candidate_effects() of a model with every registered mechanism, so that a mechanism added to
+// the registry shows here without an edit. A case may offer fewer (mechanisms switched off) or
+// other forms than the defaults (its own forms are the neutral ones).
+std::string effects_help();
+
 }  // namespace gearloss::diagnosis

@@ -15,6 +15,7 @@
 #include "gearloss/io/mechanism_config.hpp"
 #include "gearloss/io/sweep.hpp"
 #include "gearloss/model/validate.hpp"
+#include "gearloss/units/ranges.hpp"
 
 namespace gearloss::io {
 
@@ -40,7 +41,8 @@ size_t unit_start(const std::string& s) {
 std::vector<double> parse_value_list(const std::string& text, const units::Dimension& d, const char* what,
                                      const char* example) {
     // Items are comma-separated; a unit on the last item applies to items
-    // without one: "600,700,800rpm".
+    // without one: "600,700,800rpm". An item may be a range START:STOP:STEP
+    // ("300:3000:100rpm", units/ranges.hpp), its unit being that of the range's STEP.
     std::vector<std::string> parts;
     size_t start = 0;
     for (size_t i = 0; i <= text.size(); ++i)
@@ -51,37 +53,67 @@ std::vector<double> parse_value_list(const std::string& text, const units::Dimen
             parts.push_back(p);
             start = i + 1;
         }
-    const size_t u = unit_start(parts.back());
-    const std::string unit = u == std::string::npos ? "" : parts.back().substr(u);
+    const auto is_range = [](const std::string& p) { return p.find(':') != std::string::npos; };
+    const auto unit_of = [&](const std::string& p) {
+        if (is_range(p)) return units::range_unit(p);
+        const size_t u = unit_start(p);
+        return u == std::string::npos ? std::string() : p.substr(u);
+    };
+    const std::string unit = unit_of(parts.back());
     // A comma always separates items (there is no decimal comma: "1000,5rpm" is 1000 and 5 rpm),
     // and a unit is given on every item or on the last one only: "600rpm,700,800rpm" is refused.
-    const bool some_bare = std::any_of(parts.begin(), parts.end(), [](const std::string& p) {
-        return !p.empty() && unit_start(p) == std::string::npos;
+    const bool some_bare = std::any_of(parts.begin(), parts.end(), [&](const std::string& p) {
+        return !p.empty() && unit_of(p).empty();
     });
     for (size_t i = 0; some_bare && i + 1 < parts.size(); ++i)
-        if (unit_start(parts[i]) != std::string::npos)
+        if (!unit_of(parts[i]).empty())
             throw InputError("", 0, 0, what,
                              "'" + excerpt(text) + "' mixes items with and without a unit; give the unit on every item "
                              "or on the last one only (e.g. '" + example + "')");
     std::vector<double> out;
+    const auto read = [&](const std::string& q) {
+        out.push_back(units::checked_value(units::parse_quantity(q), d, q));
+    };
     for (const auto& p : parts) {
         if (p.empty()) throw InputError("", 0, 0, what, "empty item in '" + excerpt(text) + "' (expected e.g. '" + example + "')");
-        const std::string q = unit_start(p) == std::string::npos ? p + " " + unit : p;
         try {
-            out.push_back(units::checked_value(units::parse_quantity(q), d, q));
+            if (is_range(p)) {
+                for (const auto& q : units::expand_range(p, unit)) read(q);
+            } else {
+                read(unit_start(p) == std::string::npos ? p + " " + unit : p);
+            }
         } catch (const units::UnitError& e) {
             throw InputError("", 0, 0, what, e.message + " (expected e.g. '" + example + "')");
         }
+        if (out.size() > units::kMaxListItems)
+            throw InputError("", 0, 0, what, fmt::format("'{}': more than {} values", excerpt(text), units::kMaxListItems));
     }
     return out;
 }
 
 namespace {
 
+// The values of a scalar `it`: one value, or a range START:STOP:STEP (units/ranges.hpp) of them.
+void append_values(std::vector<double>& v, const YamlNode& it, const units::Dimension& d, const char* example) {
+    if (!it.is_scalar() || it.as_string().find(':') == std::string::npos) {
+        v.push_back(it.as_quantity(d, example));
+        return;
+    }
+    const std::string text = it.as_string();
+    try {
+        for (const auto& q : units::expand_range(text, "")) v.push_back(units::checked_value(units::parse_quantity(q), d, q));
+    } catch (const units::UnitError& e) {
+        it.fail(e.message + " (expected e.g. '" + example + "' or a range START:STOP:STEP such as '300:3000:100 rpm')");
+    }
+    if (v.size() > units::kMaxListItems) it.fail(fmt::format("more than {} values in the list", units::kMaxListItems));
+}
+
 std::vector<double> load_axis(const YamlNode& n, const units::Dimension& d, const char* example) {
     std::vector<double> v;
     if (n.is_sequence()) {
-        for (const auto& it : n.items()) v.push_back(it.as_quantity(d, example));
+        for (const auto& it : n.items()) append_values(v, it, d, example);
+    } else if (n.is_scalar() && n.as_string().find(':') != std::string::npos) {
+        append_values(v, n, d, example);  // "300:3000:100 rpm"
     } else if (n.is_map()) {
         n.allow_keys({"from", "to", "count"});
         const double a = n.at("from").as_quantity(d, example), b = n.at("to").as_quantity(d, example);
@@ -89,7 +121,7 @@ std::vector<double> load_axis(const YamlNode& n, const units::Dimension& d, cons
         if (c < 1 || c > 1000000) n.at("count").fail("count must be 1..1000000");
         for (int i = 0; i < c; ++i) v.push_back(c == 1 ? a : a + (b - a) * i / (c - 1));
     } else {
-        n.fail(std::string("expected a list of values or {from, to, count}, e.g. [") + example + "]");
+        n.fail(std::string("expected a list of values, a range START:STOP:STEP or {from, to, count}, e.g. [") + example + "]");
     }
     if (v.empty()) n.fail("empty list");
     return v;

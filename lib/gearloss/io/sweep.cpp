@@ -28,6 +28,7 @@
 #include <algorithm>
 
 #include "gearloss/io/interrupt.hpp"
+#include "gearloss/units/ranges.hpp"
 
 #include <filesystem>
 #include <sstream>
@@ -94,6 +95,35 @@ void repoint(const YAML::Node& node, const YAML::Node& data) {
     YAML::Node handle(node);
     handle = data;
 }
+
+// At most this many values on one axis (and variants in all): each variant is a case loaded.
+constexpr size_t kMaxSweepVariants = 100000;
+
+// The values of one axis: each item of its `values:` list as written, and a numeric range
+// START:STOP:STEP ("2 mm:10 mm:2 mm", "40:100:20 degC"; units/ranges.hpp) as its values. `range`
+// is false for an item taken as written (a name, a file, a number with its unit).
+struct AxisValue {
+    std::string text;
+    YamlNode item;
+    bool range = false;
+};
+std::vector<AxisValue> axis_values(const YamlNode& values) {
+    std::vector<AxisValue> out;
+    for (const auto& v : values.items()) {
+        if (!v.is_scalar()) v.fail("sweep values are single values (a number with its unit, a name or a file)");
+        const std::string text = v.as_string();
+        if (!units::is_range(text)) {
+            out.push_back({text, v, false});
+            continue;
+        }
+        try {
+            for (auto& t : units::expand_range(text, "", kMaxSweepVariants)) out.push_back({std::move(t), v, true});
+        } catch (const units::UnitError& e) {
+            v.fail(e.message);
+        }
+    }
+    return out;
+}
 }  // namespace
 
 std::vector<SweepAxis> read_sweep(const YamlNode& root) {
@@ -121,13 +151,11 @@ std::vector<SweepAxis> read_sweep(const YamlNode& root) {
             if (std::count(a.paths.begin(), a.paths.end(), path) > 1) p.fail("'" + excerpt(path) + "' is listed twice");
         }
         a.label = a.paths.front();
-        for (const auto& v : item.at("values").items()) {
-            if (!v.is_scalar()) v.fail("sweep values are single values (a number with its unit, a name or a file)");
-            a.values.push_back(v.as_string());
-        }
+        for (const auto& v : axis_values(item.at("values"))) a.values.push_back(v.text);
         if (a.values.empty()) item.at("values").fail("empty list");
+        if (a.values.size() > kMaxSweepVariants) item.fail("more than 100 000 sweep variants");
         variants *= a.values.size();
-        if (variants > 100000) item.fail("more than 100 000 sweep variants");
+        if (variants > kMaxSweepVariants) item.fail("more than 100 000 sweep variants");
         axes.push_back(a);
     }
     return axes;
@@ -147,9 +175,16 @@ Sweep::Sweep(const std::string& file, const std::optional<std::string>& ratio)
         parameters_.push_back(items[k].at("parameter"));
         auto& held = values_.emplace_back();
         held.reserve(axes_[k].values.size());
-        for (const auto& v : items[k].at("values").items()) {
+        for (const auto& v : axis_values(items[k].at("values"))) {
+            if (v.range) {
+                // A value of a range is a scalar of its own (written nowhere in the file: an error
+                // about it names the variant, "(sweep variant ...=310 rpm)", not a line).
+                pool_.push_back(YAML::Node(v.text));
+                held.push_back(pool_[pool_.size() - 1]);
+                continue;
+            }
             held.push_back(own_node());
-            repoint(held.back(), v.raw());
+            repoint(held.back(), v.item.raw());
         }
         for (size_t p = 0; p < axes_[k].paths.size(); ++p) before_.push_back(own_node());
     }

@@ -14,6 +14,7 @@
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/map/vecto.hpp"
 #include "gearloss/model/validate.hpp"
+#include "gearloss/units/ranges.hpp"
 #include "gearloss/units/units.hpp"
 
 namespace gearloss::map {
@@ -50,24 +51,45 @@ std::vector<double> parse_temperature_list(const std::string& text, const char* 
         items.push_back(trimmed(text.substr(a, e - a)));
         a = e + 1;
     }
-    const size_t u = unit_start(items.back());
-    const std::string unit = u == std::string::npos ? "" : items.back().substr(u);
+    // An item may be a range START:STOP:STEP ("20:100:20degC", units/ranges.hpp): counted in the
+    // written unit, so its STEP is in degrees of that scale.
+    const auto is_range = [](const std::string& item) { return item.find(':') != std::string::npos; };
+    const auto unit_of = [&](const std::string& item) {
+        if (is_range(item)) return units::range_unit(item);
+        const size_t u = unit_start(item);
+        return u == std::string::npos ? std::string() : item.substr(u);
+    };
+    const std::string unit = unit_of(items.back());
     if (unit.empty())
         throw InputError("", 0, 0, what, fmt::format("'{}': give a unit on the last item (e.g. '{}')", io::excerpt(text), kExample));
     std::vector<double> out;
-    for (const auto& item : items) {
-        if (item.empty()) throw InputError("", 0, 0, what, fmt::format("empty item in '{}' (expected e.g. '{}')", io::excerpt(text), kExample));
-        const std::string q = unit_start(item) == std::string::npos ? item + " " + unit : item;
+    const auto read = [&](const std::string& q) {
         units::Quantity v;
         try {
             v = units::parse_quantity(q);
-            v.value = units::absolute_temperature(v, item);
+            v.value = units::absolute_temperature(v, q);
         } catch (const units::UnitError& e) {
             throw InputError("", 0, 0, what, e.message + fmt::format(" (expected e.g. '{}')", kExample));
         }
         if (!out.empty() && v.value <= out.back())
             throw InputError("", 0, 0, what, fmt::format("'{}': the temperatures must be strictly ascending", io::excerpt(text)));
         out.push_back(v.value);
+    };
+    for (const auto& item : items) {
+        if (item.empty()) throw InputError("", 0, 0, what, fmt::format("empty item in '{}' (expected e.g. '{}')", io::excerpt(text), kExample));
+        if (!is_range(item)) {
+            read(unit_start(item) == std::string::npos ? item + " " + unit : item);
+            continue;
+        }
+        std::vector<std::string> expanded;
+        try {
+            expanded = units::expand_range(item, unit);
+        } catch (const units::UnitError& e) {
+            throw InputError("", 0, 0, what, e.message + fmt::format(" (expected e.g. '{}' or '20:100:20degC')", kExample));
+        }
+        for (const auto& q : expanded) read(q);
+        if (out.size() > units::kMaxListItems)
+            throw InputError("", 0, 0, what, fmt::format("'{}': more than {} values", io::excerpt(text), units::kMaxListItems));
     }
     return out;
 }

@@ -152,8 +152,18 @@ Dimension mul(const Dimension& a, int p) {
     return r;
 }
 
+// The length in bytes of a product sign written as a dot at the start of `s`: U+00B7 MIDDLE DOT
+// ("N·m", as the SI brochure prints a product of units) and U+22C5 DOT OPERATOR ("N⋅m"), in UTF-8;
+// 0 when `s` starts with neither.
+std::size_t product_dot(std::string_view s) {
+    if (s.starts_with("\xC2\xB7")) return 2;
+    if (s.starts_with("\xE2\x8B\x85")) return 3;
+    return 0;
+}
+
 // Recursive-descent parser for unit expressions:
-//   expr   := factor (('*' | '/' | '.') factor)*
+//   expr   := factor (('*' | '.' | '·' | '⋅' | ' ' | '/') factor)*
+// A space between two units is a product too ("N m", "kg m^2"), as the SI writes it.
 //   factor := atom ('^' int)?
 //   atom   := name | '(' expr ')' | '1'
 class UnitParser {
@@ -195,14 +205,22 @@ private:
     void skip_ws() {
         while (pos_ < s_.size() && s_[pos_] == ' ') ++pos_;
     }
+    // A unit name or '(' starts at pos_: what may follow a space as the second factor of a product.
+    bool at_atom() const {
+        if (pos_ >= s_.size() || product_dot(s_.substr(pos_)) > 0) return false;
+        const unsigned char c = static_cast<unsigned char>(s_[pos_]);
+        return std::isalpha(c) || c == '(' || c >= 0x80;
+    }
     Unit expr() {
         Unit u = factor();
         for (;;) {
             skip_ws();
             if (pos_ >= s_.size()) break;
             char c = s_[pos_];
-            if (c == '*' || c == '.') {
-                ++pos_;
+            const size_t dot = product_dot(s_.substr(pos_));
+            const bool after_space = pos_ > 0 && s_[pos_ - 1] == ' ';  // factor() skips the spaces after it
+            if (c == '*' || c == '.' || dot > 0 || (after_space && at_atom())) {
+                pos_ += dot > 0 ? dot : c == '*' || c == '.' ? 1 : 0;
                 Unit v = factor();
                 u = checked(combine(u, v, +1));
             } else if (c == '/') {
@@ -267,7 +285,7 @@ private:
         }
         size_t start = pos_;
         // unit names: letters, µ (2 bytes in UTF-8) and '%'
-        while (pos_ < s_.size()) {
+        while (pos_ < s_.size() && product_dot(s_.substr(pos_)) == 0) {
             unsigned char c = static_cast<unsigned char>(s_[pos_]);
             if (std::isalpha(c) || c == '%' || c >= 0x80) ++pos_;
             else break;
@@ -292,6 +310,8 @@ std::string_view trim(std::string_view s) {
 }
 
 }  // namespace
+
+std::string message_excerpt(std::string_view s) { return excerpt(s); }
 
 UnitFactor parse_unit(std::string_view expr) {
     expr = trim(expr);

@@ -94,6 +94,10 @@ double checked_value(const Quantity& q, const Dimension& expected, std::string_v
 // and above absolute zero; else UnitError saying which of the two it is not.
 double absolute_temperature(const Quantity& q, std::string_view text);
 
+// At most 60 characters of an input for a message, printable only ('?' for a control byte or a
+// byte that is not UTF-8), "..." where it was cut.
+std::string message_excerpt(std::string_view s);
+
 // A unit that cannot be read; the caller knows where it was written and rethrows located.
 struct UnitError : InputError {
     using InputError::InputError;
