@@ -76,7 +76,8 @@ def load(source, ratio=None, base_dir=None):
     """
     if isinstance(source, _Mapping):
         # JSON is YAML: the dict's document as text, read by the same reader as a file.
-        impl = _gearloss.load_case_text(_json.dumps(source, indent=1), "<dict>", _base(base_dir), ratio)
+        text = _json.dumps(source, indent=1, default=_json_value)
+        impl = _gearloss.load_case_text(text, "<dict>", _base(base_dir), ratio)
     elif isinstance(source, str) and ("\n" in source or source.lstrip().startswith("{")):
         impl = _gearloss.load_case_text(source, "<string>", _base(base_dir), ratio)
     else:
@@ -93,12 +94,22 @@ def load_case(path, ratio=None, base_dir=None):
     return load(path, ratio, base_dir)
 
 
+def _json_value(v):
+    """A value of a case's dict that json does not know: a path as its text, a numpy number as a
+    number, anything else as its str (a quantity object's "40 mm")."""
+    if isinstance(v, _os.PathLike):
+        return _os.fspath(v)
+    if hasattr(v, "item"):  # numpy scalars
+        return v.item()
+    return str(v)
+
+
 def _base(base_dir):
     return _os.fspath(base_dir) if base_dir is not None else _os.getcwd()
 
 
 class Case:
-    """A loaded gearbox case. Make one with :func:`load_case`.
+    """A loaded gearbox case. Make one with :func:`load`.
 
     Properties (read-only): ``file``, ``name``, ``ratio`` (selected, or None), ``ratios``,
     ``mechanisms`` (loss mechanism names) and ``mechanism_columns`` (their CSV columns),
