@@ -2,7 +2,8 @@
 // second front end beside the CLI. Like app/commands/, it only calls the library: a case is
 // loaded by io::load_case, a point solved by solver::solve_point, a grid by map::run_map, a
 // campaign diagnosed by diagnosis::diagnose, and the checks are the CLI's (map::validate_case,
-// map::validate_point). The pure-Python package (app/python/gearloss/__init__.py) wraps these
+// map::validate_point); check, compare, spread, sweeps and cycle are in module_commands.cpp. The
+// pure-Python package (app/python/gearloss/__init__.py) wraps these
 // functions in the documented API (DataFrames, warnings, result objects).
 //
 // Errors: gearloss::InputError -> gearloss.InputError (a ValueError) with the CLI's
@@ -27,15 +28,14 @@
 #include "gearloss/io/config.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/map/map_runner.hpp"
+#include "module_case.hpp"
+#include "module_commands.hpp"
 #include "module_results.hpp"
 
 namespace py = pybind11;
 
 namespace gearloss::python {
 namespace {
-
-constexpr double kRadSPerRpm = 2.0 * std::numbers::pi / 60.0;  // as the unit parser's "rpm"
-constexpr double kZeroCelsius = 273.15;
 
 // ---------------------------------------------------------------------------------------
 // Errors
@@ -58,103 +58,31 @@ void raise_located(PyObject* type, const Error& e) {
     PyErr_SetObject(type, exc.ptr());
 }
 
-// An InputError whose key names a CLI option is renamed to the Python argument that set the
-// value ("--speed" -> "speed_rpm"); the message and location stay.
-using KeyNames = std::vector<std::pair<std::string, std::string>>;
-template <class F>
-auto renaming_keys(const KeyNames& names, F&& f) -> decltype(f()) {
-    try {
-        return f();
-    } catch (const InputError& e) {
-        for (const auto& [option, argument] : names)
-            if (e.key == option) throw InputError(e.file, e.line, e.column, argument, e.message);
-        throw;
-    }
-}
-
-// A KeyboardInterrupt raised by Python's SIGINT handler while the library computes: the
-// library's progress callbacks (on the calling thread) poll Python's signals, and a pending
-// one stops the computation through the library's own interrupt flag.
-class SignalWatch {
-public:
-    // Called with the GIL released, on the thread that released it.
-    void poll() {
-        if (raised_) return;
-        py::gil_scoped_acquire gil;
-        if (PyErr_CheckSignals() != 0) {
-            raised_ = true;
-            error_ = py::error_already_set();  // taken out of the thread state: raised again by finish()
-            io::g_interrupted.store(true);
-        }
-    }
-    // With the GIL held, after the computation: the pending exception, if one was caught.
-    void finish() {
-        if (!raised_) return;
-        io::g_interrupted.store(false);
-        raised_ = false;
-        throw std::move(*error_);
-    }
-    // The library's flag never outlives the computation it stopped (an error thrown past finish()).
-    ~SignalWatch() {
-        if (raised_) io::g_interrupted.store(false);
-    }
-    SignalWatch() = default;
-    SignalWatch(const SignalWatch&) = delete;
-    SignalWatch& operator=(const SignalWatch&) = delete;
-
-private:
-    bool raised_ = false;
-    std::optional<py::error_already_set> error_;
-};
-
 // ---------------------------------------------------------------------------------------
 // Cases
 
-// A loaded case as the CLI holds it after its common options (common.cpp): checked, with its
-// plausibility warnings collected (the package turns them into Python warnings).
-struct PyCase {
-    io::Case k;
-    std::string oil_file;  // the oil replaced by with_oil (empty: the case's own)
-};
-
-// The checks that every CLI command applies after loading (app/commands/common.cpp
-// apply_case_options and with_options), for the options the case has been given.
-void check_loaded(io::Case& k, const std::string& oil_file, const std::string& oil_temp) {
-    map::validate_case(k, {.oil_temp = oil_temp, .oil = oil_file, .grid = false});
-    io::check_oil_temperature(k, oil_temp.empty() ? "" : "oil_temp_C");
+PyCase load_source(CaseSource source) {
+    PyCase c{renaming_keys({{"--ratio", "ratio"}}, [&] { return read_case(source); }), {}, std::move(source)};
+    check_loaded(c.k, "", "");
+    return c;
 }
 
 PyCase load(const std::string& path, const std::optional<std::string>& ratio) {
-    PyCase c{renaming_keys({{"--ratio", "ratio"}}, [&] { return io::load_case(path, ratio); }), {}};
-    check_loaded(c.k, "", "");
-    return c;
+    return load_source({.path = path, .text = {}, .name = {}, .base_dir = {}, .ratio = ratio});
+}
+
+PyCase load_text(const std::string& text, const std::string& name, const std::string& base_dir,
+                 const std::optional<std::string>& ratio) {
+    return load_source({.path = {}, .text = text, .name = name, .base_dir = base_dir, .ratio = ratio});
 }
 
 PyCase with_oil(const PyCase& base, const std::string& oil_path) {
     PyCase c = base;
     c.oil_file = oil_path;
     c.k.warnings.clear();
-    io::replace_oil(c.k, io::load_oil_file(oil_path));
+    io::replace_oil_file(c.k, oil_path);  // as the CLI's --oil
     check_loaded(c.k, oil_path, "");
     return c;
-}
-
-// The case at a fixed oil temperature (the CLI's --oil-temp), or unchanged.
-io::Case at_oil_temperature(const PyCase& c, const std::optional<double>& oil_temp_C) {
-    io::Case k = c.k;
-    if (!oil_temp_C) return k;
-    k.warnings.clear();
-    k.model.thermal.mode = solver::ThermalMode::fixed;
-    k.model.thermal.oil_temperature = *oil_temp_C + kZeroCelsius;
-    renaming_keys({{"--oil-temp", "oil_temp_C"}}, [&] { check_loaded(k, c.oil_file, "oil_temp_C"); });
-    return k;
-}
-
-std::vector<double> to_si(const std::vector<double>& v, double factor) {
-    std::vector<double> out;
-    out.reserve(v.size());
-    for (double x : v) out.push_back(x * factor);
-    return out;
 }
 
 std::vector<double> axis_in(const std::vector<double>& v, double factor) {
@@ -177,32 +105,12 @@ py::dict point(const PyCase& c, double speed_rpm, double torque_Nm, const std::o
     return values;
 }
 
-// The case's grid, or the speeds x torques given (a point list with either given becomes
-// the grid of its speeds x its torques first, as the CLI's --speed / --torque do).
-io::OperatingGrid grid_of(const io::Case& k, const std::optional<std::vector<double>>& speeds_rpm,
-                          const std::optional<std::vector<double>>& torques_Nm) {
-    io::OperatingGrid g = k.grid;
-    if (!speeds_rpm && !torques_Nm) return g;
-    if (!g.is_grid) {
-        g.is_grid = true;
-        for (const auto& [w, T] : g.points) {
-            g.speeds.push_back(w);
-            g.torques.push_back(T);
-        }
-        g.points.clear();
-    }
-    if (speeds_rpm) g.speeds = to_si(*speeds_rpm, kRadSPerRpm);
-    if (torques_Nm) g.torques = *torques_Nm;
-    return g;
-}
-
 py::dict grid(const PyCase& c, const std::optional<std::vector<double>>& speeds_rpm,
               const std::optional<std::vector<double>>& torques_Nm, const std::optional<double>& oil_temp_C,
               const std::optional<int>& threads, bool detail) {
     io::Case k = at_oil_temperature(c, oil_temp_C);
     k.grid = grid_of(k, speeds_rpm, torques_Nm);
-    if (speeds_rpm && speeds_rpm->empty()) throw InputError("", 0, 0, "speeds_rpm", "no speeds given");
-    if (torques_Nm && torques_Nm->empty()) throw InputError("", 0, 0, "torques_Nm", "no torques given");
+    require_values(speeds_rpm, torques_Nm);
     map::MapOptions opt;
     opt.threads = threads.value_or(0);
     opt.detail = detail;
@@ -363,6 +271,20 @@ PYBIND11_MODULE(_gearloss, m) {
         .def("grid", &grid, py::arg("speeds_rpm") = py::none(), py::arg("torques_Nm") = py::none(),
              py::arg("oil_temp_C") = py::none(), py::arg("threads") = py::none(), py::arg("detail") = false);
     m.def("load_case", &load, py::arg("path"), py::arg("ratio") = py::none());
+    m.def("load_case_text", &load_text, py::arg("text"), py::arg("name"), py::arg("base_dir"),
+          py::arg("ratio") = py::none());
+    m.def("check", &check, py::arg("case"), py::arg("json") = false);
+    m.def("compare", &compare, py::arg("case"), py::arg("oils"), py::arg("speeds_rpm") = py::none(),
+          py::arg("torques_Nm") = py::none(), py::arg("oil_temp_C") = py::none(), py::arg("threads") = py::none(),
+          py::arg("detail") = false);
+    m.def("spread", &spread, py::arg("case"), py::arg("axes") = py::none(), py::arg("speeds_rpm") = py::none(),
+          py::arg("torques_Nm") = py::none(), py::arg("oil_temp_C") = py::none(), py::arg("threads") = py::none(),
+          py::arg("detail") = false);
+    m.def("sweeps", &sweeps, py::arg("case"), py::arg("speeds_rpm") = py::none(), py::arg("torques_Nm") = py::none(),
+          py::arg("oil_temp_C") = py::none(), py::arg("threads") = py::none(), py::arg("detail") = false);
+    m.def("cycle", &cycle, py::arg("case"), py::arg("cycle"), py::arg("start_temp_C"), py::arg("ambient_C") = py::none(),
+          py::arg("prewarm_C") = py::none(), py::arg("heater_W") = 100.0, py::arg("warm_temp_C") = 90.0,
+          py::arg("trace") = false);
     m.def("diagnose", &diagnose, py::arg("case"), py::arg("recordings"), py::arg("bootstrap") = 24,
           py::arg("threads") = py::none(), py::arg("loss_uncertainty") = py::none(),
           py::arg("temp_uncertainty_K") = py::none());

@@ -3,10 +3,13 @@
 The same library as the ``gearloss`` command line, called directly::
 
     import gearloss
-    case = gearloss.load_case("configs/transfer-box.yaml")
+    case = gearloss.load("configs/transfer-box.yaml")   # or a YAML string, or a dict
+    print(case.check())                    # the report of `gearloss check`
     p = case.point(800, 250)               # rpm, N*m
     p["P_total_W"], p["efficiency"], p["oil_temp_C"], p["status"]
     df = case.grid()                       # the case's grid: a pandas DataFrame (numpy arrays without pandas)
+    case.compare(["configs/oils/75W90-A.yaml", "configs/oils/75W140-A.yaml"])
+    case.spread(), case.sweeps(), case.cycle("nedc", start_temp_C=-10)
     d = gearloss.diagnose(case, "recordings.csv")
     d.verdict, d.findings[0].effect
 
@@ -19,24 +22,34 @@ with the command line's ``file:line:col: key: message`` text and ``file``, ``lin
 from :class:`Error`. Ctrl-C stops a long solve with ``KeyboardInterrupt``. The plausibility
 warnings the command line prints on stderr are issued as :class:`CaseWarning`.
 """
+import json as _json
 import math
 import os as _os
 import warnings as _warnings
+from collections.abc import Mapping as _Mapping
 
 from . import _data_dir
+from ._tables import have_pandas as _have_pandas, require_numpy as _require_numpy, table as _table
 
-# The shipped data (drive cycles, the bearing catalogue) of the build this module comes from,
-# unless GEARLOSS_DATA_DIR names another folder.
-_os.environ.setdefault("GEARLOSS_DATA_DIR", _data_dir.DATA_DIR)
 
-from . import _gearloss
+def _shipped_data():
+    """The shipped data (drive cycles, the bearing catalogue): the package's own ``data`` folder
+    when installed (pip), else the source tree of the build this module comes from."""
+    here = _os.path.join(_os.path.dirname(_os.path.abspath(__file__)), "data")
+    return here if _data_dir.DATA_DIR is None else _data_dir.DATA_DIR
+
+
+# GEARLOSS_DATA_DIR, when set, names another folder.
+_os.environ.setdefault("GEARLOSS_DATA_DIR", _shipped_data())
+
+from . import _gearloss  # noqa: E402
 
 __version__ = _gearloss.__version__
 Error = _gearloss.Error
 InputError = _gearloss.InputError
 OutputError = _gearloss.OutputError
 
-__all__ = ["load_case", "Case", "diagnose", "synth", "Diagnosis", "Finding", "Error", "InputError",
+__all__ = ["load", "load_case", "Case", "diagnose", "synth", "Diagnosis", "Finding", "Error", "InputError",
            "OutputError", "CaseWarning"]
 
 
@@ -49,28 +62,54 @@ def _warn(texts):
         _warnings.warn(text, CaseWarning, stacklevel=3)
 
 
-def _have_pandas():
-    try:
-        import pandas  # noqa: F401
-    except ImportError:
-        return False
-    return True
+def load(source, ratio=None, base_dir=None):
+    """Loads and checks a case (docs/config.md), as every gearloss command does.
 
-
-def load_case(path, ratio=None):
-    """Loads and checks a case file (YAML, docs/config.md), as every gearloss command does.
-
+    ``source``: a file path (str or path-like), a YAML document as a string (any string that
+    holds a line break or starts with ``{``), or a dict (the YAML document as Python values:
+    ``{"gears": [...], "oil": "oils/PAOR.yaml", ...}``, quantities as strings: ``"40 mm"``).
+    Relative paths inside a string or a dict (the oil file, ``cycles/``) resolve against
+    ``base_dir`` (default: the current directory); a file's resolve against its folder.
     ``ratio`` selects one of ``gearbox.ratios`` (the CLI's ``--ratio``). Raises
-    :class:`InputError` naming file, line, column and key of what is wrong. Plausibility
-    warnings are issued as :class:`CaseWarning`.
+    :class:`InputError` naming file (``<string>`` or ``<dict>``), line, column and key of what is
+    wrong. Plausibility warnings are issued as :class:`CaseWarning`.
     """
-    case = Case(_gearloss.load_case(str(path), ratio))
+    if isinstance(source, _Mapping):
+        # JSON is YAML: the dict's document as text, read by the same reader as a file.
+        text = _json.dumps(source, indent=1, default=_json_value)
+        impl = _gearloss.load_case_text(text, "<dict>", _base(base_dir), ratio)
+    elif isinstance(source, str) and ("\n" in source or source.lstrip().startswith("{")):
+        impl = _gearloss.load_case_text(source, "<string>", _base(base_dir), ratio)
+    else:
+        if base_dir is not None:
+            raise TypeError("base_dir is for a case given as a string or a dict; a file's paths resolve against its folder")
+        impl = _gearloss.load_case(_os.fspath(source), ratio)
+    case = Case(impl)
     _warn(case.warnings)
     return case
 
 
+def load_case(path, ratio=None, base_dir=None):
+    """The same as :func:`load` (its first name)."""
+    return load(path, ratio, base_dir)
+
+
+def _json_value(v):
+    """A value of a case's dict that json does not know: a path as its text, a numpy number as a
+    number, anything else as its str (a quantity object's "40 mm")."""
+    if isinstance(v, _os.PathLike):
+        return _os.fspath(v)
+    if hasattr(v, "item"):  # numpy scalars
+        return v.item()
+    return str(v)
+
+
+def _base(base_dir):
+    return _os.fspath(base_dir) if base_dir is not None else _os.getcwd()
+
+
 class Case:
-    """A loaded gearbox case. Make one with :func:`load_case`.
+    """A loaded gearbox case. Make one with :func:`load`.
 
     Properties (read-only): ``file``, ``name``, ``ratio`` (selected, or None), ``ratios``,
     ``mechanisms`` (loss mechanism names) and ``mechanism_columns`` (their CSV columns),
@@ -132,10 +171,10 @@ class Case:
         ``as_frame=False``) a dict of numpy arrays in column order (``status`` an object
         array of str). Empty CSV cells are NaN.
         """
+        np = _require_numpy("Case.grid")
         out = self._impl.grid(_optional_floats(speeds_rpm), _optional_floats(torques_Nm),
                               _optional_float(oil_temp_C), threads, bool(detail))
         _warn(out["warnings"])
-        import numpy as np
         columns = out["columns"]
         columns["status"] = np.array(columns["status"], dtype=object)
         if as_frame is None:
@@ -144,6 +183,77 @@ class Case:
             import pandas as pd
             return pd.DataFrame(columns, columns=list(columns))
         return columns
+
+    map = grid  # the CLI's name
+
+    def check(self, json=False):
+        """The report of ``gearloss check`` (str), or with ``json=True`` its ``--json`` as a dict.
+
+        The case is read again from its file, string or dict, with the oil of :meth:`with_oil`."""
+        text = _gearloss.check(self._impl, bool(json))
+        return _json.loads(text) if json else text
+
+    def compare(self, oils, speeds_rpm=None, torques_Nm=None, oil_temp_C=None, threads=None, detail=False,
+                as_frame=None):
+        """The same map for two or more oil files (``gearloss compare --oil A --oil B ...``): the
+        CSV's table (a DataFrame with pandas, else a dict of lists), one row per point with each
+        oil's values and their differences to the first oil, as the CLI's columns and cells."""
+        if isinstance(oils, (str, _os.PathLike)):
+            oils = [oils]
+        text = _gearloss.compare(self._impl, [_os.fspath(o) for o in oils], _optional_floats(speeds_rpm),
+                                 _optional_floats(torques_Nm), _optional_float(oil_temp_C), threads, bool(detail))
+        return _table(text, as_frame)
+
+    def spread(self, axes=None, speeds_rpm=None, torques_Nm=None, oil_temp_C=None, threads=None, detail=False,
+               as_frame=None):
+        """The map with the model-form spread (``gearloss map --spread``): the map's columns, then
+        ``P_total_min_W``, ``P_total_max_W``, the forms giving each and the combinations without a
+        solution. ``axes`` restricts the form axes (``--spread-axes``: ``["mesh.friction",
+        "windage.form"]``). Combinations that do not apply to the case are named in a
+        :class:`CaseWarning`."""
+        if isinstance(axes, str):
+            axes = [a for a in axes.split(",")]
+        out = _gearloss.spread(self._impl, None if axes is None else [str(a) for a in axes],
+                               _optional_floats(speeds_rpm), _optional_floats(torques_Nm),
+                               _optional_float(oil_temp_C), threads, bool(detail))
+        if out["note"]:
+            _warn(["map --spread: " + out["note"]])
+        return _table(out["csv"], as_frame)
+
+    def sweeps(self, speeds_rpm=None, torques_Nm=None, oil_temp_C=None, threads=None, detail=False, as_frame=None):
+        """Every variant of the case's ``sweep:`` block (``gearloss map`` of a sweep case): the
+        swept values' columns (labelled as the sweep names them), then the map's columns, one row
+        per variant and point, the first axis slowest. A case without a sweep gives its map."""
+        out = _gearloss.sweeps(self._impl, _optional_floats(speeds_rpm), _optional_floats(torques_Nm),
+                               _optional_float(oil_temp_C), threads, bool(detail))
+        _warn(out["warnings"])
+        return _table(out["csv"], as_frame)
+
+    def cycle(self, cycle, start_temp_C, ambient_C=None, prewarm_C=None, heater_W=100.0, warm_temp_C=90.0,
+              trace=False, as_frame=None):
+        """A drive cycle from a cold start (``gearloss cycle``): the ``--json`` summary as a dict.
+
+        ``cycle``: a shipped cycle's name (``nedc``, ``wltc``, ``artemis``, ...; the case's own
+        ``cycles/`` folder first) or a CSV file (``time_s,speed_kmh[,gear]``). ``ambient_C``
+        defaults to the start temperature (a cold soak); ``prewarm_C`` and ``heater_W`` pre-warm
+        the oil first. With ``trace=True`` returns ``(summary, trace)``, the trace the table of
+        ``-o`` (a DataFrame with pandas). The summary dict also holds the printed summary under
+        ``"text"``. Rows beyond the engine's fuel map are reported as a :class:`CaseWarning`."""
+        out = _gearloss.cycle(self._impl, _os.fspath(cycle), float(start_temp_C), _optional_float(ambient_C),
+                              _optional_float(prewarm_C), float(heater_W), float(warm_temp_C), bool(trace))
+        if out["warning"]:
+            _warn([out["warning"].rstrip("\n")])
+        summary = _json.loads(out["json"])
+        summary["text"] = out["text"]
+        return (summary, _table(out["trace"], as_frame)) if trace else summary
+
+    def diagnose(self, recordings_csv, **options):
+        """The same as :func:`diagnose` (``gearloss diagnose``) on this case."""
+        return diagnose(self, recordings_csv, **options)
+
+    def synth(self, effects=None, **options):
+        """The same as :func:`synth` (``gearloss synth``) on this case."""
+        return synth(self, effects, **options)
 
 
 def _optional_float(v):

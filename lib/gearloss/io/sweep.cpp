@@ -33,6 +33,7 @@
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <yaml-cpp/yaml.h>
 
 namespace gearloss::io {
@@ -162,10 +163,18 @@ std::vector<SweepAxis> read_sweep(const YamlNode& root) {
 }
 
 Sweep::Sweep(const std::string& file, const std::optional<std::string>& ratio)
+    : Sweep(YamlNode::load_file(file), file, std::filesystem::path(file).parent_path().string(), ratio) {}
+
+Sweep Sweep::from_text(const std::string& text, const std::string& name, const std::string& base_dir,
+                       const std::optional<std::string>& ratio) {
+    return Sweep(YamlNode::load_text(text, name), name, base_dir, ratio);
+}
+
+Sweep::Sweep(YamlNode document, const std::string& file, const std::string& base_dir, const std::optional<std::string>& ratio)
     : file_(file),
-      base_dir_(std::filesystem::path(file).parent_path().string()),
+      base_dir_(base_dir),
       ratio_(ratio),
-      root_(YamlNode::load_file(file)),
+      root_(std::move(document)),
       axes_(read_sweep(root_)),
       pool_(YAML::NodeType::Sequence) {
     if (axes_.empty()) return;

@@ -29,6 +29,10 @@ public:
     // Reads and parses the file once; `ratio` as load_case. Errors of the file or of its
     // sweep block are InputErrors, as load_case gives them.
     Sweep(const std::string& file, const std::optional<std::string>& ratio);
+    // The same from a case's text (io::load_case_text): `name` appears in messages, relative oil
+    // files resolve against `base_dir`.
+    static Sweep from_text(const std::string& text, const std::string& name, const std::string& base_dir,
+                           const std::optional<std::string>& ratio);
     // One Sweep owns its parsed document and edits it: copies would share it.
     Sweep(const Sweep&) = delete;
     Sweep& operator=(const Sweep&) = delete;
@@ -50,6 +54,7 @@ public:
     std::pair<YAML::Node, YAML::Node> as_written();
 
 private:
+    Sweep(YamlNode document, const std::string& file, const std::string& base_dir, const std::optional<std::string>& ratio);
     std::vector<size_t> indices(size_t v) const;  // the value of each axis by its index
     YAML::Node own_node();                        // a new node of pool_
     void restore();                               // the document as the user wrote it again
