@@ -43,16 +43,27 @@ std::optional<hypothesis::Proposal> model_remainder(const Engine& E, const Campa
         // The findings were fitted on every point, so their share of `after` is not
         // cross-validated: a model of p parameters fitted on n points predicts new points
         // with (n + p)/(n - p) times its mean square error on them (the final prediction error,
-        // Akaike 1970). p: the findings' parameters plus the terms `after` needs beyond
-        // `whole`, so that the simpler explanation stands unless the richer one beats it by
-        // more than its extra parameters buy on any data.
+        // Akaike 1970).
         const double n = static_cast<double>(E.all().size());
-        const double p = std::max(1.0, static_cast<double>(findings) + static_cast<double>(after.terms.size()) -
-                                           static_cast<double>(whole.terms.size()));
-        const double optimism = n > p ? std::sqrt((n + p) / (n - p)) : 1e9;
-        if (whole.found && (!after.found || whole.cv_rmse_after <= optimism * after.cv_rmse_after)) {
+        auto optimism = [n](double p) { return n > p ? std::sqrt((n + p) / (n - p)) : 1e9; };
+        bool replace = false;
+        if (after.found) {
+            // p: the findings' parameters plus the terms `after` needs beyond `whole`, so that
+            // the simpler explanation stands unless the richer one beats it by more than its
+            // extra parameters buy on any data.
+            const double p = std::max(1.0, static_cast<double>(findings) + static_cast<double>(after.terms.size()) -
+                                               static_cast<double>(whole.terms.size()));
+            replace = whole.found && whole.cv_rmse_after <= optimism(p) * after.cv_rmse_after;
+        } else {
+            // The findings leave nothing a formula models: they stand unless the formula alone
+            // predicts a fifth better than they do (a finding of the right physics and a
+            // formula of its shape predict alike; the finding names the physics).
+            const double findings_cv = after.cv_rmse_before * optimism(static_cast<double>(findings));
+            replace = whole.found && whole.cv_rmse_after <= 0.8 * findings_cv;
+        }
+        if (replace) {
             whole.on_case = true;
-            whole.findings_cv_rmse = after.found ? after.cv_rmse_after : after.cv_rmse_before;
+            whole.findings_cv_rmse = after.found ? after.cv_rmse_after : after.cv_rmse_before * optimism(findings);
             return whole;
         }
     }

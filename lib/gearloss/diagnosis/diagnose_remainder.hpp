@@ -1,8 +1,9 @@
 #pragma once
-// Model the remainder: a formula (hypothesis.hpp) for what the findings leave, or for the
-// whole mismatch of the case as described when that formula alone predicts the recordings
-// better under cross-validation (the findings then likely stand in for an effect outside the
-// library: a viscosity factor of 0.2 absorbing a loss that switches on in hot oil).
+// Model the remainder: a formula (hypothesis.hpp) for what the findings leave; where they
+// leave such a formula, the formula for the whole mismatch of the case as described instead
+// when it alone predicts the recordings better under cross-validation (the findings then
+// likely stand in for an effect outside the library: a viscosity factor of 0.2 absorbing a
+// loss that switches on in hot oil).
 #include <optional>
 
 #include "gearloss/diagnosis/diagnose_internal.hpp"
