@@ -111,9 +111,36 @@ def effects(baseline):
     ]
 
 
+def parse_basis(basis):
+    """The form of a term from its text, for reports without the structured fields (the
+    formula of earlier versions: powers 1-3 of speed, steps and bands at speed levels, hot-oil
+    steps)."""
+    import re
+    t = {}
+    m = re.fullmatch(r"\[n > ([\d.]+) rpm\]", basis)
+    if m:
+        return {"shape": "step", "variable": "speed_rpm", "threshold": float(m[1]), "side": "above"}
+    m = re.fullmatch(r"\[theta_oil > ([\d.]+) degC\]", basis)
+    if m:
+        return {"shape": "step", "variable": "oil_temp_C", "threshold": float(m[1]), "side": "above"}
+    m = re.fullmatch(r"(?:\(T_in/[\d.]+ N\*m\)\^2 )?\[n = ([\d.]+) rpm\]", basis)
+    if m:
+        x = float(m[1])
+        return {"shape": "window", "variable": "speed_rpm", "lower": 0.99 * x, "upper": 1.01 * x}
+    m = re.fullmatch(r"\(n/1000 rpm\)(?:\^([\d.]+))?", basis)
+    if m:
+        return {"shape": "power", "variable": "speed_rpm", "exponent": float(m[1] or 1)}
+    m = re.fullmatch(r"\(T_in/[\d.]+ N\*m\)(?:\^([\d.]+))?", basis)
+    if m:
+        return {"shape": "power", "variable": "torque_Nm", "exponent": float(m[1] or 1)}
+    return t
+
+
 def form_ok(term, truth, rec):
     if term is None:
         return False
+    if "shape" not in term:
+        term = parse_basis(term.get("basis", ""))
     var = truth["variable"]
     col = {"speed_rpm": "speed_in_rpm", "torque_Nm": "torque_in_Nm", "oil_temp_C": "oil_temp_C"}
     if truth["shape"] == "window":

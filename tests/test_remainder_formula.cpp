@@ -142,23 +142,25 @@ TEST_CASE("the terms carry their form for the report and a calibration term", "[
 }
 
 TEST_CASE("empirical terms are read with their units and evaluated by the mechanism", "[remainder]") {
-    // 40 W [theta > 80 degC] + 5 W (n/1000 rpm)^2 + 2 W max(0, T - 100 N*m)/(50 N*m):
-    // at 1500 rpm, 200 N*m, 90 degC: 40 + 5 x 2.25 + 2 x 2 = 55.25 W; at 70 degC: 15.25 W.
+    // 40 W [theta > 80 degC] + 5 W (n/1000 rpm)^2 + 2 W max(0, T - 100 N*m)/(50 N*m)
+    // + 3 W max(0, theta - 85 degC)/(10 K):
+    // at 1500 rpm, 200 N*m, 90 degC: 40 + 5 x 2.25 + 2 x 2 + 3 x 0.5 = 56.75 W; at 70 degC: 15.25 W.
     const auto doc = io::YamlNode::load_text(R"(terms:
   - {coefficient: 40 W, factors: [{variable: oil_temperature, shape: step, above: 80 degC}]}
   - {coefficient: 5 W, factors: [{variable: speed, shape: power, reference: 1000 rpm, exponent: 2}]}
   - {coefficient: 2 W, factors: [{variable: torque, shape: threshold, above: 100 N*m, reference: 50 N*m}]}
+  - {coefficient: 3 W, factors: [{variable: oil_temperature, shape: threshold, above: 85 degC, reference: 10 K}]}
 )",
                                              "terms.yaml");
     const auto terms = io::read_empirical_terms(doc.at("terms"));
-    REQUIRE(terms.size() == 3);
+    REQUIRE(terms.size() == 4);
     const double w = 1500 * std::numbers::pi / 30;
     double hot = 0, cold = 0;
     for (const auto& t : terms) {
         hot += t.coefficient * t.basis(w, 200, 273.15 + 90, 30e-6);
         cold += t.coefficient * t.basis(w, 200, 273.15 + 70, 60e-6);
     }
-    CHECK(hot == Approx(55.25));
+    CHECK(hot == Approx(56.75));
     CHECK(cold == Approx(15.25));
     // Written and read again: the same terms.
     YAML::Node root;
@@ -166,10 +168,10 @@ TEST_CASE("empirical terms are read with their units and evaluated by the mechan
     YAML::Emitter em;
     em << root;
     const auto again = io::read_empirical_terms(io::YamlNode::load_text(em.c_str(), "again.yaml").at("terms"));
-    REQUIRE(again.size() == 3);
+    REQUIRE(again.size() == 4);
     double hot2 = 0;
     for (const auto& t : again) hot2 += t.coefficient * t.basis(w, 200, 273.15 + 90, 30e-6);
-    CHECK(hot2 == Approx(55.25).epsilon(1e-5));
+    CHECK(hot2 == Approx(56.75).epsilon(1e-5));
 }
 
 TEST_CASE("a bad empirical term names its key", "[remainder]") {
@@ -183,6 +185,10 @@ TEST_CASE("a bad empirical term names its key", "[remainder]") {
     fails("terms: [{coefficient: 4, factors: []}]", "coefficient");
     fails("terms: [{coefficient: 4 W, factors: [{variable: speed, shape: step}]}]", "above");
     fails("terms: [{coefficient: 4 W, factors: [{variable: torque, shape: window, lower: 90 N*m, upper: 50 N*m}]}]", "upper");
+    fails("terms: [{coefficient: 4 W, factors: [{variable: oil_temperature, shape: threshold, above: 80 degC, reference: 10 degC}]}]",
+          "temperature difference");
+    fails("terms: [{coefficient: 4 W, factors: [{variable: oil_temperature, shape: power, reference: 10 K, exponent: 2}]}]",
+          "power of the oil temperature");
 }
 
 TEST_CASE("the written calibration reproduces recordings with a hot-oil loss within the noise", "[remainder]") {

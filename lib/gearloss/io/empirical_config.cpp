@@ -3,6 +3,10 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
+#include <cmath>
+#include <string>
+
 #include "gearloss/units/units.hpp"
 
 namespace gearloss::io {
@@ -38,9 +42,26 @@ double location(const YamlNode& x, EmpiricalVariable v) {
     return x.as_quantity(dimension_of(v), example_of(v));
 }
 
+// A temperature difference ("10 K"): the unit parses as an absolute temperature, so the number
+// and a unit without offset (K, mK) are read apart.
+double temperature_difference(const YamlNode& x) {
+    const std::string text = x.as_string();
+    std::size_t u = 0;
+    while (u < text.size() && (std::isdigit(static_cast<unsigned char>(text[u])) || text[u] == '.' || text[u] == ' ' ||
+                               text[u] == '+' || text[u] == '-'))
+        ++u;
+    try {
+        const auto f = units::parse_unit(text.substr(u));
+        if (f.dim != units::dim::temperature || f.offset != 0 || u == 0) throw units::UnitError("");
+        return std::stod(text.substr(0, u)) * f.scale;
+    } catch (const std::exception&) {
+        x.fail("expected a temperature difference in K, e.g. '10 K'");
+    }
+}
+
 // A scale of the variable (a reference): positive; a temperature difference in K.
 double scale(const YamlNode& x, EmpiricalVariable v) {
-    const double s = v == EmpiricalVariable::oil_temperature ? x.as_quantity(units::dim::temperature, "10 K")
+    const double s = v == EmpiricalVariable::oil_temperature ? temperature_difference(x)
                                                              : x.as_quantity(dimension_of(v), example_of(v));
     if (!(s > 0)) x.fail("must be positive");
     return s;
