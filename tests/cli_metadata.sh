@@ -182,7 +182,7 @@ for a, b in zip(two, three):
         ok = ok and abs(float(b[f"dP_loss_{o}_W"]) - d) <= 1e-5 * float(b[f"P_total_{o}_W"])
     for o in oils:
         parts = [float(v) for k, v in b.items() if k.endswith(f"_{o}_W") and not k.startswith(("P_total", "dP"))]
-        ok = ok and len(parts) == 7 and abs(sum(parts) - float(b[f"P_total_{o}_W"])) <= 1e-4 * float(b[f"P_total_{o}_W"])
+        ok = ok and len(parts) == 8 and abs(sum(parts) - float(b[f"P_total_{o}_W"])) <= 1e-4 * float(b[f"P_total_{o}_W"])
 sys.exit(0 if ok else 1)
 PY
 check "compare --json: summary and points" json c3.json "len(d['summary'])==3 and len(d['points'])==4 and d['reference']=='75W90-A' and d['metadata']['command']=='compare'"

@@ -244,12 +244,12 @@ TEST_CASE("cycle trace: the warm-start and pre-warmed runs follow the start run'
         return static_cast<size_t>(it - h.begin());
     };
     // The start run's columns first, as before (the converter and fuel columns last of them).
-    REQUIRE(h.size() == 29);
+    REQUIRE(h.size() == 30);
     CHECK(h[0] == "time_s");
-    CHECK(h[22] == "fuel_g_s");
+    CHECK(h[23] == "fuel_g_s");
     const std::vector<std::string> added{"warm_oil_temp_C",      "warm_P_gearbox_W",      "warm_P_converter_W",
                                          "prewarmed_oil_temp_C", "prewarmed_P_gearbox_W", "prewarmed_P_converter_W"};
-    CHECK(std::vector<std::string>(h.begin() + 23, h.end()) == added);
+    CHECK(std::vector<std::string>(h.begin() + 24, h.end()) == added);
     REQUIRE(rows.size() == s.cold.trace.size() + 1);
     // First row: each run at its own start (the warm start's 90 degC is the option; the pre-warmed
     // run starts where the heater left the oil, at or above the 90 degC target).
@@ -280,7 +280,7 @@ TEST_CASE("cycle trace: the warm-start and pre-warmed runs follow the start run'
     o.prewarm_target.reset();
     const auto plain = io::run_cycle_study(pt, io::resolve_cycle("nedc", cycle_dirs()), o);
     const auto h2 = csv_rows(io::cycle_trace_csv(pt, plain)).front();
-    CHECK(h2.size() == 26);
+    CHECK(h2.size() == 27);
     CHECK(h2.back() == "warm_P_converter_W");
 }
 

@@ -145,9 +145,13 @@ TEST_CASE("a windage-like 5 W (n/1000)^3 is found as a speed power", "[hypothesi
     const Proposal p = propose(c.residual, c.scale, c.f);
     INFO(p.formula);
     REQUIRE(p.found);
+    // The exponent is searched on a grid of 0.1: within 0.3 of the truth, as the issue asks.
     CHECK(p.terms[0].basis.rfind("(n/1000 rpm)^", 0) == 0);
-    CHECK(p.terms[0].basis == "(n/1000 rpm)^3");
-    CHECK(std::fabs(p.terms[0].coefficient - 5) < 3 * p.terms[0].uncertainty + 0.25);
+    CHECK(p.terms[0].variable == "speed_rpm");
+    CHECK(std::fabs(p.terms[0].exponent - 3) <= 0.3);
+    // The coefficient trades against the exponent: at the mid speed 1000 rpm the term is the
+    // coefficient itself, 5 W within 10 %.
+    CHECK(std::fabs(p.terms[0].coefficient - 5) < 0.5);
     CHECK(contains(p.nearest, "windage"));
 }
 

@@ -10,6 +10,7 @@
 #include "gearloss/losses/loss_mechanism.hpp"
 #include "gearloss/losses/registry.hpp"
 #include "gearloss/map/map_runner.hpp"
+#include "gearloss/mechanisms/empirical_mechanism.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 #include "gearloss/model/validate.hpp"
 #include "gearloss/solver/operating_point.hpp"
@@ -265,6 +266,9 @@ TEST_CASE("mechanisms: a mechanism switched off loses nothing and leaves the oth
         m.mechanisms.at("windage").set_parameter("empirical_W_at_1000rpm", 12);
         m.mechanisms.at("auxiliary").set_parameter("power", 20);
         m.mechanisms.at("bearings").set_parameter("drag_f0", 2);
+        losses::EmpiricalTerm constant;
+        constant.coefficient = 15;  // W, no factor: a constant loss while the input turns
+        dynamic_cast<losses::EmpiricalMechanism&>(m.mechanisms.at("empirical")).set_terms({constant});
         const auto s = m.oil_state(353.15);
         const auto on = solver::evaluate_losses(m, solver::prepare_point(m, within_case(c, 1500 * kRpm), 200), s, true, true);
         for (size_t i = 0; i < m.mechanisms.size(); ++i) {

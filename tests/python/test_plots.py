@@ -302,7 +302,7 @@ class Errors(unittest.TestCase):
                                                               for i, c in enumerate(first.split(",")))), out],
              "nan.csv:2: column 'oil_temp_C': 'nan' is not a number"),
             (["map", self.write("short.csv", header + ",".join(first.split(",")[:5]) + "\n"), out],
-             "short.csv:2: 5 cells, the header has 18"),
+             "short.csv:2: 5 cells, the header has 19"),
             (["map", self.write("ragged.csv", header + first.strip() + ",1,2,3\n"), out], "not a well-formed CSV"),
             (["map", self.write("cols.csv", "speed_in_rpm,torque_in_Nm\n600,100\n"), out], "missing"),
             (["cycle", path("map.csv"), out], "looks like a `gearloss map` file"),

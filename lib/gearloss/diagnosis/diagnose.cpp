@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "gearloss/core/errors.hpp"
+#include "gearloss/diagnosis/diagnose_remainder.hpp"
 #include "gearloss/diagnosis/diagnose_select.hpp"
 #include "gearloss/io/interrupt.hpp"
 
@@ -274,23 +275,11 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     d.detectable = ad.detectable;
     // Is an effect present (the selection), and is it the whole cause (the adequacy)?
     judge(d, ad, opt, E, pf, base, d.findings.empty() ? std::string() : locate(F, after_all, base_all, model).text);
-    if (d.verdict == "partly_explained" || d.verdict == "unexplained_mismatch") {
-        // What is left, as a formula over the operating point (a hypothesis for the engineer).
-        std::vector<double> resid, scale;
-        hypothesis::Features f;
-        for (int i : all) {
-            const auto& o = E.obs()[i];
-            const double T = o.has_T ? o.T_oil : pf.temp[i];
-            resid.push_back(o.loss - pf.loss[i]);
-            scale.push_back(o.scale);
-            f.speed_rpm.push_back(std::abs(o.w) * to_rpm);
-            f.torque_Nm.push_back(o.torque);
-            f.oil_temp_C.push_back(T - 273.15);
-            f.viscosity_cSt.push_back(point_viscosity(E, o, T));
-            if (d.run_order.recorded) f.order.push_back(o.run);  // else no run-order term
-        }
-        auto p = hypothesis::propose(resid, scale, f);
-        if (p.found) d.remainder = std::move(p);
+    if (d.verdict != "no_significant_mismatch") {
+        // What is left, as a formula over the operating point (a hypothesis for the engineer):
+        // after a confident name too, where it is reported only when it beats zero significantly
+        // under cross-validation (a smaller structure the adequacy tests did not resolve).
+        d.remainder = model_remainder(E, oils, neutral, p0, base, pf, static_cast<int>(d.findings.size()), ad.noise_loss.sigma);
     }
 
     // Outliers against the final model and the noise in use, plus tests the log criterion flagged.

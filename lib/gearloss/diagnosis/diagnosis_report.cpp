@@ -9,6 +9,7 @@
 
 #include "gearloss/diagnosis/p_value_text.hpp"
 #include "gearloss/io/atomic_file.hpp"
+#include "gearloss/io/empirical_config.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/json_text.hpp"
 
@@ -31,6 +32,68 @@ std::string oils_text(const Diagnosis& d) {
         s += fmt::format("  {:>9.1f} {:>10.4g}  {:<22} {:>10.1f} {:>12.1f} {:>12.1f}\n", x.speed_rpm, x.torque, x.oil_b,
                          x.recorded, x.model_before, x.model_after);
     return s;
+}
+
+// The remainder formula: its terms with their uncertainty and form, the cross-validated
+// residual against the noise, and what it resembles.
+std::string remainder_text(const hypothesis::Proposal& r) {
+    std::string s = fmt::format("\nhypothesis for what is left (not a finding): {}\n", r.formula);
+    for (const auto& t : r.terms) {
+        s += fmt::format("  {:>10.4g} +/- {:<9.2g} W  {}", t.coefficient, t.uncertainty, t.basis);
+        if (std::isfinite(t.oil_temp_equivalent))
+            s += fmt::format(" (the oil {} {:.4g} degC)", t.above ? "below" : "above", t.oil_temp_equivalent);
+        s += "\n";
+    }
+    s += fmt::format("  cross-validated loss RMSE {:.3g} W -> {:.3g} W", r.cv_rmse_before, r.cv_rmse_after);
+    if (r.noise_W > 0)
+        s += fmt::format(" against a noise of {:.3g} W: the final model leaves {:.2g} times the noise",
+                         r.noise_W, r.cv_rmse_after / r.noise_W);
+    s += "\n";
+    if (r.on_case)
+        s += fmt::format("  this formula is for the whole mismatch of the case as described: alone it predicts the "
+                         "recordings better than the findings with a formula for what they leave (cross-validated "
+                         "{:.3g} W against {:.3g} W), so the findings may stand in for an effect outside the library\n",
+                         r.cv_rmse_after, r.findings_cv_rmse);
+    for (const auto& n : r.nearest) s += "  resembles: " + n + "\n";
+    return s;
+}
+
+nlohmann::ordered_json remainder_json(const hypothesis::Proposal& p) {
+    nlohmann::ordered_json r;
+    r["formula"] = p.formula;
+    r["cv_rmse_before"] = p.cv_rmse_before;
+    r["cv_rmse_after"] = p.cv_rmse_after;
+    if (p.noise_W > 0) {
+        r["noise_W"] = p.noise_W;
+        // The findings are fixed while the formula is cross-validated on what they leave.
+        r["final_cv_rmse_W"] = p.cv_rmse_after;
+        r["final_cv_rmse_over_noise"] = p.cv_rmse_after / p.noise_W;
+    }
+    // on_case: the formula models the whole mismatch of the case as described, not what the
+    // findings leave (it predicts the recordings better than findings + formula).
+    r["on_case"] = p.on_case;
+    if (p.on_case) r["findings_cv_rmse_W"] = p.findings_cv_rmse;
+    auto& terms = r["terms"] = nlohmann::ordered_json::array();
+    for (const auto& t : p.terms) {
+        nlohmann::ordered_json o{{"basis", t.basis}, {"coefficient_W", t.coefficient}, {"uncertainty_W", t.uncertainty}};
+        o["shape"] = t.shape;
+        o["variable"] = t.variable.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(t.variable);
+        if (std::isfinite(t.exponent)) o["exponent"] = t.exponent;
+        if (std::isfinite(t.threshold)) {
+            o["threshold"] = t.threshold;
+            o["side"] = t.above ? "above" : "below";
+        }
+        if (std::isfinite(t.oil_temp_equivalent)) o["oil_temp_equivalent_C"] = t.oil_temp_equivalent;
+        if (std::isfinite(t.lower)) o["lower"] = t.lower;
+        if (std::isfinite(t.upper)) o["upper"] = t.upper;
+        if (t.gate)
+            o["gate"] = {{"variable", t.gate->variable}, {"threshold", t.gate->threshold}, {"side", t.gate->above ? "above" : "below"}};
+        if (!t.oil.empty()) o["oil"] = t.oil;
+        o["writable"] = t.empirical.has_value();
+        terms.push_back(std::move(o));
+    }
+    r["nearest"] = p.nearest;
+    return r;
 }
 }  // namespace
 
@@ -66,11 +129,7 @@ std::string diagnosis_text(const Diagnosis& d) {
     }
     if (!d.oils.empty()) s += oils_text(d);
     if (!d.remaining.empty() && d.verdict != "unexplained_mismatch") s += "\n" + d.remaining + "\n";
-    if (d.remainder) {
-        s += fmt::format("\nhypothesis for what is left (not a finding): {}\n  cross-validated loss RMSE {:.3g} W -> {:.3g} W\n",
-                         d.remainder->formula, d.remainder->cv_rmse_before, d.remainder->cv_rmse_after);
-        for (const auto& n : d.remainder->nearest) s += "  resembles: " + n + "\n";
-    }
+    if (d.remainder) s += remainder_text(*d.remainder);
     s += fmt::format("\nnoise: loss {:.3g} % ({}), test of what is left: fit {}, structure {}{}\n",
                      100 * d.adequacy_loss.noise, d.adequacy_loss.noise_source, p_value_text(d.adequacy_loss.fit_p),
                      p_value_text(d.adequacy_loss.structure_p),
@@ -155,16 +214,7 @@ std::string diagnosis_json(const Diagnosis& d) {
                                     {"text", d.remaining_structure->text}};
     j["run_order"] = {{"recorded", d.run_order.recorded},
                       {"column", d.run_order.recorded ? nlohmann::ordered_json(d.run_order.column) : nlohmann::ordered_json(nullptr)}};
-    if (d.remainder) {
-        auto& r = j["remainder_hypothesis"];
-        r["formula"] = d.remainder->formula;
-        r["cv_rmse_before"] = d.remainder->cv_rmse_before;
-        r["cv_rmse_after"] = d.remainder->cv_rmse_after;
-        r["terms"] = nlohmann::ordered_json::array();
-        for (const auto& t : d.remainder->terms)
-            r["terms"].push_back({{"basis", t.basis}, {"coefficient_W", t.coefficient}, {"uncertainty_W", t.uncertainty}});
-        r["nearest"] = d.remainder->nearest;
-    }
+    if (d.remainder) j["remainder_hypothesis"] = remainder_json(*d.remainder);
     if (!d.oils.empty()) {
         j["oils"] = d.oils;
         auto& diffs = j["oil_differences"] = nlohmann::ordered_json::array();
@@ -266,6 +316,30 @@ void write_calibrated_config(const std::string& config_in, const std::string& co
         root["oil"] = (ec || rel.empty() ? oil : rel).string();
     }
     YAML::Node cal = root["calibration"] ? root["calibration"] : YAML::Node(YAML::NodeType::Map);
+    // A remainder formula for the whole mismatch replaces the findings: the case's own
+    // calibration stays as it is, and the formula's terms follow any it carries.
+    if (d.remainder && d.remainder->on_case) {
+        std::vector<losses::EmpiricalTerm> terms;
+        for (const auto& t : d.remainder->terms)
+            if (t.empirical) terms.push_back(*t.empirical);
+        YAML::Node list = cal["empirical"] && cal["empirical"]["terms"] ? cal["empirical"]["terms"]
+                                                                        : YAML::Node(YAML::NodeType::Sequence);
+        for (const auto& n : io::empirical_terms_yaml(terms)) list.push_back(n);
+        if (!terms.empty()) cal["empirical"]["terms"] = list;
+        std::string note = "calibrated by gearloss diagnose (" + d.verdict + "): the remainder formula " + d.remainder->formula +
+                           " for the whole mismatch (fitted to the recordings, not a published law); the findings are not "
+                           "written, the formula alone predicts the recordings better";
+        cal["note"] = note;
+        root["calibration"] = cal;
+        YAML::Emitter em;
+        em << root;
+        io::AtomicFile f(config_out);
+        f.write("# Written by gearloss diagnose from " + config_in + "\n");
+        f.write(em.c_str());
+        f.write("\n");
+        f.commit();
+        return;
+    }
     // Every calibration term is written afresh: the hypothesis started from the case's own
     // calibration, so it holds the terms read from this block (in either spelling).
     for (const char* k : {"windage", "churning_factor", "bearing_drag_f0", "seal_factor", "mesh_friction_factor",
@@ -287,6 +361,26 @@ void write_calibrated_config(const std::string& config_in, const std::string& co
     if (a.torque_gain != 1 || a.torque_offset != 0)
         note += fmt::format("; recordings carried a torque-sensor error (gain {:.5g}, offset {:.4g} N*m), not written as physics",
                             a.torque_gain, a.torque_offset);
+    // The remainder formula, as empirical terms after any the case carried (a fit, not physics).
+    if (d.remainder) {
+        std::vector<losses::EmpiricalTerm> terms;
+        if (const auto* e = dynamic_cast<const losses::EmpiricalMechanism*>(mechs.find("empirical"))) terms = e->terms();
+        int written = 0, order = 0;
+        for (const auto& t : d.remainder->terms) {
+            if (t.empirical) {
+                terms.push_back(*t.empirical);
+                ++written;
+            } else {
+                ++order;
+            }
+        }
+        if (!terms.empty()) cal["empirical"]["terms"] = io::empirical_terms_yaml(terms);
+        if (written)
+            note += fmt::format("; empirical: {} term(s) of the remainder formula {} (fitted to the recordings, not a "
+                                "published law)",
+                                written, d.remainder->formula);
+        if (order) note += fmt::format("; {} term(s) of the run order not written (no law of the operating point)", order);
+    }
     cal["note"] = note;
     root["calibration"] = cal;
     // Forms found are physics: written under `mechanisms:` (read after `options:`, it wins).

@@ -1,45 +1,101 @@
 #pragma once
 // A compact formula for a remainder no candidate explains (issue 15, unknown forms): sparse
-// regression over physically meaningful features of the operating point, with steps and
-// thresholds, chosen by cross-validation. Reported as a hypothesis with its uncertainty and
-// the nearest physical mechanisms, never as a named finding.
+// regression over physically meaningful features of the operating point (powers with a
+// fitted exponent, steps and thresholds at the midpoints of the recorded values, windows,
+// terms gated by a threshold, the oil where several were recorded), chosen by K-fold
+// cross-validation with the one-standard-error rule. Reported as a hypothesis with its
+// uncertainty, its cross-validated residual against the noise and the nearest physical
+// mechanisms, never as a named finding; its terms are empirical loss terms
+// (mechanisms/empirical_mechanism.hpp) that --write-config can write into a calibration.
 //
 // Works on plain vectors (one entry per recorded point), independent of the model.
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "gearloss/mechanisms/empirical_mechanism.hpp"
+
 namespace gearloss::diagnosis::hypothesis {
 
-// The operating point of each recorded point.
+// The operating point of each recorded point (each vector empty or one entry per point).
 struct Features {
     std::vector<double> speed_rpm;      // input speed
     std::vector<double> torque_Nm;      // input torque
     std::vector<double> oil_temp_C;     // oil temperature (recorded, or the model's)
     std::vector<double> viscosity_cSt;  // kinematic viscosity of the oil at that temperature
-    std::vector<double> order;          // run order (row number)
+    std::vector<double> order;          // run order (only where the campaign records one)
+    std::vector<std::string> oil;       // the oil of each point (only where several were recorded)
+};
+
+constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+
+// A threshold that gates a term: the term holds only above (or at and below) it.
+struct Gate {
+    std::string variable;  // "speed_rpm", "torque_Nm", "oil_temp_C", "viscosity_cSt"
+    double threshold = 0;  // in the variable's unit
+    bool above = true;
 };
 
 // One selected term: coefficient x basis function.
 struct Term {
-    std::string basis;        // "(n/1000 rpm)^3", "[n > 1050 rpm]", "(T_in/1000 N*m)^2 [n = 1200 rpm]", "exp(-k/12)"
+    std::string basis;        // "(n/1000 rpm)^2.9", "[n > 1050 rpm]", "(T_in/250 N*m)^2 [n = 1200 rpm]", "exp(-k/12)"
     double coefficient = 0;   // W per unit of the basis
     double uncertainty = 0;   // one standard error, W per unit
+    // The form: shape "power" | "step" | "threshold" | "window" | "constant" | "exp"; variable
+    // "speed_rpm" | "torque_Nm" | "oil_temp_C" | "viscosity_cSt" | "order" | "oil".
+    std::string shape, variable;
+    double exponent = kNone;             // power: the fitted exponent
+    double threshold = kNone;            // step, threshold: the location, in the variable's unit
+    bool above = true;                   // step, threshold: above it (else at and below it)
+    double lower = kNone, upper = kNone; // window, in the variable's unit
+    // A step or threshold of the viscosity: the oil temperature the campaign's points split
+    // at in the same way (thick oil is cold oil; a viscosity above the threshold is a
+    // temperature below this), or NaN when they do not split by temperature alone.
+    double oil_temp_equivalent = kNone;
+    std::optional<Gate> gate;
+    std::string oil;                     // the term holds for this oil only (empty: every oil)
+    // The same term as a calibration term (SI), with the coefficient; nullopt for a term of
+    // the run order (no law of the operating point, so nothing a case file could hold).
+    std::optional<losses::EmpiricalTerm> empirical;
 };
 
 struct Proposal {
-    bool found = false;                  // a formula beats zero by cross-validation
+    bool found = false;                  // a formula beats zero by cross-validation, significantly
     std::vector<Term> terms;             // residual [W] ~ sum of coefficient x basis
-    std::string formula;                 // "dP = 41 W [n > 1050 rpm] + 0.0025 W (T_in/1 N*m)^2 [n = 1200 rpm]"
+    std::string formula;                 // "dP = 41 W [theta_oil > 80.5 degC] + 2.5 W (n/1000 rpm)^2.9"
     double cv_rmse_before = 0;           // W, predicting zero
     double cv_rmse_after = 0;            // W, the formula under K-fold cross-validation
+    // The loss noise (RMS over the campaign, weighted as the CV errors are) in W; 0: not given.
+    double noise_W = 0;
     std::vector<std::string> nearest;    // physical mechanisms the terms resemble, e.g. "windage (n^2.9)"
+    // The diagnosis: the formula is for the whole mismatch of the case as described (the
+    // findings left aside), as it predicts the recordings better than the findings with a
+    // formula for what they leave, whose cross-validated loss RMSE [W] is findings_cv_rmse.
+    bool on_case = false;
+    double findings_cv_rmse = 0;
+};
+
+struct Settings {
+    int max_terms = 3;
+    std::uint64_t seed = 20261123;
+    // The loss noise as a share of each point's scale (one standard deviation); 0: unknown.
+    // Sets Proposal::noise_W.
+    double noise_relative = 0;
 };
 
 // residual: recorded - model [W] per point; scale: each point's weight scale [W] (the residual
-// divided by it has roughly equal noise, e.g. the recorded loss); at most max_terms terms.
-// Throws std::invalid_argument when sizes disagree.
+// divided by it has roughly equal noise, e.g. the recorded loss).
+// Throws std::invalid_argument when sizes disagree or values are not finite.
 Proposal propose(const std::vector<double>& residual, const std::vector<double>& scale, const Features& f,
-                 int max_terms = 3, std::uint64_t seed = 20261123);
+                 const Settings& s);
+inline Proposal propose(const std::vector<double>& residual, const std::vector<double>& scale, const Features& f,
+                        int max_terms = 3, std::uint64_t seed = 20261123) {
+    Settings s;
+    s.max_terms = max_terms;
+    s.seed = seed;
+    return propose(residual, scale, f, s);
+}
 
 }  // namespace gearloss::diagnosis::hypothesis

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "gearloss/io/csv_read.hpp"
+#include "gearloss/io/empirical_config.hpp"
 #include "gearloss/losses/loss_mechanism.hpp"
 #include "gearloss/losses/registry.hpp"
 #include "gearloss/units/units.hpp"
@@ -70,6 +71,11 @@ void load_calibration(const YamlNode& n, solver::Model& m) {
         if (auto* mech = m.mechanisms.find(key); mech && x.is_map()) {
             for (const auto& [pk, px] : x.entries()) {
                 if (pk == "note") continue;
+                // The empirical loss is a list of terms, not parameters.
+                if (auto* e = dynamic_cast<losses::EmpiricalMechanism*>(mech); e && pk == "terms") {
+                    e->set_terms(read_empirical_terms(px));
+                    continue;
+                }
                 // The empirical drag was churning's before windage became a mechanism.
                 if (key == "churning" && pk == "windage_W_at_1000rpm") {
                     set_parameter(px, m.mechanisms.at("windage"), "empirical_W_at_1000rpm", true);

@@ -16,7 +16,8 @@ namespace gearloss::losses {
     X("seals", create_seals)                     \
     X("clutch_drag", create_clutch_drag)         \
     X("auxiliary", create_auxiliary)             \
-    X("windage", create_gear_windage)
+    X("windage", create_gear_windage)            \
+    X("empirical", create_empirical)
 
 #define GEARLOSS_DECLARE(NAME, FACTORY) std::unique_ptr<LossMechanism> FACTORY();
 GEARLOSS_LOSS_MECHANISMS(GEARLOSS_DECLARE)
