@@ -275,10 +275,12 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     d.detectable = ad.detectable;
     // Is an effect present (the selection), and is it the whole cause (the adequacy)?
     judge(d, ad, opt, E, pf, base, d.findings.empty() ? std::string() : locate(F, after_all, base_all, model).text);
-    if (d.verdict != "no_significant_mismatch") {
+    if (d.verdict != "no_significant_mismatch" && (d.verdict != "missing_physics" || d.remaining_structure)) {
         // What is left, as a formula over the operating point (a hypothesis for the engineer):
-        // after a confident name too, where it is reported only when it beats zero significantly
-        // under cross-validation (a smaller structure the adequacy tests did not resolve).
+        // wherever the findings do not account for the mismatch, and after a confident name
+        // where a smaller structure is reported apart. Not where what a confident name leaves
+        // passed the tests against the noise: a formula there reads noise as structure (a 3 x 3
+        // campaign's "resonance at one speed").
         d.remainder = model_remainder(E, oils, neutral, p0, base, pf, static_cast<int>(d.findings.size()), ad.noise_loss.sigma);
     }
 
