@@ -216,20 +216,12 @@ private:
                                                                    "every variant; give one or the other", p, option));
             }
         }
-        map::MapJob::Source src;
-        src.count = sweep->size();
-        src.values = [sweep](size_t v) { return sweep->values(v); };
-        src.load = [sweep, this](size_t v) {
-            io::Case c = sweep->variant(v);  // its errors name the variant
-            try {
-                // Each variant's plausibility warnings too (io::print_warnings prints a text once).
-                c = with_options(std::move(c), common_);
-                grid_.apply_checked(c, kMapExamples, map::kMaxStreamedPoints);
-            } catch (const InputError& e) {
-                throw InputError(e.file, e.line, e.column, e.key, e.message + " (sweep variant " + sweep->tag(v) + ")");
-            }
+        map::MapJob::Source src = map::MapJob::sweep_source(sweep, [this](io::Case c) {
+            // Each variant's plausibility warnings too (io::print_warnings prints a text once).
+            c = with_options(std::move(c), common_);
+            grid_.apply_checked(c, kMapExamples, map::kMaxStreamedPoints);
             return c;
-        };
+        });
         if (!grid_swept || (grid_.speeds_given() && grid_.torques_given())) src.grid = k.grid;
         const bool fixed = k.model.thermal.mode == solver::ThermalMode::fixed;
         src.thermal = thermal_swept && common_.oil_temp.empty() ? "swept" : fixed ? "fixed" : "stabilised";

@@ -220,17 +220,7 @@ py::dict sweeps(const PyCase& c, const OptionalAxis& speeds_rpm, const OptionalA
                                                                      "of every variant; give one or the other", p, argument));
             }
         }
-        map::MapJob::Source src;
-        src.count = sweep->size();
-        src.values = [sweep](size_t v) { return sweep->values(v); };
-        src.load = [sweep, load](size_t v) {
-            io::Case variant = sweep->variant(v);  // its errors name the variant
-            try {
-                return load(std::move(variant));
-            } catch (const InputError& e) {
-                throw InputError(e.file, e.line, e.column, e.key, e.message + " (sweep variant " + sweep->tag(v) + ")");
-            }
-        };
+        map::MapJob::Source src = map::MapJob::sweep_source(sweep, load);
         if (!grid_swept || (speeds_rpm && torques_Nm)) src.grid = first.grid;
         const bool fixed = first.model.thermal.mode == solver::ThermalMode::fixed;
         src.thermal = thermal_swept && !oil_temp_C ? "swept" : fixed ? "fixed" : "stabilised";

@@ -304,6 +304,19 @@ std::string residuals_csv(const Diagnosis& d) {
     return s;
 }
 
+namespace {
+// The calibrated case, written atomically with a first line saying where it came from.
+void write_case_yaml(const YAML::Node& root, const std::string& config_in, const std::string& config_out) {
+    YAML::Emitter em;
+    em << root;
+    io::AtomicFile f(config_out);
+    f.write("# Written by gearloss diagnose from " + config_in + "\n");
+    f.write(em.c_str());
+    f.write("\n");
+    f.commit();
+}
+}  // namespace
+
 void write_calibrated_config(const std::string& config_in, const std::string& config_out, const Diagnosis& d) {
     namespace fs = std::filesystem;
     YAML::Node root = YAML::Load(io::read_input_file(config_in, io::kMaxYamlFileBytes));
@@ -331,13 +344,7 @@ void write_calibrated_config(const std::string& config_in, const std::string& co
                            "written, the formula alone predicts the recordings better";
         cal["note"] = note;
         root["calibration"] = cal;
-        YAML::Emitter em;
-        em << root;
-        io::AtomicFile f(config_out);
-        f.write("# Written by gearloss diagnose from " + config_in + "\n");
-        f.write(em.c_str());
-        f.write("\n");
-        f.commit();
+        write_case_yaml(root, config_in, config_out);
         return;
     }
     // Every calibration term is written afresh: the hypothesis started from the case's own
@@ -393,13 +400,7 @@ void write_calibrated_config(const std::string& config_in, const std::string& co
         }
         root["mechanisms"] = mechanisms;
     }
-    YAML::Emitter em;
-    em << root;
-    io::AtomicFile f(config_out);
-    f.write("# Written by gearloss diagnose from " + config_in + "\n");
-    f.write(em.c_str());
-    f.write("\n");
-    f.commit();
+    write_case_yaml(root, config_in, config_out);
 }
 
 }  // namespace gearloss::diagnosis

@@ -41,6 +41,21 @@ std::string thermal_mode(const io::Case& c) {
 }
 }  // namespace
 
+MapJob::Source MapJob::sweep_source(std::shared_ptr<io::Sweep> sweep, std::function<io::Case(io::Case)> prepare) {
+    Source src;
+    src.count = sweep->size();
+    src.values = [sweep](size_t v) { return sweep->values(v); };
+    src.load = [sweep, prepare = std::move(prepare)](size_t v) {
+        io::Case c = sweep->variant(v);  // its errors name the variant
+        try {
+            return prepare(std::move(c));
+        } catch (const InputError& e) {
+            throw InputError(e.file, e.line, e.column, e.key, e.message + " (sweep variant " + sweep->tag(v) + ")");
+        }
+    };
+    return src;
+}
+
 MapJob::MapJob(std::vector<std::string> sweep_labels, Source source)
     : labels_(std::move(sweep_labels)), source_(std::move(source)) {
     if (source_.count == 0) throw std::logic_error("a map job without variants");

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gearloss/io/config.hpp"
+#include "gearloss/io/sweep.hpp"
 #include "gearloss/map/fingerprint.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/map/map_stream.hpp"
@@ -35,6 +36,10 @@ public:
         std::optional<io::OperatingGrid> grid;
         std::string thermal;                   // thermal mode of the variants (fingerprint)
     };
+    // The variants of a sweep, each passed through `prepare` (the caller's options and checks);
+    // an InputError while loading or preparing a variant names it (`(sweep variant ...)`).
+    // The caller sets `grid` and `thermal`.
+    static Source sweep_source(std::shared_ptr<io::Sweep> sweep, std::function<io::Case(io::Case)> prepare);
     MapJob() = default;
     MapJob(std::vector<std::string> sweep_labels, Source source);
     // Variants held in memory (a case without sweep, tests).
