@@ -275,17 +275,31 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     d.detectable = ad.detectable;
     // Is an effect present (the selection), and is it the whole cause (the adequacy)?
     judge(d, ad, opt, E, pf, base, d.findings.empty() ? std::string() : locate(F, after_all, base_all, model).text);
-    if (d.verdict != "no_significant_mismatch" && (d.verdict != "missing_physics" || d.remaining_structure)) {
-        // What is left, as a formula over the operating point (a hypothesis for the engineer):
-        // wherever the findings do not account for the mismatch, and after a confident name
-        // where a smaller structure is reported apart. Not where what a confident name leaves
-        // passed the tests against the noise: a formula there reads noise as structure (a 3 x 3
-        // campaign's "resonance at one speed").
+    if (d.verdict != "no_significant_mismatch") {
+        // What is left, as a formula over the operating point (a hypothesis for the engineer).
         d.remainder = model_remainder(E, oils, neutral, p0, base, pf, static_cast<int>(d.findings.size()), ad.noise_loss.sigma);
+        if (d.remainder && d.verdict == "missing_physics") {
+            if (d.remainder->on_case) {
+                // A formula for the whole mismatch predicts the recordings better than the
+                // findings: they likely stand in for an effect outside the library (a constant
+                // parasitic loss for a running-in, windage for another power of speed).
+                d.verdict = "partly_explained";
+                d.main_finding.confidence = "tentative";
+                d.remaining = fmt::format(
+                    "not shown to be the cause: a formula of the operating point ({}) predicts the recordings better "
+                    "under cross-validation than the findings ({:.3g} W against {:.3g} W), so they may stand in for an "
+                    "effect outside the library",
+                    d.remainder->formula, d.remainder->cv_rmse_after, d.remainder->findings_cv_rmse);
+            } else if (!d.remaining_structure) {
+                // What the confident name leaves passed the tests against the noise: a formula
+                // there reads noise as structure (a 3 x 3 campaign's "resonance at one speed").
+                d.remainder.reset();
+            }
+        }
     }
 
     // Outliers against the final model and the noise in use, plus tests the log criterion flagged.
-    d.outliers = noise_outliers(F, after_all, base_all, ad);
+    d.outliers = noise_outliers(F, after_all, base_all, ad, opt.loss_noise_floor, opt.temp_noise_floor);
     if (!unused.empty()) {
         d.outliers.insert(d.outliers.end(), unused.begin(), unused.end());
         std::stable_sort(d.outliers.begin(), d.outliers.end(), [](const Outlier& a, const Outlier& b) { return a.row < b.row; });

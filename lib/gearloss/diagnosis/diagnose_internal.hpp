@@ -308,7 +308,8 @@ void judge(Diagnosis& d, const Adequacy& ad, const DiagnoseOptions& opt, const E
 constexpr double kOutlierSigmas = 4.5;
 // Rows whose residuals after the findings are outliers against the noise in use, and rows
 // flagged as never stabilised or unstabilised.
-std::vector<Outlier> noise_outliers(const Engine& F, const Pred& after, const Hypothesis& h, const Adequacy& ad);
+std::vector<Outlier> noise_outliers(const Engine& F, const Pred& after, const Hypothesis& h, const Adequacy& ad,
+                                    double loss_floor, double temp_floor);
 
 // diagnose_oils.cpp: multi-oil campaigns. The oils of a campaign: [0] the case's, then each
 // oil file of the recordings' `oil` column (paths relative to the recordings file).

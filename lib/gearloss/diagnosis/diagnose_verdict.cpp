@@ -159,10 +159,14 @@ void judge(Diagnosis& d, const Adequacy& ad, const DiagnoseOptions& opt, const E
     }
 }
 
-std::vector<Outlier> noise_outliers(const Engine& F, const Pred& after, const Hypothesis& h, const Adequacy& ad) {
+std::vector<Outlier> noise_outliers(const Engine& F, const Pred& after, const Hypothesis& h, const Adequacy& ad,
+                                    double loss_floor, double temp_floor) {
     // Each channel's residuals about their median, over the larger of their robust scale and
-    // the noise in use: a row is an outlier against the noise, never against a few points'
-    // spread that happens to be smaller (a row 0.8 % off at 1.5 % noise is not one).
+    // the noise known without them: a row is an outlier against the noise, never against a few
+    // points' spread that happens to be smaller (a row 0.8 % off at 1.5 % noise is not one).
+    // A declared noise is that noise; an estimated one is not used here, since the outlier
+    // itself inflates it (one row 20 % off among 12 made neighbour differences of 6 %): the
+    // robust scale stands for it, bounded below by what a rig resolves (the floor).
     std::vector<double> eP, eT;
     const auto temp_evidence = [&](int i) {
         const Obs& o = F.obs()[i];
@@ -173,8 +177,8 @@ std::vector<Outlier> noise_outliers(const Engine& F, const Pred& after, const Hy
         eP.push_back((o.loss - after.loss[i]) / o.scale);
         if (temp_evidence(i)) eT.push_back(o.T_oil - after.temp[i]);
     }
-    const double nP = ad.noise_loss.known() ? ad.noise_loss.sigma : 0.0;
-    const double nT = ad.noise_temp.known() ? ad.noise_temp.sigma : 0.0;
+    const double nP = ad.noise_loss.source == "declared" ? ad.noise_loss.sigma : loss_floor;
+    const double nT = ad.noise_temp.source == "declared" ? ad.noise_temp.sigma : temp_floor;
     const auto [mP, sP] = robust_centre_scale(eP, std::max(0.004, nP));
     const auto [mT, sT] = robust_centre_scale(eT, std::max(0.15, nT));
     std::vector<Outlier> out;
@@ -191,7 +195,7 @@ std::vector<Outlier> noise_outliers(const Engine& F, const Pred& after, const Hy
                                       o.T_oil < after.temp[i] ? "warming up" : "cooling down"));
         const double dP = (o.loss - after.loss[i]) / o.scale - mP, zP = dP / sP;
         if (std::abs(zP) > kOutlierSigmas) {
-            const double noise = nP > 0 ? nP : sP;
+            const double noise = sP;  // the scale the row was judged against
             x.loss_deviation_over_noise = dP / noise;
             why.push_back(fmt::format("loss {:+.1f} W ({:+.1f} %) away from the model, {:.1f} times the noise of {:.2g} %",
                                       o.loss - after.loss[i], 100 * (o.loss - after.loss[i]) / o.scale, std::abs(dP) / noise,
@@ -200,7 +204,7 @@ std::vector<Outlier> noise_outliers(const Engine& F, const Pred& after, const Hy
         if (temp_evidence(i)) {
             const double dT = o.T_oil - after.temp[i] - mT, zT = dT / sT;
             if (std::abs(zT) > kOutlierSigmas) {
-                x.temp_deviation_over_noise = dT / (nT > 0 ? nT : sT);
+                x.temp_deviation_over_noise = dT / sT;
                 why.push_back(fmt::format("oil temperature {:+.1f} K away from the model{}", o.T_oil - after.temp[i],
                                           (o.T_oil < after.temp[i] && zP > -1) ? " while its loss is not low: loss and "
                                                                                  "temperature disagree (still warming up?)"
