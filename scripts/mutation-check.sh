@@ -154,9 +154,9 @@ mut K3 clutch lib/gearloss/clutch/wet_clutch.cpp "streak oil fraction squared (f
     'const double streaks = rw < c.r_outer ? f * oil_moment(rw, c.r_outer) : 0.0;' 'const double streaks = rw < c.r_outer ? f * f * oil_moment(rw, c.r_outer) : 0.0;'
 mut K4 clutch lib/gearloss/clutch/wet_clutch.cpp "air between the streaks sheared over the whole gap (1 - f dropped)" \
     'const double air = (1.0 - f) * std::numbers::pi' 'const double air = std::numbers::pi'
-mut E1 empirical lib/gearloss/mechanisms/empirical_mechanism.cpp "empirical step on the wrong side of its threshold" \
+mut R1 empirical lib/gearloss/mechanisms/empirical_mechanism.cpp "empirical step on the wrong side of its threshold" \
     'case EmpiricalShape::step: return (below ? x <= threshold : x > threshold) ? 1.0 : 0.0;' 'case EmpiricalShape::step: return (below ? x > threshold : x <= threshold) ? 1.0 : 0.0;'
-mut E2 empirical lib/gearloss/mechanisms/empirical_mechanism.cpp "empirical power law exponent off by 0.2" \
+mut R2 empirical lib/gearloss/mechanisms/empirical_mechanism.cpp "empirical power law exponent off by 0.2" \
     'return std::pow(std::max(0.0, x / reference), exponent);' 'return std::pow(std::max(0.0, x / reference), exponent + 0.2);'
 mut C5 churning lib/gearloss/churning/mauz_1987.cpp "Mauz C_2 denominator 80 -> 60" \
     'const double C2 = e / (80.0 * e0) + 0.2;' 'const double C2 = e / (60.0 * e0) + 0.2;'
