@@ -153,7 +153,7 @@ def main():
     # the model tables are mapped only for the cases a planned campaign needs (synth_own needs none)
     cases = {cname: prepare_case(binary, cname, out, log) for cname in case_names
              if any(s["case"] == cname and s["category"] != "synth_own" and not s.get("synth") for s in specs)}
-    results, todo = [], []
+    results, pending = [], []
     for s in specs:
         cid = f"{s['case']}/s{s['seed']}/{s['tag']}"
         cdir = out / "campaigns" / s["case"] / f"s{s['seed']}" / s["tag"]
@@ -176,7 +176,7 @@ def main():
             log(f"  skip {cid}: {why}")
             results.append({"id": cid, "skipped": why, "truth": {"category": s["category"], "case": s["case"]}})
             continue
-        todo.append((cid, s, truth, cdir))
+        pending.append((cid, s, truth, cdir))
 
     def diagnose(s, truth, cdir):
         if args.reuse and truth["recordings_unchanged"] and (cdir / "diagnose.json").exists():
@@ -199,15 +199,15 @@ def main():
                 "summary": summary[:400]}
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as ex:
-        for k, res in enumerate(ex.map(work, todo)):
+        for k, res in enumerate(ex.map(work, pending)):
             sc = res["score"]
-            log(f"  [{k + 1}/{len(todo)}] {res['id']}: {sc['verdict']} top={sc['top']} 2nd={sc['second']} "
+            log(f"  [{k + 1}/{len(pending)}] {res['id']}: {sc['verdict']} top={sc['top']} 2nd={sc['second']} "
                 f"-> {sc['outcome']} ({res['seconds']:.1f} s)")
             results.append(res)
     table = tabulate(results, {cname: c.info for cname, c in cases.items()})
     skipped = [r for r in results if "skipped" in r]
     reused = sum(1 for r in results if r.get("reused"))
-    header = (f"{len(todo)} campaigns diagnosed ({len(skipped)} skipped) on {', '.join(case_names)}, "
+    header = (f"{len(pending)} campaigns diagnosed ({len(skipped)} skipped) on {', '.join(case_names)}, "
               f"seeds {args.seeds}, in {time.time() - t_start:.0f} s"
               + (f" ({reused} diagnoses reused from an earlier run with byte-identical recordings)" if reused else "")
               + f"; campaigns in {out}")

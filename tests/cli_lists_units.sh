@@ -10,14 +10,6 @@ source "$(dirname "$0")/cli_common.sh" "$@"
 cp -r "$src/configs" "$tmp/cfg"
 case=$tmp/cfg/transfer-box.yaml
 
-expect() {  # expect NAME EXIT_CODE MESSAGE_REGEX COMMAND...
-    local name=$1 code=$2 pattern=$3
-    shift 3
-    "$@" > "$tmp/out" 2> "$tmp/err"
-    local rc=$?
-    check "$name: exit $code (got $rc)" test $rc -eq "$code"
-    [ -n "$pattern" ] && check "$name: message /$pattern/" grep -qE -- "$pattern" "$tmp/err"
-}
 same() {  # same NAME FILE_A FILE_B: byte for byte
     check "$1" cmp -s "$2" "$3"
 }

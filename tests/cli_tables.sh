@@ -9,15 +9,6 @@ py=/usr/bin/python3
 cp -r "$src/configs" "$tmp/cfg"
 case=$tmp/cfg/manual-6speed.yaml
 
-expect() {  # expect NAME EXIT_CODE MESSAGE_REGEX COMMAND...
-    local name=$1 code=$2 pattern=$3
-    shift 3
-    "$@" > "$tmp/out" 2> "$tmp/err"
-    local rc=$?
-    check "$name: exit $code (got $rc)" test $rc -eq "$code"
-    [ -n "$pattern" ] && check "$name: message /$pattern/" grep -qE -- "$pattern" "$tmp/err"
-}
-
 # 1. Shape: 6 ratios x 3 speeds x 7 torques (3 magnitudes, both signs, 0) x 4 temperatures.
 expect "table" 0 "" "$bin" map "$case" --format table --speed 1000,2500,4000rpm --torque 30,90,180Nm \
     --oil-temps 20,50,80,110degC -o "$tmp/t.csv" --json "$tmp/t.json"
