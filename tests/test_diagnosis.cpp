@@ -252,6 +252,7 @@ TEST_CASE("without temperatures, heat-free and heating look-alikes are named tog
     // declared (synth's 1.5 %), chi-squared on 19 dof sees a remainder of 0.79 times it half
     // the time (tables: 30.14 / 18.34 = 1 + 0.79^2): shown to be the whole cause too.
     const auto weak = diagnosis::diagnose(c.model, rec);
+    INFO(weak.remaining);
     CHECK(weak.verdict == "missing_physics");
     CHECK(weak.main_finding.confidence == "confident");
     CHECK_THAT(weak.completeness, Catch::Contains("on 20 points") && Catch::Contains("--loss-uncertainty"));

@@ -277,10 +277,17 @@ Diagnosis diagnose(const solver::Model& model, const Recordings& rec, const Diag
     judge(d, ad, opt, E, pf, base, d.findings.empty() ? std::string() : locate(F, after_all, base_all, model).text);
     if (d.verdict != "no_significant_mismatch") {
         constexpr int kFewForFormulaComparison = 12;
+        // A formula as good as the findings is no evidence against them (it is chosen from
+        // hundreds of terms; a named physical effect is one): it must predict clearly better
+        // with no more terms than the findings have parameters (a seal friction re-found as
+        // n^0.9 plus a second term fitted to the noise is no rival).
+        constexpr double kClearlyBetter = 0.85;
         // What is left, as a formula over the operating point (a hypothesis for the engineer).
         d.remainder = model_remainder(E, oils, neutral, p0, base, pf, static_cast<int>(d.findings.size()), ad.noise_loss.sigma);
         if (d.remainder && d.verdict == "missing_physics") {
-            if (d.remainder->on_case && d.fit_points > kFewForFormulaComparison) {
+            if (d.remainder->on_case && d.fit_points > kFewForFormulaComparison &&
+                d.remainder->terms.size() <= d.findings.size() &&
+                d.remainder->cv_rmse_after < kClearlyBetter * d.remainder->findings_cv_rmse) {
                 // A formula for the whole mismatch predicts the recordings better than the
                 // findings: they likely stand in for an effect outside the library (a constant
                 // parasitic loss for a running-in, windage for another power of speed). Not on a
