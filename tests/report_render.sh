@@ -8,16 +8,25 @@
 # whose text has the values printed in the map cells (pdftotext/pdfinfo of poppler-utils; the
 # page count is read from the PDF itself when they are missing).
 # Usage: report_render.sh GEARLOSS SOURCE_DIR [KEEP_DIR]  (KEEP_DIR: keep the page and the PNG)
-# Exit 77 (ctest SKIP_RETURN_CODE) only when no chromium is installed.
+# Chromium is installed on first use (scripts/install-deps.sh report); exit 77 (ctest
+# SKIP_RETURN_CODE) only when it is missing and this user cannot run apt.
 source "$(dirname "$0")/cli_common.sh" "$@"
 keep=${3:-}
-browser=${CHROMIUM:-}
-for c in chromium chromium-browser google-chrome; do
-    [ -n "$browser" ] && break
-    command -v "$c" > /dev/null && browser=$(command -v "$c")
-done
+find_browser() {
+    browser=${CHROMIUM:-}
+    for c in chromium chromium-browser google-chrome; do
+        [ -n "$browser" ] && break
+        command -v "$c" > /dev/null && browser=$(command -v "$c")
+    done
+}
+find_browser
+# First use installs it (scripts/install-deps.sh report) where this user may run apt.
+if [ -z "$browser" ] && { [ "$(id -u)" -eq 0 ] || sudo -n true 2> /dev/null; }; then
+    "$src/scripts/install-deps.sh" report || echo "installing Chromium failed"
+    find_browser
+fi
 if [ -z "$browser" ]; then
-    echo "SKIPPED: no chromium installed (Debian package 'chromium'; scripts/install-deps.sh installs it)"
+    echo "SKIPPED: no chromium installed and this user cannot install it (Debian package 'chromium': scripts/install-deps.sh report)"
     exit 77
 fi
 

@@ -15,23 +15,20 @@
 #    whole job as shard 1/1 over a good shard-1.csv); with --shards 4 (and with --array 1-7:2
 #    for the step array) it recomputes only its shard, the others untouched, and the merge
 #    equals the single run.
-# Exit 77 (ctest SKIP_RETURN_CODE) when Slurm or MUNGE is not installed, unless CI=true: then
-# they are installed (Debian slurm-wlm, munge) first.
+# Slurm and MUNGE are installed on first use (scripts/install-deps.sh slurm); exit 77 (ctest
+# SKIP_RETURN_CODE) only when they are missing and this user cannot run apt.
 # Usage: slurm_real.sh GEARLOSS SOURCE_DIR
 bin=$1
 src=$2
 need() { command -v slurmctld > /dev/null && command -v slurmd > /dev/null && command -v sbatch > /dev/null &&
     command -v munged > /dev/null && command -v mungekey > /dev/null; }
+# First use installs them (scripts/install-deps.sh slurm) where this user may run apt.
+if ! need && { [ "$(id -u)" -eq 0 ] || sudo -n true 2> /dev/null; }; then
+    "$src/scripts/install-deps.sh" slurm || echo "installing Slurm and MUNGE failed"
+fi
 if ! need; then
-    if [ "${CI:-}" = true ]; then
-        sudo_cmd=""
-        [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-        $sudo_cmd apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq slurm-wlm munge > /dev/null
-    fi
-    if ! need; then
-        echo "SKIPPED: Slurm and MUNGE are not installed (Debian packages slurm-wlm and munge; scripts/install-deps.sh installs them, or run with CI=true)"
-        exit 77
-    fi
+    echo "SKIPPED: Slurm and MUNGE are not installed and this user cannot install them (Debian packages slurm-wlm and munge: scripts/install-deps.sh slurm)"
+    exit 77
 fi
 if [ "$(id -u)" -ne 0 ]; then
     echo "SKIPPED: a private slurmd must run as root (it starts the jobs' steps)"

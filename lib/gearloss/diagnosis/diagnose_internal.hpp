@@ -302,6 +302,10 @@ double point_viscosity(const Engine& E, const Obs& o, double T);
 // the noise used, the main finding's confidence, a smaller structure left after it and whether
 // the findings were shown to be the whole cause (`remaining_location`: where the residual after
 // them lives, for a partial explanation). Needs d.findings and d.location.
+// The report's opening paragraph: `baseline_clause` where the case misses, `adequacy_text` the
+// tests of what is left, `completeness_unshown` when they could not see a remainder of the noise's size.
+std::string summary_paragraph(const Diagnosis& d, const std::string& baseline_clause, const std::string& adequacy_text,
+                              bool completeness_unshown);
 void judge(Diagnosis& d, const Adequacy& ad, const DiagnoseOptions& opt, const Engine& E, const Pred& pf,
            const Hypothesis& h, const std::string& remaining_location);
 // A residual beyond this many times the noise in use (or the residuals' robust spread, when larger).

@@ -92,7 +92,7 @@ std::string print_pdf(const std::string& html, const std::string& option, double
         throw InputError("", 0, 0, option,
                          c && *c ? fmt::format("prints with headless Chromium: CHROMIUM={} is not an executable", c)
                                  : "prints with headless Chromium, and none was found (chromium, chromium-browser, "
-                                   "google-chrome on PATH; Debian package 'chromium', or set CHROMIUM=/path/to/chromium)");
+                                   "google-chrome on PATH; scripts/install-deps.sh report installs Debian's 'chromium', or set CHROMIUM=/path/to/chromium)");
     }
     TemporaryDirectory dir;
     const fs::path page = dir.path / "report.html", pdf = dir.path / "report.pdf", log = dir.path / "chromium.log";
