@@ -97,7 +97,7 @@ check "output onto the model: model intact" cmp -s "$fva14" "$tmp/same.rexs"
 # carrier output: i = 1 + 62/16 = 4.875. Two such stages in series (the second 19/71):
 # i = 4.875 (1 + 71/19) = 23.09211. Idler train 20-31-40, 18-45: n_out/n_in = -(20/40)(18/45) = -0.2.
 mkdir -p "$tmp/topo"
-for m in planetary_1-4 planetary_1-2 planetary_two_stage_1-4 idler_3stage_1-4 idler_3stage_1-2; do
+for m in planetary_1-4 planetary_1-2 planetary_two_stage_1-4 idler_3stage_1-4 idler_3stage_1-2 idler_3stage_1-0; do
     "$bin" import "$data/handmade_$m.rexs" -o "$tmp/topo/$m.yaml" 2> /dev/null
     check "hand-made $m: import exit 0" test $? -eq 0
     "$bin" check "$tmp/topo/$m.yaml" > "$tmp/topo/$m.check" 2>&1
@@ -107,6 +107,8 @@ check "planetary: i = 4.875" grep -q "i = n_in/n_out = 4.87500)" "$tmp/topo/plan
 check "planetary REXS 1.2: i = 4.875" grep -q "i = n_in/n_out = 4.87500)" "$tmp/topo/planetary_1-2.check"
 check "two planetary stages: i = 23.09211" grep -q "i = n_in/n_out = 23.09211)" "$tmp/topo/planetary_two_stage_1-4.check"
 check "idler: n_out/n_in = -0.2 (output reversed)" grep -q "n_out/n_in = -0.200000 " "$tmp/topo/idler_3stage_1-4.check"
+check "idler REXS 1.0: n_out/n_in = -0.2" grep -q "n_out/n_in = -0.200000 " "$tmp/topo/idler_3stage_1-0.check"
+check "idler REXS 1.0: bearings by their catalogue designation ('name' in 1.0)" grep -q 'designation: "6206" .*# REXS 115 name' "$tmp/topo/idler_3stage_1-0.yaml"
 check "idler REXS 1.2 and 1.4: the same case" cmp -s <(grep -v "^# Imported from\|^oil:" "$tmp/topo/idler_3stage_1-4.yaml") <(grep -v "^# Imported from\|^oil:" "$tmp/topo/idler_3stage_1-2.yaml")
 "$bin" map "$tmp/topo/planetary_1-4.yaml" -o "$tmp/topo/p.csv" 2> /dev/null
 check "planetary: map solves it" test $? -eq 0

@@ -111,7 +111,7 @@ TEST_CASE("rexs: the planetary stage in REXS 1.2 names gives the same case", "[r
 }
 
 TEST_CASE("rexs: an idler, three stages and two gears on one shaft", "[rexs]") {
-    for (const char* file : {"handmade_idler_3stage_1-4.rexs", "handmade_idler_3stage_1-2.rexs"}) {
+    for (const char* file : {"handmade_idler_3stage_1-4.rexs", "handmade_idler_3stage_1-2.rexs", "handmade_idler_3stage_1-0.rexs"}) {
         INFO(file);
         const auto r = import_text(slurp(data(file)), file);
         const auto c = imported(r, "idler");
@@ -127,6 +127,12 @@ TEST_CASE("rexs: an idler, three stages and two gears on one shaft", "[rexs]") {
     const auto b = import_text(slurp(data("handmade_idler_3stage_1-2.rexs")), "i.rexs");
     CHECK(a.case_yaml.substr(a.case_yaml.find('\n')) == b.case_yaml.substr(b.case_yaml.find('\n')));
     CHECK(a.case_yaml.find("REXS flanks 211/212 normal_pressure_angle") != std::string::npos);
+    // REXS 1.0 calls the bearing's catalogue designation 'name': the same bearings (6206 from the catalogue).
+    const auto z = import_text(slurp(data("handmade_idler_3stage_1-0.rexs")), "i.rexs");
+    std::string z14 = a.case_yaml.substr(a.case_yaml.find('\n'));
+    for (size_t q; (q = z14.find(" catalogue_designation (catalogue row")) != std::string::npos;) z14.replace(q, 22, " name");
+    CHECK(z.case_yaml.substr(z.case_yaml.find('\n')) == z14);
+    CHECK(z.case_yaml.find("designation: \"6206\"   ") != std::string::npos);
 }
 
 TEST_CASE("rexs: planetary stages gearloss cannot represent are refused at the component", "[rexs]") {
@@ -189,4 +195,21 @@ TEST_CASE("rexs: two planetary stages in series", "[rexs]") {
     CHECK(speed_of(c, "shaft_12") == Approx(16.0 / 78.0).epsilon(1e-12));
     CHECK(speed_of(c, "shaft_13") == Approx(0).margin(1e-12));
     CHECK(speed_of(c, "shaft_53") == Approx(0).margin(1e-12));
+}
+
+TEST_CASE("rexs: a pilot bearing between two shafts keeps its warning", "[rexs]") {
+    // Sun bearing B (116) with its outer ring in the carrier shaft 12 instead of the casing: gearloss's
+    // bearing turns with one shaft against the housing (or under a free gear or planet), so it is
+    // placed on the sun shaft with a warning naming both shafts.
+    const std::string xml =
+        replaced(slurp(data("handmade_planetary_1-4.rexs")),
+                 "<ref hint=\"rolling_bearing_with_catalog_geometry\" id=\"116\" role=\"assembly\"/>\n      <ref hint=\"shaft\" id=\"11\" "
+                 "role=\"inner_part\"/>\n      <ref hint=\"gear_casing\" id=\"2\" role=\"outer_part\"/>",
+                 "<ref hint=\"rolling_bearing_with_catalog_geometry\" id=\"116\" role=\"assembly\"/>\n      <ref hint=\"shaft\" id=\"11\" "
+                 "role=\"inner_part\"/>\n      <ref hint=\"shaft\" id=\"12\" role=\"outer_part\"/>");
+    const auto r = import_text(xml, "pilot.rexs");
+    bool warned = false;
+    for (const auto& w : r.warnings) warned = warned || (w.find("component 116") != std::string::npos && w.find("between shafts 11 and 12") != std::string::npos);
+    CHECK(warned);
+    CHECK(r.case_yaml.find("under_gear: gear_21") == std::string::npos);
 }

@@ -37,6 +37,16 @@ struct ShaftSection {
     const Component* comp = nullptr;
 };
 
+// Names that differ across the REXS versions read (the data model of each version, 1.0 to 1.6):
+// - a rolling bearing's catalogue designation is `name` ("Catalogue name") in REXS 1.0 and
+//   `catalogue_designation` from 1.1 on (the same attribute, numeric id 486);
+// - a gear's flank component is a `flank_geometry` up to 1.2 and a `cylindrical_gear_flank` from
+//   1.3 on: both are read through the `flank` relation, whatever the type of its left and right;
+// - `ring_gear` (an internal gear) and `planetary_stage` exist from 1.1 on;
+// - gear roughness (`arithmetic_average_roughness_flank`) from 1.2 on, the lubricant's
+//   `lubricant_type_iso_6336_2006` and a concept bearing's diameters from 1.3 on (before: not given).
+inline const char* designation_attribute(const Model& m) { return m.version == "1.0" ? "name" : "catalogue_designation"; }
+
 // What a REXS shaft is in gearloss's model: a shaft of its own, or the shaft of a planet or a
 // planet pin of a planetary stage (planetary.cpp), which gearloss folds into the planet gear on
 // its carrier.

@@ -96,12 +96,13 @@ void Mapper::write_bearings(YamlOut& y) {
         }
         if (locating) y.line(4, "locating: true", src(c, "axial_force_absorption") + " " + io::excerpt(*axial, 30));
         ++written;
-        const auto designation = text(m, c, "catalogue_designation");
+        const char* const designation_attr = designation_attribute(m);
+        const auto designation = text(m, c, designation_attr);
         if (designation) {
             const auto key = bearings::designation_key(*designation);
             if (const io::CatalogueEntry* e = key ? cat.find(key->key) : nullptr) {
                 y.line(4, "designation: " + quoted(*designation),
-                       src(c, "catalogue_designation") + " (catalogue row " + e->designation + ")");
+                       src(c, designation_attr) + " (catalogue row " + e->designation + ")");
                 const double d = bore_given ? *bore_given : bore_shaft.value_or(e->d);
                 if (std::abs(d - e->d) > 1e-6)
                     warn(c, fmt::format("catalogue bore {:g} mm of {} differs from the {:g} mm the model gives", e->d * 1e3,
