@@ -156,6 +156,9 @@ TEST_CASE("rexs: planetary stages gearloss cannot represent are refused at the c
     const std::string moved = replaced(replaced(xml, "<c>-24.375</c>\n          <c>42.218738</c>", "<c>0</c>\n          <c>48.75</c>"),
                                        "<c>-24.375</c>\n          <c>42.218738</c>", "<c>0</c>\n          <c>48.75</c>");
     CHECK_THAT(err(moved), Catch::Contains("component 5 (planetary_stage") && Catch::Contains("not equally spaced"));
+    // A ring of 63 teeth: z_sun + z_ring = 79 is no multiple of the 3 planets (the stage is named).
+    const std::string phase = replaced(xml, "<attribute id=\"number_of_teeth\" unit=\"\">62</attribute>", "<attribute id=\"number_of_teeth\" unit=\"\">63</attribute>");
+    CHECK_THAT(err(phase), Catch::Contains("component 5 (planetary_stage") && Catch::Contains("z_sun + z_ring = 79"));
     // A planet whose teeth differ from the others'.
     const std::string odd = replaced(xml, "<component id=\"25\" name=\"Planet 2\" type=\"cylindrical_gear\">\n      <attribute id=\"number_of_teeth\" unit=\"\">23",
                                      "<component id=\"25\" name=\"Planet 2\" type=\"cylindrical_gear\">\n      <attribute id=\"number_of_teeth\" unit=\"\">24");

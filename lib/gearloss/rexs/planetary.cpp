@@ -148,6 +148,14 @@ void Mapper::read_planetary() {
                                         st->id, gears[static_cast<size_t>(externals.front())].comp->id, r.z));
         }
         if (!externals.empty()) ps.sun = externals.front();
+        // Equally spaced identical planets mesh sun and ring in phase only when (z_s + z_r) / N is whole.
+        const int n_planets = static_cast<int>(ps.planets.size());
+        if (ps.sun >= 0 && ps.ring >= 0 && n_planets >= 2) {
+            const int z_sum = gears[static_cast<size_t>(ps.sun)].z + gears[static_cast<size_t>(ps.ring)].z;
+            if (z_sum % n_planets != 0)
+                m.fail(*st, fmt::format("{} planets cannot be equally spaced: z_sun + z_ring = {} is not a multiple of {}", n_planets,
+                                        z_sum, n_planets));
+        }
 
         // Identical planets, equally spaced on one circle about the carrier's axis.
         const Gear& g0 = gears[static_cast<size_t>(ps.planets.front())];
