@@ -5,7 +5,9 @@
 # (tests/rexs_independent.py: xml.etree and PyYAML); the zipped example reads; the worm stage
 # is refused naming its component; hostile files (truncated, wrong version, a relation to a
 # missing component, a bearing outside its shaft, a contradicting centre distance) exit 2 with
-# the file and the component id.
+# the file and the component id; the hand-made planetary, two-stage planetary and idler models
+# import with the ratios worked out from their tooth numbers, and hostile planetary forms are
+# refused at the component.
 # Usage: cli_rexs.sh GEARLOSS_BINARY SOURCE_DIR
 set -u
 source "$(dirname "$0")/cli_common.sh" "$@"
@@ -89,6 +91,44 @@ cp "$fva14" "$tmp/same.rexs"
 "$bin" import "$tmp/same.rexs" -o "$tmp/same.rexs" 2> /dev/null
 check "output onto the model: refused" test $? -eq 2
 check "output onto the model: model intact" cmp -s "$fva14" "$tmp/same.rexs"
+
+# Gear-train topology on the hand-made models (tests/data/rexs/README.md): the ratios `check`
+# prints equal those worked out from the tooth numbers. Planetary stage, sun 16, ring 62 held,
+# carrier output: i = 1 + 62/16 = 4.875. Two such stages in series (the second 19/71):
+# i = 4.875 (1 + 71/19) = 23.09211. Idler train 20-31-40, 18-45: n_out/n_in = -(20/40)(18/45) = -0.2.
+mkdir -p "$tmp/topo"
+for m in planetary_1-4 planetary_1-2 planetary_two_stage_1-4 idler_3stage_1-4 idler_3stage_1-2 idler_3stage_1-0; do
+    "$bin" import "$data/handmade_$m.rexs" -o "$tmp/topo/$m.yaml" 2> /dev/null
+    check "hand-made $m: import exit 0" test $? -eq 0
+    "$bin" check "$tmp/topo/$m.yaml" > "$tmp/topo/$m.check" 2>&1
+    check "hand-made $m: check accepts it" test $? -eq 0
+done
+check "planetary: i = 4.875" grep -q "i = n_in/n_out = 4.87500)" "$tmp/topo/planetary_1-4.check"
+check "planetary REXS 1.2: i = 4.875" grep -q "i = n_in/n_out = 4.87500)" "$tmp/topo/planetary_1-2.check"
+check "two planetary stages: i = 23.09211" grep -q "i = n_in/n_out = 23.09211)" "$tmp/topo/planetary_two_stage_1-4.check"
+check "idler: n_out/n_in = -0.2 (output reversed)" grep -q "n_out/n_in = -0.200000 " "$tmp/topo/idler_3stage_1-4.check"
+check "idler REXS 1.0: n_out/n_in = -0.2" grep -q "n_out/n_in = -0.200000 " "$tmp/topo/idler_3stage_1-0.check"
+check "idler REXS 1.0: bearings by their catalogue designation ('name' in 1.0)" grep -q 'designation: "6206" .*# REXS 115 name' "$tmp/topo/idler_3stage_1-0.yaml"
+check "idler REXS 1.2 and 1.4: the same case" cmp -s <(grep -v "^# Imported from\|^oil:" "$tmp/topo/idler_3stage_1-4.yaml") <(grep -v "^# Imported from\|^oil:" "$tmp/topo/idler_3stage_1-2.yaml")
+"$bin" map "$tmp/topo/planetary_1-4.yaml" -o "$tmp/topo/p.csv" 2> /dev/null
+check "planetary: map solves it" test $? -eq 0
+check "planetary: efficiency of every load case plausible" "$py" - "$tmp/topo/p.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith("#")))
+assert len(rows) == 2, len(rows)
+for r in rows:
+    assert 0.95 < float(r["efficiency"]) < 1.0, r["efficiency"]
+PY
+pl=$data/handmade_planetary_1-4.rexs
+hostile_pl() {  # hostile_pl NAME EXPECTED_REGEX PYTHON_EDIT   (edits the planetary model's text `t`)
+    "$py" -c "t = open('$pl', encoding='utf-8').read(); $3; open('$tmp/hp.rexs', 'w', encoding='utf-8').write(t)"
+    rm -f "$tmp/hp.yaml"
+    "$bin" import "$tmp/hp.rexs" -o "$tmp/hp.yaml" 2> "$tmp/hp.err"
+    check "$1: exit 2" test $? -eq 2
+    check "$1: message" grep -qE "$2" "$tmp/hp.err"
+}
+hostile_pl "planetary stage without its carrier relation" "hp.rexs:[0-9]+: component 5 \(planetary_stage 'Planetary stage'\): no planet_carrier_shaft" "t = t.replace('type=\"planet_carrier_shaft\"', 'type=\"other\"')"
+hostile_pl "ring gear that is external" "component 23 \(cylindrical_gear 'Ring'\): .*external gear" "t = t.replace('ring_gear', 'cylindrical_gear')"
 
 echo "cli_rexs: $pass passed, $fail failed"
 test $fail -eq 0

@@ -1,5 +1,5 @@
-// A REXS model as a gearloss case: shafts, gears and stages (case_mapper.hpp); bearings, seals,
-// housing, operating points and oil are in mapper_support.cpp.
+// A REXS model as a gearloss case: shafts, gears and stages (case_mapper.hpp); planetary stages
+// are in planetary.cpp; bearings, seals, housing, operating points and oil in mapper_support.cpp.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -77,8 +77,10 @@ double Shaft::min_diameter() const {
 }
 
 // Tip radius for the housing box only: r_a = (d + 2 m_n (1 + x)) / 2, d = z m_n / cos beta
-// (ISO 21771 reference diameter and the ISO 53 addendum).
+// (ISO 21771 reference diameter and the ISO 53 addendum); an internal gear's outer edge is
+// taken as its root circle plus a rim of one module, r = d / 2 + 2.25 m_n.
 double Gear::tip_radius_estimate() const {
+    if (internal) return 0.5 * z * mn / std::cos(beta) + 2.25 * mn;
     return 0.5 * (z * mn / std::cos(beta) + 2 * mn * (1 + x));
 }
 
@@ -92,9 +94,9 @@ int Mapper::shaft_index_of(std::int64_t id) const {
 }
 
 // Component types of gear stages the loss model cannot represent: worm, bevel, hypoid and
-// crossed-axis stages, and planetary stages (not mapped yet).
+// crossed-axis stages. Planetary stages are mapped (planetary.cpp).
 void Mapper::refuse_unsupported() {
-    static const char* const refused[] = {"worm", "bevel", "hypoid", "crossed", "planet", "spiral", "face_gear"};
+    static const char* const refused[] = {"worm", "bevel", "hypoid", "crossed", "spiral", "face_gear"};
     // The stage is named first (the worm_stage rather than its gear data), then any other part.
     for (const bool stages_only : {true, false})
         for (const auto& c : m.components)
@@ -162,7 +164,10 @@ void Mapper::read_shafts() {
 }
 
 void Mapper::read_gears() {
-    for (const Component* c : m.of_type("cylindrical_gear")) {
+    // Cylindrical gears and (REXS 1.1 on) ring gears, an internal gear type of its own.
+    for (const auto& cc : m.components) {
+        if (cc.type != "cylindrical_gear" && cc.type != "ring_gear") continue;
+        const Component* c = &cc;
         Gear g;
         g.comp = c;
         g.name = "gear_" + std::to_string(c->id);
@@ -171,8 +176,9 @@ void Mapper::read_gears() {
         if (g.shaft < 0) m.fail(*c, "the gear is on no shaft (no assembly relation from a shaft)");
         const auto z = integer(m, *c, "number_of_teeth");
         if (!z) m.fail(*c, "attribute 'number_of_teeth' is missing");
-        // ISO 21771 (as REXS): an internal gear has a negative number of teeth.
-        g.internal = *z < 0;
+        // A ring_gear is internal; a cylindrical_gear with a negative number of teeth too (ISO 21771
+        // sign convention, written by some tools although the REXS data model gives z > 0).
+        g.internal = *z < 0 || c->type == "ring_gear";
         if (std::abs(*z) < 3 || std::abs(*z) > 10000) m.fail(*c, "number_of_teeth " + std::to_string(*z) + " is not a gear's");
         g.z = static_cast<int>(std::abs(*z));
         g.mn = required_quantity(m, *c, "normal_module", Quantity::length);
@@ -215,10 +221,18 @@ void Mapper::choose_input_output() {
                 if (const Component& l = m.at(*p); l.type == "external_load" && boolean(m, l, "transmits_torque").value_or(false))
                     output = static_cast<int>(i);
     }
-    if (input < 0) input = gears.front().shaft;
+    const auto plain = [&](int s) { return shafts[static_cast<size_t>(s)].role == ShaftRole::plain; };
+    if (input < 0)
+        for (const auto& g : gears)
+            if (plain(g.shaft)) {
+                input = g.shaft;
+                break;
+            }
+    if (input < 0) m.fail("no shaft of the model carries a gear outside a planetary stage's planets");
+    if (!plain(input)) m.fail(*shafts[static_cast<size_t>(input)].comp, "the input shaft is a planet shaft or pin");
     if (output < 0 || output == input) {
         for (auto it = gears.rbegin(); it != gears.rend(); ++it)
-            if (it->shaft != input) {
+            if (it->shaft != input && plain(it->shaft)) {
                 output = it->shaft;
                 break;
             }
@@ -228,18 +242,43 @@ void Mapper::choose_input_output() {
 void Mapper::write_shafts_gears_meshes(YamlOut& y) {
     y.comment(0, "Shafts: REXS shaft components (axis positions from their support vectors).");
     std::string list;
-    for (const auto& s : shafts) list += (list.empty() ? "" : ", ") + s.name;
+    for (size_t i = 0; i < shafts.size(); ++i) {
+        const Shaft& s = shafts[i];
+        if (s.role != ShaftRole::plain) {
+            y.comment(0, s.name + " (REXS " + std::to_string(s.comp->id) + "): a planet " + (s.role == ShaftRole::pin ? "pin" : "shaft") +
+                             ", part of the planet gear on its carrier");
+            continue;
+        }
+        if (s.held) y.comment(0, s.name + " fixed: " + s.held_reason);
+        list += (list.empty() ? "" : ", ") + shaft_entry(i);
+    }
     y.line(0, "shafts: [" + list + "]");
     y.blank();
     y.line(0, "gears:");
     for (const auto& g : gears) {
         const Component& c = *g.comp;
-        y.line(2, "- name: " + g.name, "REXS " + std::to_string(c.id) + " cylindrical_gear '" + safe_name(c) + "'");
-        y.line(4, "shaft: " + shafts[static_cast<size_t>(g.shaft)].name, "REXS assembly relation to shaft " +
-                                                                           std::to_string(shafts[static_cast<size_t>(g.shaft)].comp->id));
-        y.line(4, "position: " + num(g.u * 1e3) + " mm", src(c, "u_coordinate_on_shaft"));
+        if (g.written_as >= 0) {
+            y.comment(2, "REXS " + std::to_string(c.id) + " cylindrical_gear '" + safe_name(c) + "': a planet like " +
+                             gears[static_cast<size_t>(g.written_as)].name + " (its 'planets')");
+            continue;
+        }
+        y.line(2, "- name: " + g.name, "REXS " + std::to_string(c.id) + " " + c.type + " '" + safe_name(c) + "'");
+        const Shaft& on = shafts[static_cast<size_t>(g.shaft)];
+        if (g.carrier >= 0) {
+            // A planet: on the carrier, at its axial place (gear-unit x) measured from the carrier's u = 0.
+            const Shaft& cs = shafts[static_cast<size_t>(g.carrier)];
+            y.line(4, "carrier: " + cs.name, "REXS planet_carrier_shaft " + std::to_string(cs.comp->id) + " of the planet's stage");
+            y.line(4, "planets: " + std::to_string(g.planets), "REXS: the stage's planet gears, identical and equally spaced");
+            y.line(4, "position: " + num((on.u_start + g.u - cs.u_start) * 1e3) + " mm",
+                   src(c, "u_coordinate_on_shaft") + " on planet shaft " + std::to_string(on.comp->id) + ", from the carrier's u = 0");
+        } else {
+            y.line(4, "shaft: " + on.name, "REXS assembly relation to shaft " + std::to_string(on.comp->id));
+            y.line(4, "position: " + num(g.u * 1e3) + " mm", src(c, "u_coordinate_on_shaft"));
+        }
         y.line(4, "teeth: " + std::to_string(g.z), src(c, "number_of_teeth"));
-        if (g.internal) y.line(4, "internal: true", src(c, "number_of_teeth") + " < 0 (ISO 21771)");
+        if (g.internal)
+            y.line(4, "internal: true", c.type == "ring_gear" ? "REXS " + std::to_string(c.id) + " ring_gear"
+                                                               : src(c, "number_of_teeth") + " < 0 (ISO 21771)");
         y.line(4, "module: " + num(g.mn * 1e3) + " mm", src(c, "normal_module"));
         y.line(4, "face_width: " + num(g.b * 1e3) + " mm", src(c, "face_width"));
         const bool own_alpha = c.find("normal_pressure_angle") != nullptr;
@@ -298,8 +337,12 @@ void Mapper::write_shafts_gears_meshes(YamlOut& y) {
         if (!g1 || !g2) m.fail(*rels.front(), "a stage relation names gear_1 and gear_2");
         if (!gear_of_id.count(*g1) || !gear_of_id.count(*g2))
             m.fail(*st, "its gears are not both cylindrical gears");
-        const Gear& a = gears[static_cast<size_t>(gear_of_id[*g1])];
-        const Gear& b = gears[static_cast<size_t>(gear_of_id[*g2])];
+        if (*g1 == *g2) m.fail(*st, "its stage relation names the same gear twice");
+        // gearloss names an internal gear second in its mesh.
+        const bool swap = gears[static_cast<size_t>(gear_of_id[*g1])].internal;
+        const Gear& a = gears[static_cast<size_t>(gear_of_id[swap ? *g2 : *g1])];
+        const Gear& b = gears[static_cast<size_t>(gear_of_id[swap ? *g1 : *g2])];
+        if (a.internal && b.internal) m.fail(*st, "both its gears are internal");
         const Shaft& sa = shafts[static_cast<size_t>(a.shaft)];
         const Shaft& sb = shafts[static_cast<size_t>(b.shaft)];
         const double dx = sb.x - sa.x, dy = sb.y - sa.y;
@@ -309,10 +352,19 @@ void Mapper::write_shafts_gears_meshes(YamlOut& y) {
         if (ad && std::abs(axes - *ad) > 1e-3 * *ad + 1e-6)
             m.fail(*st, fmt::format("center_distance {:g} mm, but the axes of shafts {} and {} are {:.6g} mm apart",
                                     *ad * 1e3, sa.comp->id, sb.comp->id, axes * 1e3));
+        if (a.written_as >= 0 || b.written_as >= 0) {
+            y.comment(2, "REXS " + std::to_string(st->id) + " cylindrical_stage '" + safe_name(*st) + "': a mesh of another planet (" +
+                             (a.written_as >= 0 ? gears[static_cast<size_t>(a.written_as)] : gears[static_cast<size_t>(b.written_as)]).name +
+                             "'s 'planets')");
+            continue;
+        }
         y.line(2, "- name: stage_" + std::to_string(st->id), "REXS " + std::to_string(st->id) + " cylindrical_stage '" + safe_name(*st) + "'");
-        y.line(4, "gears: [" + a.name + ", " + b.name + "]", "REXS stage relation " + std::to_string(rels.front()->id) + " gear_1, gear_2");
-        y.line(4, "angle: " + num(std::atan2(dy, dx) * 180 / std::numbers::pi) + " deg",
-               "from the shafts' support vectors (gear unit y, z; z taken as up: assumed)");
+        y.line(4, "gears: [" + a.name + ", " + b.name + "]",
+               "REXS stage relation " + std::to_string(rels.front()->id) + (swap ? " gear_2, gear_1 (internal gear second)" : " gear_1, gear_2"));
+        // A planetary mesh is laid out by gearloss (planet on the carrier); a fixed-axis one by the shafts.
+        if (a.carrier < 0 && b.carrier < 0)
+            y.line(4, "angle: " + num(std::atan2(dy, dx) * 180 / std::numbers::pi) + " deg",
+                   "from the shafts' support vectors (gear unit y, z; z taken as up: assumed)");
         if (ad) y.line(4, "centre_distance: " + num(*ad * 1e3) + " mm", src(*st, "center_distance"));
     }
     y.blank();
@@ -321,11 +373,13 @@ void Mapper::write_shafts_gears_meshes(YamlOut& y) {
 }  // namespace detail
 
 ImportResult map_to_case(const Model& m, const ImportOptions& options) {
-    detail::Mapper mp{m, options, {}, {}, {}, -1, -1, {}, {}};
+    detail::Mapper mp{m, options, {}, {}, {}, -1, -1, {}, {}, {}};
     mp.refuse_unsupported();
     mp.read_shafts();
     mp.read_gears();
+    mp.read_planetary();
     mp.choose_input_output();
+    mp.hold_planetary_members();
     detail::YamlOut y;
     y.comment(0, "Imported from the REXS model " + io::excerpt(m.file, 120) + " (REXS " + m.version + ", " +
                      io::excerpt(m.application_id, 40) + " " + io::excerpt(m.application_version, 40) + ") by gearloss import.");

@@ -1,7 +1,7 @@
 #pragma once
 // A REXS model (gearloss/rexs/model.hpp) as a gearloss case (docs/config.md), as YAML text:
 // cylindrical gear stages (spur and helical, external and internal gears, any number of stages
-// and shafts), the shafts and the positions of the gears and bearings on them (REXS u
+// and shafts, idlers), planetary stages (sun, identical planets, ring, carrier), the shafts and the positions of the gears and bearings on them (REXS u
 // coordinates), the bearings (by catalogue designation when the shipped catalogue has it, else
 // assumed bearings of the bore the model gives), the lubricant as an oil file, the operating
 // points of the load spectrum, and assumed values with their reasons for what REXS does not carry
@@ -9,9 +9,11 @@
 // the REXS component id and attribute it came from. docs/rexs.md lists what is mapped, assumed and
 // refused.
 //
-// Refused (InputError naming the component id, type and name): worm, bevel, hypoid, crossed-axis
-// and planetary stages, shafts whose axes are not parallel, a stage whose shafts are not its centre
-// distance apart, a bearing outside its shaft, teeth whose left and right flanks differ.
+// Refused (InputError naming the component id, type and name): worm, bevel, hypoid and
+// crossed-axis stages, planetary stages gearloss's planetary set cannot hold (stepped or double
+// planets, unequal planets, a stage without its carrier), shafts whose axes are not parallel, a
+// stage whose shafts are not its centre distance apart, a bearing outside its shaft, teeth whose
+// left and right flanks differ.
 #include <string>
 #include <vector>
 

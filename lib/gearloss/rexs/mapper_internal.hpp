@@ -1,5 +1,6 @@
 #pragma once
-// Shared between the parts of the REXS case mapper (case_mapper.cpp, mapper_support.cpp).
+// Shared between the parts of the REXS case mapper (case_mapper.cpp, planetary.cpp,
+// mapper_support.cpp).
 #include <map>
 #include <optional>
 #include <string>
@@ -36,8 +37,26 @@ struct ShaftSection {
     const Component* comp = nullptr;
 };
 
+// Names that differ across the REXS versions read (the data model of each version, 1.0 to 1.6):
+// - a rolling bearing's catalogue designation is `name` ("Catalogue name") in REXS 1.0 and
+//   `catalogue_designation` from 1.1 on (the same attribute, numeric id 486);
+// - a gear's flank component is a `flank_geometry` up to 1.2 and a `cylindrical_gear_flank` from
+//   1.3 on: both are read through the `flank` relation, whatever the type of its left and right;
+// - `ring_gear` (an internal gear) and `planetary_stage` exist from 1.1 on;
+// - gear roughness (`arithmetic_average_roughness_flank`) from 1.2 on, the lubricant's
+//   `lubricant_type_iso_6336_2006` and a concept bearing's diameters from 1.3 on (before: not given).
+inline const char* designation_attribute(const Model& m) { return m.version == "1.0" ? "name" : "catalogue_designation"; }
+
+// What a REXS shaft is in gearloss's model: a shaft of its own, or the shaft of a planet or a
+// planet pin of a planetary stage (planetary.cpp), which gearloss folds into the planet gear on
+// its carrier.
+enum class ShaftRole { plain, planet, pin };
+
 struct Shaft {
     const Component* comp = nullptr;
+    ShaftRole role = ShaftRole::plain;
+    bool held = false;         // a planetary member held by the housing (gearloss `fixed: true`)
+    std::string held_reason;   // the YAML comment saying why
     std::string name;
     double x = 0, y = 0;       // axis in the housing frame [m]: REXS gear-unit (y, z), z taken as up
     double u_start = 0;        // gear-unit x of the shaft's u = 0 [m]
@@ -50,11 +69,24 @@ struct Shaft {
 struct Gear {
     const Component* comp = nullptr;
     std::string name;
-    int shaft = -1;            // index into Mapper::shafts
+    int shaft = -1;            // index into Mapper::shafts (a planet: its planet shaft or pin)
+    int carrier = -1;          // a planet: the carrier shaft (index into Mapper::shafts)
+    int planets = 1;           // a planet: the number of identical, equally spaced planets
+    int written_as = -1;       // another planet of the same set: the planet written for all (gear index)
     int z = 0;
     bool internal = false;
     double mn = 0, beta = 0, alpha_n = 0, b = 0, x = 0, u = 0;
     double tip_radius_estimate() const;  // r of the tip circle, from m_n, z, beta and x (for the housing box)
+};
+
+// A REXS planetary_stage as a gearloss planetary set: sun and ring on central shafts (either may
+// be absent), the identical planets on their planet shafts or pins, the carrier shaft.
+struct PlanetarySet {
+    const Component* stage = nullptr;
+    int carrier = -1;                // shaft index
+    int sun = -1, ring = -1;         // gear indices, -1 when the set has none
+    std::vector<int> planets;        // gear indices, the first is written for all
+    std::vector<int> members;        // shaft indices of the central shafts and the carrier
 };
 
 struct Mapper {
@@ -65,6 +97,7 @@ struct Mapper {
     std::vector<Gear> gears;
     int input = -1, output = -1;
     std::map<std::int64_t, int> shaft_of_id, gear_of_id;
+    std::vector<PlanetarySet> sets;
 
     void warn(const Component& c, const std::string& text);
     int shaft_index_of(std::int64_t id) const;
@@ -72,6 +105,14 @@ struct Mapper {
     void refuse_unsupported();
     void read_shafts();
     void read_gears();
+    void read_planetary();           // planetary.cpp
+    void hold_planetary_members();   // planetary.cpp: after choose_input_output
+    // A bearing of a planet (between its planet shaft or pin and a pin, side plate or the
+    // carrier): the planet gear it runs under (written on the carrier), -2 for a bearing of
+    // another planet of the set (written once, for the first), -1 for any other bearing.
+    int planet_of_bearing(const Component& bearing, const Relation& side) const;
+    // "{name: X, fixed: true}" or "X": how the shaft list names shaft i.
+    std::string shaft_entry(size_t i) const;
     void choose_input_output();
     void write_shafts_gears_meshes(YamlOut& y);
     void write_bearings(YamlOut& y);

@@ -58,6 +58,10 @@ void Mapper::write_bearings(YamlOut& y) {
             continue;
         }
         const Relation& side = *sides.front();
+        // A planet's bearing runs under the planet on the carrier (planetary.cpp); the first planet's
+        // bearings are written once for all its planets.
+        const int planet = planet_of_bearing(c, side);
+        if (planet == -2) continue;
         const auto inner = side.ref("inner_part");
         const auto outer = side.ref("outer_part");
         int si = inner ? shaft_index_of(*inner) : -1;
@@ -68,7 +72,7 @@ void Mapper::write_bearings(YamlOut& y) {
         }
         if (si < 0) m.fail(c, "neither side of the bearing is a shaft");
         const Shaft& s = shafts[static_cast<size_t>(si)];
-        if (inner && outer && shaft_index_of(*inner) >= 0 && shaft_index_of(*outer) >= 0)
+        if (planet < 0 && inner && outer && shaft_index_of(*inner) >= 0 && shaft_index_of(*outer) >= 0)
             warn(c, fmt::format("the bearing runs between shafts {} and {}: it is placed on shaft {} against the housing "
                                 "(its speed is that shaft's, not the difference of the two)",
                                 *inner, *outer, s.comp->id));
@@ -82,16 +86,23 @@ void Mapper::write_bearings(YamlOut& y) {
         const auto bore_shaft = s.diameter_at(u);
         const std::string name = "bearing_" + std::to_string(c.id);
         y.line(2, "- name: " + name, "REXS " + std::to_string(c.id) + " " + c.type + " '" + safe_name(c) + "'");
-        y.line(4, "shaft: " + s.name, "REXS side relation " + std::to_string(side.id));
-        y.line(4, "position: " + num(u * 1e3) + " mm", src(c, u_attr));
+        if (planet >= 0) {
+            const Gear& g = gears[static_cast<size_t>(planet)];
+            y.line(4, "shaft: " + shafts[static_cast<size_t>(g.carrier)].name, "the planet's carrier (REXS side relation " + std::to_string(side.id) + ")");
+            y.line(4, "under_gear: " + g.name, fmt::format("REXS side relation {}: a bearing of the planet, one per planet", side.id));
+        } else {
+            y.line(4, "shaft: " + s.name, "REXS side relation " + std::to_string(side.id));
+            y.line(4, "position: " + num(u * 1e3) + " mm", src(c, u_attr));
+        }
         if (locating) y.line(4, "locating: true", src(c, "axial_force_absorption") + " " + io::excerpt(*axial, 30));
         ++written;
-        const auto designation = text(m, c, "catalogue_designation");
+        const char* const designation_attr = designation_attribute(m);
+        const auto designation = text(m, c, designation_attr);
         if (designation) {
             const auto key = bearings::designation_key(*designation);
             if (const io::CatalogueEntry* e = key ? cat.find(key->key) : nullptr) {
                 y.line(4, "designation: " + quoted(*designation),
-                       src(c, "catalogue_designation") + " (catalogue row " + e->designation + ")");
+                       src(c, designation_attr) + " (catalogue row " + e->designation + ")");
                 const double d = bore_given ? *bore_given : bore_shaft.value_or(e->d);
                 if (std::abs(d - e->d) > 1e-6)
                     warn(c, fmt::format("catalogue bore {:g} mm of {} differs from the {:g} mm the model gives", e->d * 1e3,
@@ -177,7 +188,8 @@ void Mapper::write_housing_thermal(YamlOut& y) {
         y1 = std::max(y1, s.y - in.y + r + 0.02);
         z0 = std::min(z0, s.u_start);
         z1 = std::max(z1, s.u_start + s.length());
-        if (mn > 0 && s.y - in.y - r < lowest_y - lowest_r) {
+        // The dip reference is a gear on a fixed axis: planets orbit (and gearloss does not churn them).
+        if (mn > 0 && s.role == ShaftRole::plain && s.y - in.y - r < lowest_y - lowest_r) {
             lowest_y = s.y - in.y;
             lowest_r = r;
             lowest_m = mn;
