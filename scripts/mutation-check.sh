@@ -131,8 +131,8 @@ mut Q1 torque_converter lib/gearloss/torque_converter/torque_converter.cpp "HI 9
     'std::exp(-0.0547 * std::exp' 'std::exp(-0.0574 * std::exp'
 mut D1 diagnosis lib/gearloss/diagnosis/effects.cpp "forced convection may take cooling away on any heat path" \
     'if (!cooling_may_fall) lo = std::max(lo, std::min(0.0, e.neutral));' 'if (false) lo = std::max(lo, std::min(0.0, e.neutral));'
-mut D2 diagnosis lib/gearloss/diagnosis/diagnose.cpp "a name is confident however little the tests could see" \
-    'const bool weak_test = ad.adequate && !(ad.detectable <= opt.confident_detectable);' 'const bool weak_test = false;'
+mut D2 diagnosis lib/gearloss/diagnosis/diagnose.cpp "the whole-mismatch formula never downgrades findings that stand in for it" \
+    'if (d.remainder->on_case && enough_points' 'if (false && d.remainder->on_case && enough_points'
 mut D3 diagnosis lib/gearloss/diagnosis/adequacy.cpp "power from the critical value alone (median ignored)" \
     'return std::sqrt(std::max(0.0, critical / median - 1));' 'return std::sqrt(std::max(0.0, critical - 1));'
 mut V1 vehicle lib/gearloss/vehicle/vehicle.cpp "rotating-mass factor subtracted instead of added" \
