@@ -132,11 +132,13 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
             // in overrun the engine's drag limits it and the brakes take the rest.
             // Two fixed-point passes from the previous step's loss: the loss changes little with
             // torque, so the second pass leaves a torque error of a fraction of a per cent of the loss.
-            T_in = std::max((P_out + last_loss) / w_in, -veh.engine.overrun_torque);
+            // An electric motor recuperates down to its recuperation limit instead.
+            const double T_floor = veh.motor ? -veh.motor->recuperation_limit(w_in) : -veh.engine.overrun_torque;
+            T_in = std::max((P_out + last_loss) / w_in, T_floor);
             for (int k = 0; k < 2; ++k) {
                 solver::prepare_point(gm, w_in, T_in, load.point);
                 last_loss = solver::total_loss(gm, load.point, x[kOil]);
-                const double next = std::max((P_out + last_loss) / w_in, -veh.engine.overrun_torque);
+                const double next = std::max((P_out + last_loss) / w_in, T_floor);
                 if (std::abs(next - T_in) < 1e-3 * (1.0 + std::abs(T_in))) break;
                 T_in = next;
                 if (k == 1) solver::prepare_point(gm, w_in, T_in, load.point);
@@ -154,6 +156,11 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
             if (T_in > 0) {
                 tot.E_gearbox_in += T_in * w_in * dt;
                 tot.E_gearbox_out += std::max(0.0, P_out) * dt;
+            } else if (T_in < 0) {
+                // Driven from the output: |T_in w_in| reaches the input (the motor recuperates it,
+                // or the engine's drag takes it), the output supplies that and the loss.
+                tot.E_input_recovered += -T_in * w_in * dt;
+                tot.E_output_supplied += (-T_in * w_in + last_loss) * dt;
             }
         }
         row.gear = moving ? gear : 0;
@@ -184,10 +191,16 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         // converter, which is never faster than its pump).
         if (w_in > veh.engine.max_speed * (1.0 + 1e-9))
             fail_at(cycle, i, fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): gearbox input speed {:.0f} rpm above the "
-                                      "engine's max_speed {:.0f} rpm; the vehicle cannot drive this row (check the speed "
+                                      "{}'s max_speed {:.0f} rpm; the vehicle cannot drive this row (check the speed "
                                       "and gear)",
                                       cycle.time[i], v * 3.6, gear, w_in * 30 / 3.14159265358979323846,
+                                      veh.motor ? "motor" : "engine",
                                       veh.engine.max_speed * 30 / 3.14159265358979323846));
+        if (veh.motor && T_in > veh.motor->drive_limit(w_in) * (1.0 + 1e-9))
+            fail_at(cycle, i, fmt::format("at t = {:g} s ({:.4g} km/h): motor torque {:.0f} N m above the motor's limit "
+                                          "{:.0f} N m at {:.0f} rpm (max_torque, max_power); the vehicle cannot drive this row",
+                                          cycle.time[i], v * 3.6, T_in, veh.motor->drive_limit(w_in),
+                                          w_in * 30 / 3.14159265358979323846));
         if (veh.engine.max_torque && T_eng > *veh.engine.max_torque * (1.0 + 1e-9))
             fail_at(cycle, i, fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): engine torque {:.0f} N m above the engine's "
                                       "max_torque {:.0f} N m; the vehicle cannot drive this row",
