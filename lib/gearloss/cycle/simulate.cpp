@@ -1,9 +1,10 @@
 #include "gearloss/cycle/simulate.hpp"
 
+#include "gearloss/cycle/transient.hpp"
+
 #include <algorithm>
 #include <array>
 #include <boost/math/tools/toms748_solve.hpp>
-#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -16,27 +17,11 @@
 
 namespace gearloss::cycle {
 
-namespace odeint = boost::numeric::odeint;
-
 thermal::NodeTemperatures uniform(double T) { return {T, T, T}; }
 
 namespace {
 
-// Integrated state: node temperatures, then the energies of each heat flow [J].
-// The mechanisms' energies take kMaxMechanisms slots (unused slots stay zero).
-constexpr size_t kMaxMechanisms = 12;
-using State = std::array<double, 3 + kMaxMechanisms + 3>;
-enum : size_t { kOil, kHousing, kClutch, kMech0, kTc = kMech0 + kMaxMechanisms, kAmbient, kHeater };
-
-State initial_state(const thermal::NodeTemperatures& start) {
-    State x{};
-    x[kOil] = start[0];
-    x[kHousing] = start[1];
-    x[kClutch] = start[2];
-    return x;
-}
-
-thermal::NodeTemperatures nodes(const State& x) { return {x[kOil], x[kHousing], x[kClutch]}; }
+using State = TransientState;
 
 // Node temperatures for the trace: an absent node reads as the oil.
 void trace_temperatures(TraceRow& row, const thermal::Network& net, const State& x) {
@@ -45,56 +30,10 @@ void trace_temperatures(TraceRow& row, const thermal::Network& net, const State&
     row.T_clutch = net.has_clutch() ? x[kClutch] : x[kOil];
 }
 
-
-// What stays fixed over one step of the cycle (the oil temperature does not).
-struct StepLoad {
-    const solver::Model* gearbox = nullptr;  // null: gearbox at rest
-    solver::PointState point;
-    bool converter = false, lockup = false;
-    double turbine_speed = 0, turbine_torque = 0;
-    double heater = 0;
-    double omega_in = 0;
-    double air_speed = 0;  // under-body air over the housing [m/s]
-};
-
-struct Rates {
-    const Powertrain& pt;
-    const StepLoad& load;
-    double ambient;
-    void operator()(const State& x, State& dx, double /*t*/) const {
-        const solver::Model& tm = pt.thermal_model();
-        const auto& net = tm.thermal.network;
-        const thermal::NodeTemperatures T = nodes(x);
-        const lubricant::OilState os = tm.oil_state(T[0]);
-        solver::LossBreakdown L;
-        if (load.gearbox) L = solver::evaluate_losses(*load.gearbox, load.point, os, false);
-        double P_tc = 0;
-        if (load.converter)
-            P_tc = torque_converter::operate(*pt.torque_converter, load.turbine_speed, load.turbine_torque,
-                                             pt.vehicle.engine.idle_speed, os.nu_cSt, load.lockup)
-                       .loss;
-        // Heat of the mechanisms that do not heat the oil goes to the clutch-pack node.
-        const double P_other = load.gearbox ? L.total() - L.into_oil(*load.gearbox) : 0.0;
-        const double P_oil = L.total() - P_other + P_tc + load.heater;
-        const double Q = tm.surface_heat_flow(thermal::surface_temperature(net, T), ambient, load.omega_in, load.air_speed);
-        const auto d = thermal::node_rates(net, T, P_oil, P_other, Q);
-        dx.fill(0.0);
-        dx[kOil] = d[0];
-        dx[kHousing] = d[1];
-        dx[kClutch] = d[2];
-        for (size_t i = 0; i < L.power.size(); ++i) dx[kMech0 + i] = L.power[i];
-        dx[kTc] = P_tc;
-        dx[kAmbient] = Q;
-        dx[kHeater] = load.heater;
-    }
-};
-
 // Bounds of the transient: a cycle lasts at most kMaxDuration (11.6 days; the regulatory
-// cycles last 20-30 min), one interval between samples takes at most kMaxSteps accepted
-// steps of the integrator (a 1-s interval takes a handful), the vehicle runs at most
-// kMaxVehicleSpeed.
+// cycles last 20-30 min), the vehicle runs at most kMaxVehicleSpeed (the steps of the
+// integrator per interval: transient.cpp).
 constexpr double kMaxDuration = 1e6;             // s
-constexpr size_t kMaxSteps = 100000;             // per interval
 constexpr double kMaxVehicleSpeed = 500.0 / 3.6; // m/s
 
 std::string celsius(double T) { return std::isfinite(T) ? celsius_text(T) : "(not finite)"; }
@@ -105,41 +44,6 @@ std::string celsius(double T) { return std::isfinite(T) ? celsius_text(T) : "(no
 [[noreturn]] void fail_at(const DriveCycle& c, size_t i, const std::string& message) {
     if (!c.file.empty() && i < c.line.size()) throw InputError(c.file, c.line[i], 0, "cycle", message);
     fail("cycle", message);
-}
-
-// Called by the integrator once per accepted step: bounds the steps and stops at the first
-// value that is not finite, naming the component when the gearbox is loaded.
-struct StepGuard {
-    const StepLoad& load;
-    double ambient;
-    size_t* steps;
-    void operator()(const State& x, double t) const {
-        if (++*steps > kMaxSteps)
-            fail("cycle", fmt::format("the integration of the interval at t = {:g} s did not finish within {} steps", t,
-                                      kMaxSteps));
-        for (double v : x)
-            if (!std::isfinite(v)) {
-                std::string cause;
-                if (load.gearbox && std::isfinite(x[kOil]))
-                    cause = solver::loss_fault(*load.gearbox, load.point, x[kOil], ambient);
-                fail("cycle", fmt::format("at t = {:g} s a temperature or energy is not a finite number (out_of_range: {})",
-                                          t, cause.empty() ? "thermal network" : cause));
-            }
-    }
-};
-
-void integrate(const Powertrain& pt, const StepLoad& load, double ambient, State& x, double t0, double t1) {
-    // Tolerances: 1e-4 K on temperatures (the energies are large numbers: relative 1e-7).
-    auto stepper = odeint::make_controlled(1e-4, 1e-7, odeint::runge_kutta_dopri5<State>());
-    size_t steps = 0;
-    try {
-        // First trial step at most 1 s: a cycle sampled every 100 s would otherwise start with a
-        // trial of 100 s, whose stages leave the range where the oil's description holds.
-        odeint::integrate_adaptive(stepper, Rates{pt, load, ambient}, x, t0, t1, std::min(t1 - t0, 1.0),
-                                   StepGuard{load, ambient, &steps});
-    } catch (const odeint::step_adjustment_error& e) {
-        fail("cycle", fmt::format("the integration from t = {:g} s failed: {}", t0, e.what()));
-    }
 }
 
 // The inputs of a run: the cycle's samples, the temperatures, the thermal network.
@@ -195,7 +99,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
     for (const auto& m : pt.gears) input_per_wheel.push_back(veh.final_drive / std::abs(m.layout.ratio));
 
     State x = initial_state(start);
-    StepLoad load;
+    TransientLoad load;
     int gear = 1;
     double last_loss = 0;
     if (keep_trace && !on_row) res.trace.reserve(cycle.time.size());
@@ -209,7 +113,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         row.speed = cycle.speed[i];
         row.accel = a;
         trace_temperatures(row, net, x);
-        load = StepLoad{};
+        load = TransientLoad{};
         load.air_speed = veh.underbody_air * v;
         const double w_wheel = v / veh.wheel_radius;
         const double T_wheel = veh.tractive_force(v, a) * veh.wheel_radius;
@@ -228,11 +132,13 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
             // in overrun the engine's drag limits it and the brakes take the rest.
             // Two fixed-point passes from the previous step's loss: the loss changes little with
             // torque, so the second pass leaves a torque error of a fraction of a per cent of the loss.
-            T_in = std::max((P_out + last_loss) / w_in, -veh.engine.overrun_torque);
+            // An electric motor recuperates down to its recuperation limit instead.
+            const double T_floor = veh.motor ? -veh.motor->recuperation_limit(w_in) : -veh.engine.overrun_torque;
+            T_in = std::max((P_out + last_loss) / w_in, T_floor);
             for (int k = 0; k < 2; ++k) {
                 solver::prepare_point(gm, w_in, T_in, load.point);
                 last_loss = solver::total_loss(gm, load.point, x[kOil]);
-                const double next = std::max((P_out + last_loss) / w_in, -veh.engine.overrun_torque);
+                const double next = std::max((P_out + last_loss) / w_in, T_floor);
                 if (std::abs(next - T_in) < 1e-3 * (1.0 + std::abs(T_in))) break;
                 T_in = next;
                 if (k == 1) solver::prepare_point(gm, w_in, T_in, load.point);
@@ -250,6 +156,11 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
             if (T_in > 0) {
                 tot.E_gearbox_in += T_in * w_in * dt;
                 tot.E_gearbox_out += std::max(0.0, P_out) * dt;
+            } else if (T_in < 0) {
+                // Driven from the output: |T_in w_in| reaches the input (the motor recuperates it,
+                // or the engine's drag takes it), the output supplies that and the loss.
+                tot.E_input_recovered += -T_in * w_in * dt;
+                tot.E_output_supplied += (-T_in * w_in + last_loss) * dt;
             }
         }
         row.gear = moving ? gear : 0;
@@ -259,12 +170,14 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         double w_eng = std::max(w_in, veh.engine.idle_speed), T_eng = T_in;
         if (pt.torque_converter) {
             const auto& tc = *pt.torque_converter;
-            load.converter = true;
-            load.lockup = moving && tc.lockup_from_gear > 0 && gear >= tc.lockup_from_gear && w_in >= tc.lockup_min_speed;
-            load.turbine_speed = w_in;
-            load.turbine_torque = T_in;
+            const bool lockup =
+                moving && tc.lockup_from_gear > 0 && gear >= tc.lockup_from_gear && w_in >= tc.lockup_min_speed;
+            // The converter's loss heats the oil, at the oil's current viscosity.
+            load.extra_oil_heat = [&tc, w_in, T_in, idle = veh.engine.idle_speed, lockup](double nu_cSt) {
+                return torque_converter::operate(tc, w_in, T_in, idle, nu_cSt, lockup).loss;
+            };
             const auto s = torque_converter::operate(tc, w_in, T_in, veh.engine.idle_speed,
-                                                     pt.thermal_model().oil_state(x[kOil]).nu_cSt, load.lockup);
+                                                     pt.thermal_model().oil_state(x[kOil]).nu_cSt, lockup);
             w_eng = std::max(s.pump_speed, veh.engine.idle_speed);
             T_eng = s.pump_torque;
             row.tc_speed_ratio = s.speed_ratio;
@@ -278,10 +191,16 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         // converter, which is never faster than its pump).
         if (w_in > veh.engine.max_speed * (1.0 + 1e-9))
             fail_at(cycle, i, fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): gearbox input speed {:.0f} rpm above the "
-                                      "engine's max_speed {:.0f} rpm; the vehicle cannot drive this row (check the speed "
+                                      "{}'s max_speed {:.0f} rpm; the vehicle cannot drive this row (check the speed "
                                       "and gear)",
                                       cycle.time[i], v * 3.6, gear, w_in * 30 / 3.14159265358979323846,
+                                      veh.motor ? "motor" : "engine",
                                       veh.engine.max_speed * 30 / 3.14159265358979323846));
+        if (veh.motor && T_in > veh.motor->drive_limit(w_in) * (1.0 + 1e-9))
+            fail_at(cycle, i, fmt::format("at t = {:g} s ({:.4g} km/h): motor torque {:.0f} N m above the motor's limit "
+                                          "{:.0f} N m at {:.0f} rpm (max_torque, max_power); the vehicle cannot drive this row",
+                                          cycle.time[i], v * 3.6, T_in, veh.motor->drive_limit(w_in),
+                                          w_in * 30 / 3.14159265358979323846));
         if (veh.engine.max_torque && T_eng > *veh.engine.max_torque * (1.0 + 1e-9))
             fail_at(cycle, i, fmt::format("at t = {:g} s ({:.4g} km/h, gear {}): engine torque {:.0f} N m above the engine's "
                                       "max_torque {:.0f} N m; the vehicle cannot drive this row",
@@ -308,15 +227,15 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         if (keep_trace) {
             // Loss rates at the start of the step for the trace.
             State d{};
-            Rates{pt, load, ambient}(x, d, 0.0);
+            transient_rates(pt.thermal_model(), load, ambient, x, d);
             row.P_mech.assign(d.begin() + kMech0, d.begin() + kMech0 + n_mech);
             row.P_gearbox = 0.0;
             for (double P : row.P_mech) row.P_gearbox += P;
-            row.P_tc = d[kTc];
+            row.P_tc = d[kExtraHeat];
             if (on_row) on_row(row);
             else res.trace.push_back(row);
         }
-        integrate(pt, load, ambient, x, cycle.time[i], cycle.time[i + 1]);
+        integrate_interval(pt.thermal_model(), load, ambient, x, cycle.time[i], cycle.time[i + 1]);
         // The oil driven beyond its data (or the model's search range) makes every later row nonsense.
         if (auto f = solver::oil_temperature_fault(pt.thermal_model().oil, x[kOil]))
             fail_at(cycle, i + 1, fmt::format("at t = {:g} s: oil temperature {}", cycle.time[i + 1], *f));
@@ -335,7 +254,7 @@ CycleResult simulate_cycle(const Powertrain& pt, const DriveCycle& cycle, const 
         else res.trace.push_back(last);
     }
     tot.E_mech.assign(x.begin() + kMech0, x.begin() + kMech0 + n_mech);
-    tot.E_tc = x[kTc];
+    tot.E_tc = x[kExtraHeat];
     tot.E_ambient = x[kAmbient];
     tot.E_heater = x[kHeater];
     tot.end = nodes(x);
@@ -350,7 +269,7 @@ PrewarmResult prewarm(const Powertrain& pt, const thermal::NodeTemperatures& sta
     if (!(power > 0 && std::isfinite(power))) fail("heater", "heater power must be a positive, finite number");
     if (!(max_time > 0 && max_time <= kMaxDuration)) fail("pre-warm time", "at most 1e6 s of pre-warming are simulated");
     PrewarmResult r;
-    StepLoad load;
+    TransientLoad load;
     load.heater = power;
     State x = initial_state(start);
     if (x[kOil] >= target) {
@@ -363,7 +282,7 @@ PrewarmResult prewarm(const Powertrain& pt, const thermal::NodeTemperatures& sta
     while (t < max_time) {
         throw_if_interrupted();
         const State before = x;
-        integrate(pt, load, ambient, x, t, t + 1.0);
+        integrate_interval(pt.thermal_model(), load, ambient, x, t, t + 1.0);
         if (x[kOil] >= target) {
             const double f = (target - before[kOil]) / (x[kOil] - before[kOil]);
             State at{};

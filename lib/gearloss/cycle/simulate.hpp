@@ -42,6 +42,9 @@ struct CycleTotals {
     double duration = 0, distance = 0;         // s, m
     double E_wheel = 0;                        // J, positive tractive energy at the wheels
     double E_gearbox_in = 0, E_gearbox_out = 0;  // J, in drive (positive input power)
+    // J, driven from the output (negative input power): what reaches the input (recuperated by a
+    // motor) and what the output supplies (that plus the gearbox loss of those rows).
+    double E_input_recovered = 0, E_output_supplied = 0;
     std::vector<double> E_mech;                // J per loss mechanism (the models' order)
     double E_tc = 0;                           // J, torque converter
     double E_ambient = 0, E_heater = 0;        // J, heat to the ambient, heater energy

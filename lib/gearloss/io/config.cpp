@@ -335,6 +335,9 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
         for (size_t i = 0; i < c.vehicle->gears.size(); ++i)
             if (std::ranges::none_of(m.gearbox.ratios, [&](const auto& r) { return r.name == c.vehicle->gears[i]; }))
                 v->at("gears").items()[i].fail("'" + excerpt(c.vehicle->gears[i]) + "' is not one of gearbox.ratios");
+        if (c.vehicle->gears.empty() && !m.gearbox.ratios.empty())
+            v->fail("the case defines gearbox.ratios: list the vehicle's gears (vehicle.gears); only a gearbox of one "
+                    "fixed ratio leaves them out");
     }
 
     m.source = std::move(source);

@@ -27,6 +27,8 @@ cycle::Powertrain load_powertrain(const Case& c, const std::optional<std::string
     Case k = c;
     if (oil_file) replace_oil(k, load_oil_file(*oil_file));
     for (const auto& g : c.vehicle->gears) pt.gears.push_back(k.model.with_ratio(g));
+    // No vehicle.gears: one gear, the case's fixed ratio.
+    if (c.vehicle->gears.empty()) pt.gears.push_back(k.model);
     return pt;
 }
 
@@ -201,6 +203,13 @@ nlohmann::ordered_json totals_json(const cycle::Powertrain& pt, const cycle::Cyc
     j["converter_kJ"] = t.E_tc / 1e3;
     j["heat_to_ambient_kJ"] = t.E_ambient / 1e3;
     j["gearbox_mean_efficiency"] = t.mean_efficiency();
+    if (pt.vehicle.motor) {
+        // Drive and recuperation energies at the gearbox's two shafts (docs/config.md, vehicle.motor).
+        j["gearbox_input_kJ"] = t.E_gearbox_in / 1e3;
+        j["gearbox_output_kJ"] = t.E_gearbox_out / 1e3;
+        j["recuperation_output_supplied_kJ"] = t.E_output_supplied / 1e3;
+        j["recuperation_input_recovered_kJ"] = t.E_input_recovered / 1e3;
+    }
     if (t.has_fuel) {
         j["fuel_L"] = litres(pt, t.fuel);
         j["fuel_L_per_100km"] = t.distance > 0 ? litres(pt, t.fuel) / (t.distance / 1e5) : 0.0;

@@ -101,11 +101,29 @@ torque_converter::TorqueConverter load_tc(const YamlNode& n) {
     }
     return tc;
 }
+// vehicle.motor: the envelope of an electric traction motor (vehicle.hpp, Motor).
+vehicle::Motor load_motor(const YamlNode& n) {
+    n.allow_keys({"max_speed", "max_torque", "max_power", "recuperation_torque", "recuperation_power", "note"});
+    vehicle::Motor m;
+    m.max_speed = n.positive_quantity("max_speed", dim::angular_speed, "12000 rpm");
+    m.max_torque = n.positive_quantity("max_torque", dim::torque, "310 N*m");
+    m.max_power = n.positive_quantity("max_power", dim::power, "150 kW");
+    m.recuperation_torque = n.has("recuperation_torque") ? n.positive_quantity("recuperation_torque", dim::torque, "200 N*m")
+                                                         : m.max_torque;
+    m.recuperation_power = n.has("recuperation_power") ? n.positive_quantity("recuperation_power", dim::power, "100 kW")
+                                                       : m.max_power;
+    // Traction motors of road vehicles turn at most about 25 000 rpm (the fastest series e-axles
+    // run near 20 000 rpm); a faster one is a unit slip.
+    if (m.max_speed * 30 / std::numbers::pi > 30000)
+        n.at("max_speed").fail(fmt::format("{:.4g} rpm above 30 000 rpm, beyond road-vehicle traction motors",
+                                           m.max_speed * 30 / std::numbers::pi));
+    return m;
+}
 }  // namespace
 
 void load_vehicle(const YamlNode& n, Case& c) {
     n.allow_keys({"mass", "rotating_mass_factor", "wheel_radius", "road_load", "final_drive", "gears", "shift",
-                  "engine", "torque_converter", "underbody_air", "note"});
+                  "engine", "motor", "torque_converter", "underbody_air", "note"});
     vehicle::Vehicle v;
     v.mass = n.positive_quantity("mass", dim::mass, "1500 kg");
     if (auto e = n.get("rotating_mass_factor")) {
@@ -147,7 +165,10 @@ void load_vehicle(const YamlNode& n, Case& c) {
         v.final_drive_efficiency = e->as_number();
         if (!(v.final_drive_efficiency > 0.5 && v.final_drive_efficiency <= 1)) e->fail("must be in (0.5, 1]");
     }
-    for (const auto& g : n.at("gears").items()) {
+    // A gearbox of one fixed ratio (no gearbox.ratios: a single-stage reducer) has one gear, the
+    // case as it is: `gears` is then left out.
+    const auto gear_list = n.get("gears");
+    for (const auto& g : gear_list ? gear_list->items() : std::vector<YamlNode>{}) {
         v.gears.push_back(g.as_string());
         // Each vehicle gear is one ratio of the gearbox; the same ratio twice is a slip (the
         // shift schedule would shift into the gear it is in).
@@ -156,7 +177,7 @@ void load_vehicle(const YamlNode& n, Case& c) {
                                std::find(v.gears.begin(), v.gears.end(), v.gears.back()) - v.gears.begin() + 1,
                                v.gears.size()));
     }
-    if (v.gears.empty()) n.at("gears").fail("empty list");
+    if (gear_list && v.gears.empty()) gear_list->fail("empty list");
     if (auto sh = n.get("shift")) {
         sh->allow_keys({"upshift", "downshift"});
         v.shift.upshift_speed = sh->quantity("upshift", dim::angular_speed, "2500 rpm");
@@ -190,6 +211,15 @@ void load_vehicle(const YamlNode& n, Case& c) {
         if (!(en.lower_heating_value > 0)) e->at("lower_heating_value").fail("must be positive");
         if (!(en.fuel_density > 0)) e->at("fuel_density").fail("must be positive");
         if (auto fm = e->get("fuel_map")) en.fuel_map = load_fuel_map(*fm);
+    }
+    if (auto mo = n.get("motor")) {
+        if (n.has("engine")) mo->fail("give either an engine or a motor, not both");
+        if (n.has("torque_converter")) n.at("torque_converter").fail("an electric motor drives without a torque converter");
+        v.motor = load_motor(*mo);
+        // No idle: the motor turns with the wheels from standstill; no fuel, no engine drag.
+        v.engine.idle_speed = 0.0;
+        v.engine.max_speed = v.motor->max_speed;
+        v.engine.overrun_torque = 0.0;
     }
     if (auto tc = n.get("torque_converter")) {
         c.torque_converter = load_tc(*tc);

@@ -23,6 +23,16 @@ double FuelMap::rate_at(double omega, double torque) const {
     return std::max(0.0, (1 - s) * ((1 - t) * r00 + t * r01) + s * ((1 - t) * r10 + t * r11));
 }
 
+namespace {
+double envelope(double torque, double power, double w) {
+    const double a = std::abs(w);
+    return a * torque > power ? power / a : torque;
+}
+}  // namespace
+
+double Motor::drive_limit(double w) const { return envelope(max_torque, max_power, w); }
+double Motor::recuperation_limit(double w) const { return envelope(recuperation_torque, recuperation_power, w); }
+
 double Vehicle::tractive_force(double v, double a, double grade) const {
     constexpr double g = 9.81;
     return f0 * (v > 0 ? 1.0 : 0.0) + f1 * v + f2 * v * v + mass * (1.0 + rotating_mass_factor) * a +

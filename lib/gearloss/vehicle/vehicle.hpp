@@ -27,6 +27,22 @@ struct Engine {
     double lower_heating_value = 43e6;  // J/kg
 };
 
+// An electric traction motor in place of the engine (a battery-electric drive): no idle speed, no
+// fuel; it drives up to its torque and power limits and recuperates (brakes electrically, the
+// gearbox then driven from its output) up to its recuperation limits, the friction brakes taking
+// the rest. The limits are the usual two-segment envelope of a permanent-magnet machine: constant
+// torque up to the base speed max_power / max_torque, constant power above it.
+struct Motor {
+    double max_speed = 0;            // rad/s
+    double max_torque = 0;           // N m, drive
+    double max_power = 0;            // W, drive
+    double recuperation_torque = 0;  // N m (a magnitude), braking
+    double recuperation_power = 0;   // W (a magnitude), braking
+    // Largest drive torque and recuperation torque magnitude at speed w [rad/s].
+    double drive_limit(double w) const;
+    double recuperation_limit(double w) const;
+};
+
 struct ShiftSchedule {
     double upshift_speed = 2500 * 3.14159265358979323846 / 30;    // gearbox input [rad/s]
     double downshift_speed = 1200 * 3.14159265358979323846 / 30;
@@ -43,7 +59,8 @@ struct Vehicle {
     ShiftSchedule shift;
     bool torque_converter = false;    // automatic: converter between engine and gearbox
     double underbody_air = 0.0;       // share of the vehicle speed that flows over the housing
-    Engine engine;
+    Engine engine;                    // with a motor: idle speed 0, max_speed the motor's, no fuel map
+    std::optional<Motor> motor;       // an electric drive instead of the engine
 
     // Tractive force at the wheels for speed v [m/s] and acceleration a [m/s^2].
     double tractive_force(double v, double a, double grade = 0.0) const;
