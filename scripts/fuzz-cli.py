@@ -4,7 +4,7 @@
 Every run happens in a fresh temporary directory holding a copy of the shipped configs
 (cases, oils, the bearing catalogue, drive cycles), a small recording made by `synth`
 and a copy of the program itself. A run draws a command (check, point, map, report,
-compare, cycle, diagnose, synth, merge, mesh-profile), a shipped case, possibly a
+compare, cycle, diagnose, synth, merge, mesh-profile, duty), a shipped case, possibly a
 mutated case or oil file (a value replaced by a hostile token: no unit, a wrong unit
 kind, NaN, 1e308, a negative, a control character, a YAML tag, a duplicate key, a
 deleted line) and output paths that are sometimes fresh, sometimes an input, an earlier
@@ -153,7 +153,7 @@ def draw_run(rng, t):
     c = "configs/"
     case = c + rng.choice(CASES)
     inputs = [case, c + "oils/75W90-A.yaml", c + "oils/MINR.yaml", c + "bearings/catalogue.yaml",
-              c + "cycles/nedc.csv", c + "transfer-box-rec.csv", "gl"]
+              c + "cycles/nedc.csv", c + "transfer-box-rec.csv", c + "spectra/wind-2.5MW-weibull.csv", "gl"]
     mutated = None
     if rng.random() < 0.5:
         target = case
@@ -193,7 +193,7 @@ def draw_run(rng, t):
         return a
 
     cmd = rng.choice(["check", "point", "map", "map", "report", "compare", "cycle", "diagnose", "synth", "merge",
-                      "mesh-profile"])
+                      "mesh-profile", "duty"])
     outs = []
     argv = ["./gl", cmd]
     if cmd == "check":
@@ -252,6 +252,15 @@ def draw_run(rng, t):
     elif cmd == "merge":
         o = out_path(".csv"); outs += [o, o + ".meta.json"]
         argv += [rng.choice(inputs), rng.choice(inputs), "-o", o]
+    elif cmd == "duty":
+        o = out_path(".csv"); outs += [o, o + ".meta.json"]
+        spectrum = rng.choice([c + "spectra/wind-2.5MW-weibull.csv"] * 3 + [c + "cycles/nedc.csv",
+                                                                          c + "transfer-box-rec.csv"])
+        argv += [case, spectrum, "-o", o]
+        if rng.random() < 0.4:
+            argv += ["--oil-temp", rng.choice(CLI_TEMPS[:3]) if rng.random() < 0.7 else rng.choice(CLI_TEMPS)]
+        if rng.random() < 0.3:
+            j = out_path(".json"); outs.append(j); argv += ["--json", j]
     elif cmd == "mesh-profile":
         o = out_path(".csv"); outs += [o, o + ".meta.json"]
         argv += [c + "spur-seed000.yaml", "--mesh", rng.choice(["m1", "mesh", ""]), "--speed",
