@@ -7,7 +7,8 @@
 # missing component, a bearing outside its shaft, a contradicting centre distance) exit 2 with
 # the file and the component id; the hand-made planetary, two-stage planetary and idler models
 # import with the ratios worked out from their tooth numbers, and hostile planetary forms are
-# refused at the component.
+# refused at the component; public models of other exporters (SEW 1.0, the FVA planetary stage
+# 1.1, the worm stage in JSON) import or are refused at the component.
 # Usage: cli_rexs.sh GEARLOSS_BINARY SOURCE_DIR
 set -u
 source "$(dirname "$0")/cli_common.sh" "$@"
@@ -129,6 +130,57 @@ hostile_pl() {  # hostile_pl NAME EXPECTED_REGEX PYTHON_EDIT   (edits the planet
 }
 hostile_pl "planetary stage without its carrier relation" "hp.rexs:[0-9]+: component 5 \(planetary_stage 'Planetary stage'\): no planet_carrier_shaft" "t = t.replace('type=\"planet_carrier_shaft\"', 'type=\"other\"')"
 hostile_pl "ring gear that is external" "component 23 \(cylindrical_gear 'Ring'\): .*external gear" "t = t.replace('ring_gear', 'cylindrical_gear')"
+
+# Public models the importer was not written against (tests/data/rexs/README.md).
+# SEW three-stage helical gearbox, FVA-Workbench 5.0.4, REXS 1.0: no lubricant component (the oil
+# is given with --oil), angles in the degree sign, a bearing's designation in `name`, shaft 36 on
+# three bearings (u = 13.5, 66 and 135 mm: statically indeterminate; the NUP at 66 mm is nearer
+# 13.5, 52.5 mm against 69 mm, and is written there, paired).
+sew=$data/SEW_3-stage_cylindrical_gearbox_1.0.rexs
+mkdir -p "$tmp/sew"
+"$bin" import "$sew" -o "$tmp/sew/x.yaml" 2> "$tmp/sew/err"
+check "SEW 1.0 without a lubricant: exit 2" test $? -eq 2
+check "SEW 1.0 without a lubricant: says to give --oil" grep -q "no lubricant component: give an oil file with --oil" "$tmp/sew/err"
+"$bin" import "$sew" -o "$tmp/sew/x.yaml" --oil "$src/configs/oils/MINR.yaml" 2> "$tmp/sew/err"
+check "SEW 1.0 with --oil: exit 0" test $? -eq 0
+check "SEW 1.0: gear data equal its attributes (independent reader)" "$py" "$src/tests/rexs_independent.py" "$sew" "$tmp/sew/x.yaml" -
+check "SEW 1.0: the middle bearing of shaft 36 paired with the nearer outer one" grep -qE "position: 13.5 mm +# assumed: REXS 50 u_coordinate_on_shaft_inner_side \[mm\] = 66 mm" "$tmp/sew/x.yaml"
+check "SEW 1.0: a warning names the bearing and its shaft" grep -q "component 50 .*shaft 36 has bearings at 3 axial positions" "$tmp/sew/err"
+"$bin" check "$tmp/sew/x.yaml" > /dev/null 2>&1
+check "SEW 1.0: check accepts the imported case" test $? -eq 0
+"$bin" map "$tmp/sew/x.yaml" -o "$tmp/sew/map.csv" 2> /dev/null
+check "SEW 1.0: map solves the imported case" test $? -eq 0
+# The worm stage in JSON writes enums without a value as null: read as absent, the stage refused.
+"$bin" import "$data/FVA_worm_stage_1-4.rexsj" -o "$tmp/w.yaml" 2> "$tmp/w.err"
+check "worm stage JSON (null values): refused at the worm stage" grep -qE "component [0-9]+ \(worm_stage 'Schneckenstufe \[3\]'\): .*not represented" "$tmp/w.err"
+# FVA planetary stage, FVA-Workbench 5.5, REXS 1.1: a two-cheek carrier of two coaxial shafts
+# (4 with the bearings and the load, 6 joined to it through couplings) and a connecting shaft 260
+# with no gear and no bearing. As published its concept bearings (REXS 1.1 gives them no
+# diameters) take the shafts' bores, 43.2 mm for the planets, which have no catalogue row for an
+# assumed bearing; it is no longer refused at the carrier.
+fpl=$data/FVA_Planetary_stage_-_Minus_gearing_1.1.rexs
+"$bin" import "$fpl" -o "$tmp/pl.yaml" 2> "$tmp/pl.err"
+check "FVA planetary 1.1: the carrier of two shafts is not refused" bash -c "! grep -q 'planet_carrier_shaft' '$tmp/pl.err'"
+# With catalogue bores given to its concept bearings (REXS 1.3 names, inner_diameter): sun 17,
+# ring 61 (held: connected to the housing only), carrier output, i = 1 + 61/17 = 4.58824.
+"$py" - "$fpl" "$tmp/pl3.rexs" <<'PY'
+import re, sys
+t = open(sys.argv[1], encoding="utf-8").read().replace('version="1.1"', 'version="1.3"', 1)
+for cid, d in {"232": 45, "233": 45, "234": 45, "244": 45, "245": 45, "246": 45, "36": 35, "37": 35, "59": 60, "60": 60}.items():
+    t, n = re.subn(r'(<component id="%s" [^>]*type="concept_bearing"[^>]*>)' % cid,
+                   r'\1<attribute id="inner_diameter" unit="mm">%d</attribute>' % d, t)
+    assert n == 1, cid
+open(sys.argv[2], "w", encoding="utf-8").write(t)
+PY
+"$bin" import "$tmp/pl3.rexs" -o "$tmp/pl3.yaml" 2> "$tmp/pl3.err"
+check "FVA planetary (bores given): exit 0" test $? -eq 0
+check "FVA planetary: shaft 6 a part of the carrier, shaft 4" grep -q "^# shaft_6 (REXS 6): a part of the carrier of planetary stage 9 .*turning with shaft 4" "$tmp/pl3.yaml"
+check "FVA planetary: the connecting shaft 260 set aside with a warning" grep -q "component 260 (shaft 'Shaft \[260\]'): the shaft carries no gear and sits in no bearing" "$tmp/pl3.err"
+"$bin" check "$tmp/pl3.yaml" > "$tmp/pl3.check" 2>&1
+check "FVA planetary: check accepts it" test $? -eq 0
+check "FVA planetary: i = 1 + 61/17 = 4.58824" grep -q "i = n_in/n_out = 4.58824)" "$tmp/pl3.check"
+"$bin" map "$tmp/pl3.yaml" -o "$tmp/pl3.csv" 2> /dev/null
+check "FVA planetary: map solves it" test $? -eq 0
 
 echo "cli_rexs: $pass passed, $fail failed"
 test $fail -eq 0

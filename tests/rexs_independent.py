@@ -2,12 +2,12 @@
 """The gear data of an imported REXS case against the REXS file itself, read here with
 xml.etree (not with gearloss's reader) and the case with PyYAML (not with gearloss's loader).
 
-usage: rexs_independent.py MODEL.rexs CASE.yaml OIL.yaml
+usage: rexs_independent.py MODEL.rexs CASE.yaml OIL.yaml   (OIL.yaml "-": a model without a lubricant)
 Checks, for every cylindrical gear: teeth, normal module, face width, helix angle and hand
 (ISO 21771: positive = right), profile shift and pressure angle of its flanks, position on its
 shaft; for every cylindrical stage: its gears and centre distance; the oil's viscosities at
-40 and 100 degC and its density. Units: the REXS unit of each attribute (mm, deg, mm^2/s,
-kg/dm^3) converted here by hand.
+40 and 100 degC and its density. Units: the REXS unit of each attribute (mm, deg or the degree
+sign REXS 1.0 and 1.1 exporters write, mm^2/s, kg/dm^3) converted here by hand.
 """
 import sys
 import xml.etree.ElementTree as ET
@@ -19,14 +19,14 @@ root = ET.parse(model).getroot()
 comps = {int(c.get("id")): c for c in root.find("components")}
 rels = list(root.find("relations"))
 case = yaml.safe_load(open(case_file))
-oil = yaml.safe_load(open(oil_file))
+oil = None if oil_file == "-" else yaml.safe_load(open(oil_file))
 failures = []
 
 
 def attr(c, name):
     for a in c.findall("attribute"):
         if a.get("id") == name:
-            return a.get("unit"), a.text.strip()
+            return a.get("unit"), (a.text or "").strip()
     return None, None
 
 
@@ -62,7 +62,7 @@ for cid, c in comps.items():
     v, u = qty(g["position"]); assert u == "mm"
     expect(f"gear {cid} position", v, mm(c, "u_coordinate_on_shaft"))
     unit, beta = attr(c, "helix_angle_reference_diameter")
-    assert unit == "deg"
+    assert unit in ("deg", "\u00b0"), unit
     beta = float(beta)
     v, u = qty(g["helix_angle"]); assert u == "deg"
     expect(f"gear {cid} helix angle", v, abs(beta))
@@ -88,18 +88,21 @@ for rel in rels:
     v, u = qty(m["centre_distance"]); assert u == "mm"
     expect(f"stage {roles['stage']} centre distance", v, mm(comps[roles["stage"]], "center_distance"))
 
-lub = next(c for c in comps.values() if c.get("type") == "lubricant")
-pts = oil["viscosity"]["points"]
-assert attr(lub, "viscosity_at_40_degree_celsius")[0] == "mm^2 / s"
-expect("nu40", qty(pts[0][1])[0], float(attr(lub, "viscosity_at_40_degree_celsius")[1]))
-expect("nu100", qty(pts[1][1])[0], float(attr(lub, "viscosity_at_100_degree_celsius")[1]))
-unit, rho = attr(lub, "density_at_15_degree_celsius")
-assert unit == "kg / dm^3"
-expect("density", qty(oil["density"]["value"])[0], float(rho) * 1000)  # 1 kg/dm^3 = 1000 kg/m^3
+lub = next((c for c in comps.values() if c.get("type") == "lubricant"), None)
+if (lub is None) != (oil is None):
+    failures.append("a lubricant in the model and an oil file go together")
+if lub is not None:
+    pts = oil["viscosity"]["points"]
+    assert attr(lub, "viscosity_at_40_degree_celsius")[0] == "mm^2 / s"
+    expect("nu40", qty(pts[0][1])[0], float(attr(lub, "viscosity_at_40_degree_celsius")[1]))
+    expect("nu100", qty(pts[1][1])[0], float(attr(lub, "viscosity_at_100_degree_celsius")[1]))
+    unit, rho = attr(lub, "density_at_15_degree_celsius")
+    assert unit == "kg / dm^3"
+    expect("density", qty(oil["density"]["value"])[0], float(rho) * 1000)  # 1 kg/dm^3 = 1000 kg/m^3
 
 if n_gears == 0:
     failures.append("no cylindrical gear in the model")
 if failures:
     print("\n".join(failures))
     sys.exit(1)
-print(f"{n_gears} gears, {len(meshes)} stages and the oil equal the REXS attributes")
+print(f"{n_gears} gears, {len(meshes)} stages" + ("" if lub is None else " and the oil") + " equal the REXS attributes")

@@ -159,3 +159,29 @@ TEST_CASE("rexs: coded arrays decode", "[rexs]") {
     CHECK(!rexs::decode_coded_array("int32", "AQAAAP7///"));       // 10 characters, 7 bytes: not whole values
     CHECK(!rexs::decode_coded_array("int32", "AQ*AAP7///8="));     // not base64
 }
+
+TEST_CASE("rexs: an attribute written without a value reads as absent", "[rexs]") {
+    // FVA-Workbench writes attributes it has no value for as an empty XML element or a JSON null
+    // (its worm-stage export: `"enum": null`); REXS gives them no value, so they read as absent,
+    // as if not written. Gear 16's tip_diameter (1 mm in the file) emptied both ways:
+    const std::string xml = slurp(data("FVA-Industriegetriebe_2stufig_1-4.rexs"));
+    const std::string json = slurp(data("FVA-Industriegetriebe_2stufig_1-4.rexsj"));
+    const auto x = rexs::parse_xml(replaced(xml, "<attribute id=\"tip_diameter\" unit=\"mm\">1</attribute>",
+                                            "<attribute id=\"tip_diameter\" unit=\"mm\"/>"),
+                                   "e.rexs");
+    const auto j = rexs::parse_json(replaced(json, "\"id\": \"tip_diameter\",\n                        \"unit\": \"mm\",\n"
+                                                   "                        \"floating_point\": 1.0",
+                                             "\"id\": \"tip_diameter\", \"unit\": \"mm\", \"floating_point\": null"),
+                                    "e.rexsj");
+    for (const auto* m : {&x, &j}) {
+        CHECK(!rexs::number(*m, m->at(16), "tip_diameter"));
+        CHECK(!rexs::text(*m, m->at(16), "tip_diameter"));
+        // The case is mapped without the tip diameter (no warning about the 1 mm).
+        const auto r = rexs::map_to_case(*m, {});
+        for (const auto& w : r.warnings) CHECK(w.find("tip_diameter") == std::string::npos);
+    }
+    // The worm stage in JSON (null enums on its materials) is read and refused at its stage.
+    const auto w = rexs::read_model(data("FVA_worm_stage_1-4.rexsj"));
+    CHECK_THAT(error_of([&] { (void)rexs::map_to_case(w, {}); }),
+               Catch::Matches(".*FVA_worm_stage_1-4\\.rexsj: component [0-9]+ \\(worm_stage 'Schneckenstufe.*'\\): .*not represented.*"));
+}

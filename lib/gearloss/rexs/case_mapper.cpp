@@ -239,11 +239,83 @@ void Mapper::choose_input_output() {
     }
 }
 
+// A shaft on bearings at more than two axial positions (a three-bearing shaft: valid REXS and
+// common in industrial gear units) is statically indeterminate, while gearloss finds its bearing
+// loads by the two-support lever rule (gearbox/statics.hpp). The two outermost positions are
+// kept and a bearing between them is written at the nearer one, paired with its bearings there:
+// its friction is counted, its load is the pair's share rather than the elastic split (a warning
+// names it and the case line says it is assumed).
+void Mapper::plan_support_positions() {
+    std::map<int, std::vector<std::pair<double, const Component*>>> on_shaft;
+    for (const auto& c : m.components) {
+        if (c.type != "rolling_bearing_with_catalog_geometry" && c.type != "rolling_bearing_with_detailed_geometry" &&
+            c.type != "concept_bearing")
+            continue;
+        const auto sides = m.relations_with("side", "assembly", c.id);
+        if (sides.empty() || planet_of_bearing(c, *sides.front()) != -1) continue;
+        const auto inner = sides.front()->ref("inner_part"), outer = sides.front()->ref("outer_part");
+        int si = inner ? shaft_index_of(*inner) : -1;
+        std::string u_attr = "u_coordinate_on_shaft_inner_side";
+        if (si < 0 && outer) {
+            si = shaft_index_of(*outer);
+            u_attr = "u_coordinate_on_shaft_outer_side";
+        }
+        if (si < 0) continue;
+        if (const auto u = quantity(m, c, u_attr, Quantity::length)) on_shaft[si].emplace_back(*u, &c);
+    }
+    for (const auto& [si, list] : on_shaft) {
+        std::set<double> positions;
+        for (const auto& [u, c] : list) positions.insert(u);
+        if (positions.size() <= 2) continue;
+        const double lo = *positions.begin(), hi = *positions.rbegin();
+        for (const auto& [u, c] : list) {
+            if (u == lo || u == hi) continue;
+            const double to = u - lo <= hi - u ? lo : hi;
+            support_moved[c->id] = to;
+            warn(*c, fmt::format("shaft {} has bearings at {} axial positions (statically indeterminate): the bearing at "
+                                 "{:g} mm is written at the nearer outer support, {:g} mm, and shares its load",
+                                 shafts[static_cast<size_t>(si)].comp->id, positions.size(), u * 1e3, to * 1e3));
+        }
+    }
+}
+
+// A shaft that carries no gear and sits in no bearing (FVA-Workbench joins the two cheeks of a
+// carrier through such a shaft and couplings) has no loss in gearloss's model and no speed the
+// gear train fixes: it is written as a comment, with a warning, not as a shaft of the case.
+void Mapper::set_aside_unconnected_shafts() {
+    for (size_t i = 0; i < shafts.size(); ++i) {
+        Shaft& s = shafts[i];
+        if (s.role != ShaftRole::plain || static_cast<int>(i) == input || static_cast<int>(i) == output) continue;
+        if (std::any_of(gears.begin(), gears.end(), [&](const Gear& g) { return g.shaft == static_cast<int>(i) || g.carrier == static_cast<int>(i); }))
+            continue;
+        bool in_bearing = false;
+        for (const char* role : {"inner_part", "outer_part"})
+            for (const Relation* r : m.relations_with("side", role, s.comp->id))
+                if (const auto b = r->ref("assembly")) {
+                    const std::string& t = m.at(*b).type;
+                    in_bearing = in_bearing || t == "rolling_bearing_with_catalog_geometry" ||
+                                 t == "rolling_bearing_with_detailed_geometry" || t == "concept_bearing";
+                }
+        if (in_bearing) continue;
+        if (std::any_of(sets.begin(), sets.end(), [&](const PlanetarySet& ps) {
+                return std::find(ps.members.begin(), ps.members.end(), static_cast<int>(i)) != ps.members.end();
+            }))
+            continue;
+        s.role = ShaftRole::unconnected;
+        s.held_reason = "carries no gear and sits in no bearing: no loss of its own, not a shaft of the case";
+        warn(*s.comp, "the shaft " + s.held_reason);
+    }
+}
+
 void Mapper::write_shafts_gears_meshes(YamlOut& y) {
     y.comment(0, "Shafts: REXS shaft components (axis positions from their support vectors).");
     std::string list;
     for (size_t i = 0; i < shafts.size(); ++i) {
         const Shaft& s = shafts[i];
+        if (s.role == ShaftRole::carrier_part || s.role == ShaftRole::unconnected) {
+            y.comment(0, s.name + " (REXS " + std::to_string(s.comp->id) + "): " + s.held_reason);
+            continue;
+        }
         if (s.role != ShaftRole::plain) {
             y.comment(0, s.name + " (REXS " + std::to_string(s.comp->id) + "): a planet " + (s.role == ShaftRole::pin ? "pin" : "shaft") +
                              ", part of the planet gear on its carrier");
@@ -373,13 +445,15 @@ void Mapper::write_shafts_gears_meshes(YamlOut& y) {
 }  // namespace detail
 
 ImportResult map_to_case(const Model& m, const ImportOptions& options) {
-    detail::Mapper mp{m, options, {}, {}, {}, -1, -1, {}, {}, {}};
+    detail::Mapper mp{m, options, {}, {}, {}, -1, -1, {}, {}, {}, {}};
     mp.refuse_unsupported();
     mp.read_shafts();
     mp.read_gears();
     mp.read_planetary();
     mp.choose_input_output();
     mp.hold_planetary_members();
+    mp.plan_support_positions();
+    mp.set_aside_unconnected_shafts();
     detail::YamlOut y;
     y.comment(0, "Imported from the REXS model " + io::excerpt(m.file, 120) + " (REXS " + m.version + ", " +
                      io::excerpt(m.application_id, 40) + " " + io::excerpt(m.application_version, 40) + ") by gearloss import.");

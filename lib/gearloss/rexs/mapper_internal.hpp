@@ -49,8 +49,10 @@ inline const char* designation_attribute(const Model& m) { return m.version == "
 
 // What a REXS shaft is in gearloss's model: a shaft of its own, or the shaft of a planet or a
 // planet pin of a planetary stage (planetary.cpp), which gearloss folds into the planet gear on
-// its carrier.
-enum class ShaftRole { plain, planet, pin };
+// its carrier, or a further shaft of a carrier made of several (a two-cheek carrier), which
+// turns with the carrier's shaft, or a shaft with no gear and no bearing (a connecting shaft
+// between couplings), which has no loss of its own and no speed the gear train fixes.
+enum class ShaftRole { plain, planet, pin, carrier_part, unconnected };
 
 struct Shaft {
     const Component* comp = nullptr;
@@ -98,6 +100,8 @@ struct Mapper {
     int input = -1, output = -1;
     std::map<std::int64_t, int> shaft_of_id, gear_of_id;
     std::vector<PlanetarySet> sets;
+    // Bearings written at another axial position than REXS gives (plan_support_positions): id -> u [m].
+    std::map<std::int64_t, double> support_moved;
 
     void warn(const Component& c, const std::string& text);
     int shaft_index_of(std::int64_t id) const;
@@ -106,6 +110,9 @@ struct Mapper {
     void read_shafts();
     void read_gears();
     void read_planetary();           // planetary.cpp
+    // The carrier shaft of a planetary stage among its planet_carrier_shaft relations (several:
+    // the others become carrier parts).
+    int carrier_of(const Component& stage, const std::vector<int>& carriers);
     void hold_planetary_members();   // planetary.cpp: after choose_input_output
     // A bearing of a planet (between its planet shaft or pin and a pin, side plate or the
     // carrier): the planet gear it runs under (written on the carrier), -2 for a bearing of
@@ -114,6 +121,11 @@ struct Mapper {
     // "{name: X, fixed: true}" or "X": how the shaft list names shaft i.
     std::string shaft_entry(size_t i) const;
     void choose_input_output();
+    // A shaft on more than two support positions: its inner bearings paired with the nearer
+    // outermost one (case_mapper.cpp), filling support_moved.
+    void plan_support_positions();
+    // Shafts with no gear and no bearing, neither input nor output: ShaftRole::unconnected.
+    void set_aside_unconnected_shafts();
     void write_shafts_gears_meshes(YamlOut& y);
     void write_bearings(YamlOut& y);
     void write_seals(YamlOut& y);

@@ -92,7 +92,11 @@ void Mapper::write_bearings(YamlOut& y) {
             y.line(4, "under_gear: " + g.name, fmt::format("REXS side relation {}: a bearing of the planet, one per planet", side.id));
         } else {
             y.line(4, "shaft: " + s.name, "REXS side relation " + std::to_string(side.id));
-            y.line(4, "position: " + num(u * 1e3) + " mm", src(c, u_attr));
+            if (const auto moved = support_moved.find(c.id); moved != support_moved.end())
+                y.line(4, "position: " + num(moved->second * 1e3) + " mm",
+                       "assumed: " + src(c, u_attr) + " = " + num(u * 1e3) + " mm; paired with the nearer outer support");
+            else
+                y.line(4, "position: " + num(u * 1e3) + " mm", src(c, u_attr));
         }
         if (locating) y.line(4, "locating: true", src(c, "axial_force_absorption") + " " + io::excerpt(*axial, 30));
         ++written;

@@ -33,9 +33,14 @@ const char* to_string(ValueKind k) {
     return "?";
 }
 
+bool Attribute::has_value() const {
+    const bool scalar = kind == ValueKind::unknown || kind == ValueKind::enum_value;
+    return !(scalar && text.empty() && numbers.empty() && texts.empty() && rows.empty());
+}
+
 const Attribute* Component::find(const std::string& attribute) const {
     for (const auto& a : attributes)
-        if (a.id == attribute) return &a;
+        if (a.id == attribute) return a.has_value() ? &a : nullptr;
     return nullptr;
 }
 

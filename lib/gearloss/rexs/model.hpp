@@ -46,6 +46,10 @@ struct Attribute {
     std::vector<std::string> texts;         // string, boolean or enum arrays
     std::vector<std::vector<double>> rows;  // matrices and arrays of arrays
     int line = 0;                           // 1-based line in an XML file (0 when not known)
+    // No value written: an XML attribute element with no text (`<attribute id="x" unit="mm"/>`),
+    // a JSON value `null`, an empty enum. Exporters (FVA-Workbench) write every attribute of a
+    // component's type this way when it has no value; it reads as absent.
+    bool has_value() const;
 };
 
 struct Component {
@@ -53,7 +57,7 @@ struct Component {
     std::string type, name;
     std::vector<Attribute> attributes;
     int line = 0;
-    const Attribute* find(const std::string& attribute) const;
+    const Attribute* find(const std::string& attribute) const;  // nullptr when absent or without a value
     // "cylindrical_gear 15 'Cylindrical gear [27]'": how messages and comments name it.
     std::string label() const;
 };

@@ -31,6 +31,58 @@ std::string Mapper::shaft_entry(size_t i) const {
     return shafts[i].held ? "{name: " + shafts[i].name + ", fixed: true}" : shafts[i].name;
 }
 
+// A carrier of several shafts: FVA-Workbench writes a two-cheek carrier as coaxial shafts, each
+// a planet_carrier_shaft of the stage, joined through couplings and side plates. They turn as
+// one, so gearloss's carrier is the one that is supported or loaded (a bearing, an external
+// load); the others are parts of it, written as comments. A gear or bearing on such a part, or
+// a part off the carrier's axis, is refused at the shaft.
+int Mapper::carrier_of(const Component& st, const std::vector<int>& carriers) {
+    const auto is_bearing = [](const Component& c) {
+        return c.type == "rolling_bearing_with_catalog_geometry" || c.type == "rolling_bearing_with_detailed_geometry" ||
+               c.type == "concept_bearing";
+    };
+    const auto bearings_on = [&](int i) {
+        std::vector<const Component*> out;
+        const std::int64_t id = shafts[static_cast<size_t>(i)].comp->id;
+        for (const char* role : {"inner_part", "outer_part"})
+            for (const Relation* r : m.relations_with("side", role, id))
+                if (const auto b = r->ref("assembly"); b && is_bearing(m.at(*b))) out.push_back(&m.at(*b));
+        return out;
+    };
+    const auto loaded = [&](int i) {
+        for (const Relation* r : m.relations_with("assembly", "assembly", shafts[static_cast<size_t>(i)].comp->id))
+            if (const auto p = r->ref("part"); p && m.at(*p).type == "external_load") return true;
+        return false;
+    };
+    if (carriers.size() == 1) return carriers.front();
+    int carrier = -1;
+    for (int i : carriers)
+        if (carrier < 0 && (!bearings_on(i).empty() || loaded(i))) carrier = i;
+    if (carrier < 0) carrier = carriers.front();
+    const Shaft& cs = shafts[static_cast<size_t>(carrier)];
+    for (int i : carriers) {
+        if (i == carrier) continue;
+        Shaft& s = shafts[static_cast<size_t>(i)];
+        if (std::hypot(s.x - cs.x, s.y - cs.y) > 1e-6)
+            m.fail(*s.comp, fmt::format("a planet_carrier_shaft of planetary stage {} off the axis of its carrier shaft {}", st.id,
+                                        cs.comp->id));
+        for (const auto& g : gears)
+            if (g.shaft == i)
+                m.fail(*s.comp, fmt::format("the second carrier shaft of planetary stage {} carries gear {}: gearloss's carrier "
+                                            "is one shaft",
+                                            st.id, g.comp->id));
+        if (const auto b = bearings_on(i); !b.empty())
+            m.fail(*s.comp, fmt::format("the second carrier shaft of planetary stage {} sits in bearing {}: gearloss's carrier "
+                                        "is one shaft (its bearings on shaft {})",
+                                        st.id, b.front()->id, cs.comp->id));
+        s.role = ShaftRole::carrier_part;
+        s.held_reason = fmt::format("a part of the carrier of planetary stage {} (REXS planet_carrier_shaft), turning with "
+                                    "shaft {}",
+                                    st.id, cs.comp->id);
+    }
+    return carrier;
+}
+
 void Mapper::read_planetary() {
     // The gear pairs of every cylindrical_stage (gear indices), to find what each planet meshes.
     std::vector<std::pair<const Component*, std::pair<int, int>>> pairs;
@@ -67,9 +119,8 @@ void Mapper::read_planetary() {
         const auto pins = shafts_of("planet_pin");
         if (carriers.empty())
             m.fail(*st, "no planet_carrier_shaft relation names the stage's carrier: its planets are carried by nothing");
-        if (carriers.size() > 1) m.fail(*st, "several planet_carrier_shaft relations: a carrier of several shafts is not represented");
         if (central.size() > 2) m.fail(*st, "more than two central_shaft relations: a stage has one sun and one ring");
-        ps.carrier = carriers.front();
+        ps.carrier = carrier_of(*st, carriers);
         for (const auto* list : {&planet_shafts, &pins})
             for (int i : *list)
                 if (!planet_or_pin.insert(i).second)
@@ -79,7 +130,7 @@ void Mapper::read_planetary() {
         for (int i : planet_shafts) shafts[static_cast<size_t>(i)].role = ShaftRole::planet;
         for (int i : pins) shafts[static_cast<size_t>(i)].role = ShaftRole::pin;
         for (int i : central)
-            if (planet_or_pin.count(i) || (i == carriers.front()))
+            if (planet_or_pin.count(i) || std::find(carriers.begin(), carriers.end(), i) != carriers.end())
                 m.fail(*shafts[static_cast<size_t>(i)].comp, fmt::format("a central shaft of planetary stage {} is its carrier or a planet's too", st->id));
         const auto is_central = [&](int s) { return std::find(central.begin(), central.end(), s) != central.end(); };
 
@@ -283,7 +334,8 @@ int Mapper::planet_of_bearing(const Component& bearing, const Relation& side) co
     int planet_side = -1, other = -1;
     for (const auto& id : {inner, outer}) {
         const int s = id ? shaft_index_of(*id) : -1;
-        if (s >= 0 && shafts[static_cast<size_t>(s)].role != ShaftRole::plain) (planet_side < 0 ? planet_side : other) = s;
+        const ShaftRole role = s >= 0 ? shafts[static_cast<size_t>(s)].role : ShaftRole::plain;
+        if (role == ShaftRole::planet || role == ShaftRole::pin) (planet_side < 0 ? planet_side : other) = s;
         else if (s >= 0) other = s;
     }
     if (planet_side < 0) return -1;

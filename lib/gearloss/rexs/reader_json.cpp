@@ -124,6 +124,11 @@ private:
         for (const auto& [k, v] : o.items()) {
             if (k == "id" || k == "unit") continue;
             ++kinds;
+            if (v.is_null()) {
+                // No value (REXS JSON writes `"enum": null` for an attribute left empty): absent.
+                a.kind = ValueKind::unknown;
+                continue;
+            }
             if (k == "floating_point" || k == "integer" || k == "reference_component") {
                 if (!v.is_number()) fail(key, k + " value is not a number");
                 a.kind = k == "floating_point" ? ValueKind::floating_point
