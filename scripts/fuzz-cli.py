@@ -404,8 +404,10 @@ def one_run(args):
         if rng.random() < 0.08 and readable:
             stdout_file = open(os.path.join(t, rng.choice(readable)), "r+b")
         try:
+            # The program's copy finds no shipped data beside it; import needs the bearing catalogue.
+            env = dict(os.environ, GEARLOSS_DATA_DIR=os.path.join(t, "configs")) if argv[1] == "import" else None
             p = subprocess.run(argv, cwd=t, stdout=stdout_file or subprocess.PIPE, stderr=subprocess.PIPE,
-                               timeout=timeout)
+                               timeout=timeout, env=env)
             rc, out, err, hung = p.returncode, p.stdout or b"", p.stderr, False
         except subprocess.TimeoutExpired as e:
             rc, out, err, hung = None, e.stdout or b"", e.stderr or b"", True

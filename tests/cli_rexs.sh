@@ -112,6 +112,11 @@ head, comps = t.split('"components"', 1)  # the component 14, not a ref to it
 open(sys.argv[2], "w", encoding="utf-8").write(head + '"components"' + re.sub(r'("id" ?: ?)14\b', r"\g<1>13", comps, count=1))
 PY
 hostile_file "duplicate id (JSON)" "$tmp/dup.rexsj" "dup.rexsj: .*duplicate component id 13"
+# A number beyond a double in JSON (1e400) is an input error, not an internal one.
+sed 's/"floating_point" : 50\.0/"floating_point" : 1e400/; s/"floating_point": 50\.0/"floating_point": 1e400/' \
+    "$data/FVA-Industriegetriebe_2stufig_1-4.rexsj" > "$tmp/over.rexsj"
+check "1e400 in JSON: the edit took" grep -q "1e400" "$tmp/over.rexsj"
+hostile_file "1e400 in JSON" "$tmp/over.rexsj" "over.rexsj: not a valid REXS value: .*number overflow"
 # Archives: a member that unpacks to 48 MiB (within the 64 MiB bound) of an XML comment reads;
 # one that unpacks to 70 MiB is refused as it unpacks (its header is not trusted).
 "$py" - "$fva14" "$tmp" <<'PY'
