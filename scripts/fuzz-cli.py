@@ -2,9 +2,10 @@
 """Black-box fuzzing of the gearloss command line, with four oracles.
 
 Every run happens in a fresh temporary directory holding a copy of the shipped configs
-(cases, oils, the bearing catalogue, drive cycles), a small recording made by `synth`
-and a copy of the program itself. A run draws a command (check, point, map, report,
-compare, cycle, diagnose, synth, merge, mesh-profile, duty), a shipped case, possibly a
+(cases, oils, the bearing catalogue, drive cycles), a small recording made by `synth`,
+the FVA example REXS model and a copy of the program itself. A run draws a command (check,
+point, map, report, compare, cycle, diagnose, synth, merge, mesh-profile, duty, import: a hostile
+REXS model, see hostile_rexs), a shipped case, possibly a
 mutated case or oil file (a value replaced by a hostile token: no unit, a wrong unit
 kind, NaN, 1e308, a negative, a control character, a YAML tag, a duplicate key, a
 deleted line) and output paths that are sometimes fresh, sometimes an input, an earlier
@@ -136,10 +137,87 @@ def mutate_yaml(text, rng):
     return "\n".join(lines)
 
 
+REXS_MODELS = ["FVA-Industriegetriebe_2stufig_1-4.rexs", "FVA-Industriegetriebe_2stufig_1-4.rexsj"]
+REXS_KINDS = ["truncated", "empty", "deep", "loop", "huge", "nonfinite", "unit", "duplicate", "bytes", "zip_big",
+              "zip_over", "zip_many", "intact"]
+REXS_NUMBER_RE = re.compile(r'(>|"floating_point" ?: ?)(-?[0-9][0-9.eE+-]*)')
+
+
+def hostile_rexs(rng, t):
+    """Writes a hostile REXS model into t/rexs/ and returns its relative path. Kinds: truncated
+    XML/JSON, an empty file, deep nesting, an assembly loop, huge numbers, NaN/inf values, units
+    of another quantity or none REXS knows, duplicate ids, flipped bytes, and .rexsz archives:
+    a member that unpacks to 48 MiB (within the 64 MiB bound), one that unpacks beyond it, and
+    many members. The import must fail with a message (exit 2) or write a case: never crash."""
+    src = rng.choice(REXS_MODELS)
+    xml = src.endswith(".rexs")
+    with open(os.path.join(t, "rexs", src), encoding="utf-8") as f:
+        text = f.read()
+    kind = rng.choice(REXS_KINDS)
+    ext = ".rexs" if xml else ".rexsj"
+    if kind == "truncated":
+        text = text[:rng.randrange(len(text))]
+    elif kind == "empty":
+        text = rng.choice(["", " ", "\n", "\ufeff"])
+    elif kind == "deep":
+        n = rng.choice([33, 100, 5000, 200000])
+        if xml:
+            text = text.replace("<components>", "<components>" + "<x>" * n + "</x>" * n, 1)
+        else:
+            text = text.replace('"model"', '"deep": ' + "[" * n + "]" * n + ', "model"', 1)
+    elif kind == "loop":
+        # gear 15 sits on shaft 12 (relation 5); a relation making shaft 12 a part of gear 15 closes a loop.
+        if xml:
+            text = text.replace("<relations>", '<relations><relation id="9999" type="assembly"><ref hint="cylindrical_gear" '
+                                'id="15" role="assembly"/><ref hint="shaft" id="12" role="part"/></relation>', 1)
+        else:
+            text = text.replace('"relations": [', '"relations": [{"id": 9999, "type": "assembly", "refs": [{"id": 15, '
+                                '"role": "assembly", "hint": "cylindrical_gear"}, {"id": 12, "role": "part", "hint": '
+                                '"shaft"}]}, ', 1)
+    elif kind in ("huge", "nonfinite"):
+        values = ["1e308", "-1e308", "1e400", "1e-400", "4e15"] if kind == "huge" else ["NaN", "nan", "inf", "-inf",
+                                                                                          "Infinity", "1e999"]
+        matches = list(REXS_NUMBER_RE.finditer(text))
+        for m in sorted(rng.sample(matches, min(len(matches), rng.choice([1, 1, 3, 20]))), key=lambda m: -m.start()):
+            text = text[:m.start(2)] + rng.choice(values) + text[m.end(2):]
+    elif kind == "unit":
+        units = list(re.finditer(r'unit"?\s*[=:]\s*"([^"]*)"', text))
+        for m in sorted(rng.sample(units, min(len(units), rng.choice([1, 2, 10]))), key=lambda m: -m.start()):
+            text = text[:m.start(1)] + rng.choice(["kg", "furlong", "mm^9", "", "1 / min", "C", "N m", "%"]) + text[m.end(1):]
+    elif kind == "duplicate":
+        head, sep, comps = text.partition("<components>" if xml else '"components"')
+        text = head + sep + re.sub(r'(<component id="|"id" ?: ?)14\b', r"\g<1>13", comps, count=1)
+    elif kind == "bytes":
+        b = bytearray(text.encode("utf-8"))
+        for _ in range(rng.choice([1, 5, 50])):
+            b[rng.randrange(len(b))] = rng.randrange(256)
+        text = b.decode("utf-8", "replace")
+    if kind.startswith("zip"):
+        import zipfile
+        path = os.path.join("rexs", "h.rexsz")
+        with zipfile.ZipFile(os.path.join(t, path), "w", zipfile.ZIP_DEFLATED) as z:
+            if kind == "zip_many":
+                for i in range(rng.choice([2, 1200])):
+                    z.writestr(f"m{i}.txt", "x")
+                z.writestr("model" + ext, text)
+            else:
+                pad = (48 if kind == "zip_big" else 70) << 20
+                filler = "<!--" + " " * pad + "-->" if xml else " " * pad
+                z.writestr("model" + ext, text.replace("\n", "\n" + filler, 1) if xml else filler + text)
+        return path
+    path = os.path.join("rexs", "h" + ext)
+    with open(os.path.join(t, path), "w", encoding="utf-8", newline="") as f:
+        f.write(text)
+    return path
+
+
 def make_template(binary, workdir):
-    """configs/ copy, one steady recording per case for diagnose, the program's copy."""
+    """configs/ copy, one steady recording per case for diagnose, the REXS models, the program's copy."""
     tpl = os.path.join(workdir, "template")
     shutil.copytree(os.path.join(ROOT, "configs"), os.path.join(tpl, "configs"))
+    os.makedirs(os.path.join(tpl, "rexs"))
+    for name in REXS_MODELS:
+        shutil.copy2(os.path.join(ROOT, "tests", "data", "rexs", name), os.path.join(tpl, "rexs", name))
     for case in ["transfer-box.yaml"]:
         out = os.path.join(tpl, "configs", case.replace(".yaml", "-rec.csv"))
         subprocess.run([binary, "synth", os.path.join(tpl, "configs", case), "--effect", "windage=20W",
@@ -193,7 +271,7 @@ def draw_run(rng, t):
         return a
 
     cmd = rng.choice(["check", "point", "map", "map", "report", "compare", "cycle", "diagnose", "synth", "merge",
-                      "mesh-profile", "duty"])
+                      "mesh-profile", "duty", "import"])
     outs = []
     argv = ["./gl", cmd]
     if cmd == "check":
@@ -261,6 +339,14 @@ def draw_run(rng, t):
             argv += ["--oil-temp", rng.choice(CLI_TEMPS[:3]) if rng.random() < 0.7 else rng.choice(CLI_TEMPS)]
         if rng.random() < 0.3:
             j = out_path(".json"); outs.append(j); argv += ["--json", j]
+    elif cmd == "import":
+        model = hostile_rexs(rng, t)
+        mutated = model  # its text (a name with "nan" in it) may be echoed into the case
+        o = out_path(".yaml")
+        outs += [o, os.path.splitext(o)[0] + ".oil.yaml"]
+        argv += [model, "-o", o]
+        if rng.random() < 0.2:
+            argv += ["--oil", c + rng.choice(OILS)]
     elif cmd == "mesh-profile":
         o = out_path(".csv"); outs += [o, o + ".meta.json"]
         argv += [c + "spur-seed000.yaml", "--mesh", rng.choice(["m1", "mesh", ""]), "--speed",
@@ -327,8 +413,10 @@ def one_run(args):
         if rng.random() < 0.08 and readable:
             stdout_file = open(os.path.join(t, rng.choice(readable)), "r+b")
         try:
+            # The program's copy finds no shipped data beside it; import needs the bearing catalogue.
+            env = dict(os.environ, GEARLOSS_DATA_DIR=os.path.join(t, "configs")) if argv[1] == "import" else None
             p = subprocess.run(argv, cwd=t, stdout=stdout_file or subprocess.PIPE, stderr=subprocess.PIPE,
-                               timeout=timeout)
+                               timeout=timeout, env=env)
             rc, out, err, hung = p.returncode, p.stdout or b"", p.stderr, False
         except subprocess.TimeoutExpired as e:
             rc, out, err, hung = None, e.stdout or b"", e.stderr or b"", True

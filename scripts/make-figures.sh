@@ -33,4 +33,10 @@ scripts/plot.sh cycle "$tmp/trace.csv" "$out/cycle-nedc-automatic.png" \
 "$bin" diagnose configs/transfer-box.yaml "$tmp/rec.csv" --residuals "$tmp/res.csv" > /dev/null
 scripts/plot.sh diagnose "$tmp/res.csv" "$out/diagnose-windage.png" \
     --title "gearloss diagnose: concealed windage 25 W found and fitted"
+# The FVA two-stage industrial gearbox imported from REXS (docs/rexs.md, "Example").
+"$bin" import tests/data/rexs/FVA-Industriegetriebe_2stufig_1-4.rexs -o "$tmp/fva.yaml" 2> /dev/null
+"$bin" map "$tmp/fva.yaml" --speed "$(python3 -c "print(','.join(f'{250*i}' for i in range(1, 15)))")rpm" \
+    --torque "$(python3 -c "print(','.join(f'{50*i}' for i in range(1, 17)))")Nm" -o "$tmp/fva-map.csv"
+scripts/plot.sh map "$tmp/fva-map.csv" "$out/rexs-fva-efficiency.png" --kind efficiency \
+    --title "FVA two-stage gearbox imported from REXS 1.4, oil at 70 degC: efficiency [%]"
 ls -1 "$out"

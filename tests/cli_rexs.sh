@@ -87,6 +87,61 @@ head -c 5000 "$data/FVA-Industriegetriebe_2stufig_1-4.rexsj" > "$tmp/t.rexsj"
 "$bin" import "$tmp/t.rexsj" -o "$tmp/t.yaml" 2> "$tmp/t.err"
 check "truncated JSON: exit 2" test $? -eq 2
 check "truncated JSON: names the file" grep -q "t.rexsj: .*not valid JSON" "$tmp/t.err"
+# Hostile models beyond the edits above (scripts/fuzz-cli.py draws the same kinds at random):
+# each exits 2 naming the file (and the component where there is one), writes nothing, and
+# does not crash.
+hostile_file() {  # hostile_file NAME FILE EXPECTED_REGEX
+    rm -f "$tmp/hf.yaml"
+    "$bin" import "$2" -o "$tmp/hf.yaml" 2> "$tmp/hf.err"
+    local rc=$?
+    check "$1: exit 2" test $rc -eq 2
+    check "$1: message" grep -qE "$3" "$tmp/hf.err"
+    check "$1: no case written" test ! -e "$tmp/hf.yaml"
+}
+: > "$tmp/empty.rexs"
+hostile_file "empty file" "$tmp/empty.rexs" "empty.rexs.*(empty|not well-formed|no model)"
+: > "$tmp/empty.rexsj"
+hostile_file "empty JSON file" "$tmp/empty.rexsj" "empty.rexsj.*(empty|not valid JSON)"
+hostile "assembly loop" "relation 9999 \\(assembly\\): assembly relations form a loop: component 12" "t = t.replace('<relations>', '<relations><relation id=\"9999\" type=\"assembly\"><ref hint=\"cylindrical_gear\" id=\"15\" role=\"assembly\"/><ref hint=\"shaft\" id=\"12\" role=\"part\"/></relation>', 1)"
+hostile "huge number" "component 15 .*face_width.*out of the range" "t = t.replace('<attribute id=\"face_width\" unit=\"mm\">50</attribute>', '<attribute id=\"face_width\" unit=\"mm\">1e308</attribute>', 1)"
+hostile "NaN value" "component 15 .*face_width.*not a finite number" "t = t.replace('<attribute id=\"face_width\" unit=\"mm\">50</attribute>', '<attribute id=\"face_width\" unit=\"mm\">NaN</attribute>', 1)"
+hostile "inf value" "component 15 .*normal_module.*not a finite number" "t = t.replace('<attribute id=\"normal_module\" unit=\"mm\">4.5</attribute>', '<attribute id=\"normal_module\" unit=\"mm\">inf</attribute>', 1)"
+hostile "unknown unit" "component 15 .*face_width.*unit 'furlong'" "t = t.replace('<attribute id=\"face_width\" unit=\"mm\">50</attribute>', '<attribute id=\"face_width\" unit=\"furlong\">50</attribute>', 1)"
+hostile "negative module" "does not load: .*h.yaml:[0-9]+.*REXS 15 normal_module" "t = t.replace('<attribute id=\"normal_module\" unit=\"mm\">4.5</attribute>', '<attribute id=\"normal_module\" unit=\"mm\">-4.5</attribute>', 1)"
+"$py" - "$data/FVA-Industriegetriebe_2stufig_1-4.rexsj" "$tmp/dup.rexsj" <<'PY'
+import re, sys
+t = open(sys.argv[1], encoding="utf-8").read()
+head, comps = t.split('"components"', 1)  # the component 14, not a ref to it
+open(sys.argv[2], "w", encoding="utf-8").write(head + '"components"' + re.sub(r'("id" ?: ?)14\b', r"\g<1>13", comps, count=1))
+PY
+hostile_file "duplicate id (JSON)" "$tmp/dup.rexsj" "dup.rexsj: .*duplicate component id 13"
+# A number beyond a double in JSON (1e400) is an input error, not an internal one.
+sed 's/"floating_point" : 50\.0/"floating_point" : 1e400/; s/"floating_point": 50\.0/"floating_point": 1e400/' \
+    "$data/FVA-Industriegetriebe_2stufig_1-4.rexsj" > "$tmp/over.rexsj"
+check "1e400 in JSON: the edit took" grep -q "1e400" "$tmp/over.rexsj"
+hostile_file "1e400 in JSON" "$tmp/over.rexsj" "over.rexsj: not a valid REXS value: .*number overflow"
+# Archives: a member that unpacks to 48 MiB (within the 64 MiB bound) of an XML comment reads;
+# one that unpacks to 70 MiB is refused as it unpacks (its header is not trusted).
+"$py" - "$fva14" "$tmp" <<'PY'
+import sys, zipfile
+t = open(sys.argv[1], encoding="utf-8").read()
+for name, mib in (("big", 48), ("over", 70)):
+    with zipfile.ZipFile(f"{sys.argv[2]}/{name}.rexsz", "w", zipfile.ZIP_DEFLATED) as z:
+        z.writestr("model.rexs", t.replace("\n", "\n<!--" + " " * (mib << 20) + "-->", 1))
+PY
+"$bin" import "$tmp/big.rexsz" -o "$tmp/big.yaml" 2> /dev/null
+check "48 MiB member within the bound: imported" test $? -eq 0
+hostile_file "70 MiB member" "$tmp/over.rexsz" "over.rexsz.*(64 MiB|larger|bound|exceeds)"
+
+# The values REXS does not carry are listed by check with their source and in the map sidecar.
+check "check lists the assumed oil level with its source" grep -qE "housing.oil_level = .*source: REXS import" "$tmp/check.txt"
+check "map sidecar lists the assumed oil level" "$py" - "$tmp/map.csv.meta.json" <<'PY'
+import json, sys
+a = {x["key"]: x for x in json.load(open(sys.argv[1]))["assumed"]}
+assert a["housing.oil_level"]["source"] == "REXS import", a.get("housing.oil_level")
+assert a["thermal.heat_rejection.housing"]["reason"].startswith("REXS gives no casing geometry")
+PY
+
 # An output onto the model is refused (io::require_safe_outputs).
 cp "$fva14" "$tmp/same.rexs"
 "$bin" import "$tmp/same.rexs" -o "$tmp/same.rexs" 2> /dev/null

@@ -1,9 +1,14 @@
 // gearloss import: a REXS model (.rexs, .rexsj, .rexsz) as a gearloss case and its oil file.
 #include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
 
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "gearloss/io/atomic_file.hpp"
+#include "gearloss/io/config.hpp"
 #include "gearloss/io/output_paths.hpp"
 #include "gearloss/rexs/case_mapper.hpp"
 #include "gearloss/rexs/reader.hpp"
@@ -52,6 +57,7 @@ public:
         io::require_safe_outputs(outputs, inputs);
         const rexs::Model model = rexs::read_model(model_);
         const rexs::ImportResult r = rexs::map_to_case(model, o);
+        verify_loads(r, oil_out, dir);
         for (const auto& w : r.warnings) std::fprintf(stderr, "gearloss: warning: %s\n", w.c_str());
         io::OutputTransaction transaction;
         io::AtomicFile c(out_);
@@ -67,6 +73,47 @@ public:
     }
 
 private:
+    // The case must be one `check` accepts: it is loaded before anything is written (the oil file
+    // from a private temporary folder). A value the model gives that the case loader refuses (a
+    // negative module, say) is an error naming the model, the line of the case and the REXS
+    // component and attribute that line came from (its comment).
+    void verify_loads(const rexs::ImportResult& r, const std::string& oil_out, const fs::path& dir) const {
+        fs::path tmp;
+        std::error_code ec_ignored;  // the temporary folder is removed when it can be
+        std::string base = dir.string();
+        if (!oil_out.empty()) {
+            std::error_code ec;
+            tmp = fs::temp_directory_path(ec) / ("gearloss-import-" + std::to_string(::getpid()));
+            fs::create_directories(tmp, ec);
+            if (ec) throw IoError("cannot create a temporary folder to check the imported case: " + ec.message());
+            std::ofstream f(tmp / fs::path(oil_out).filename(), std::ios::binary);
+            f << r.oil_yaml;
+            if (!f.flush()) throw IoError("cannot write a temporary oil file to check the imported case");
+            base = tmp.string();
+        }
+        try {
+            (void)io::load_case_text(r.case_yaml, out_, base);
+        } catch (const InputError& e) {
+            if (!tmp.empty()) fs::remove_all(tmp, ec_ignored);
+            std::string origin;
+            const std::string& text = e.file == out_ ? r.case_yaml : r.oil_yaml;
+            // The comment of the line the error names: "REXS 15 normal_module [mm]".
+            std::istringstream lines(text);
+            std::string line;
+            for (int i = 0; i < e.line && std::getline(lines, line); ++i) {
+            }
+            if (const auto hash = line.find("# "); e.line > 0 && hash != std::string::npos)
+                origin = " (that value: " + line.substr(hash + 2) + ")";
+            const std::string shown = e.file == out_ ? out_ : oil_out;  // not the temporary folder
+            throw InputError(model_, 0, 0, "",
+                             "the imported case does not load: " + Error::format(shown, e.line, e.column, e.key, e.message) + origin);
+        } catch (...) {
+            if (!tmp.empty()) fs::remove_all(tmp, ec_ignored);
+            throw;
+        }
+        if (!tmp.empty()) fs::remove_all(tmp, ec_ignored);
+    }
+
     std::string model_, out_, oil_;
 };
 

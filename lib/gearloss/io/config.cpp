@@ -10,6 +10,7 @@
 
 #include "gearloss/io/case_plausibility.hpp"
 #include "gearloss/io/config_internal.hpp"
+#include "gearloss/io/declared_assumptions.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/issue_location.hpp"
 #include "gearloss/io/mechanism_config.hpp"
@@ -234,7 +235,7 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
     index_sources(root, "", *source);
     root.allow_keys({"name", "description", "oil", "materials", "shafts", "gears", "meshes", "bearings", "seals",
                      "clutches", "housing", "thermal", "gearbox", "operating", "options", "mechanisms", "calibration", "vehicle",
-                     "sweep", "bearing_catalogue"});
+                     "sweep", "bearing_catalogue", "assumed"});
     c.sweep = read_sweep(root);
     auto& m = c.model;
     m.name = root.has("name") ? root.at("name").as_title() : fs::path(file).stem().string();
@@ -371,6 +372,8 @@ Case build_case(const YamlNode& root, const std::string& file, const std::string
                 assemble(other);
             }
     }
+    // Values the case gives but declares assumed (a case written by `gearloss import`).
+    read_declared_assumptions(root, c.assumed);
     check_case_plausibility(root, c, lubrication);
     return c;
 }

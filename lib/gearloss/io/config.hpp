@@ -36,10 +36,17 @@ struct SweepAxis {
 // A physical value (or a choice) the loader assumed because the case did not give it, so
 // that outputs can say what they rest on (the `assumed` list of FILE.meta.json, docs/outputs.md).
 struct AssumedValue {
+    AssumedValue() = default;
+    AssumedValue(std::string key_, std::string value_, std::string reason_, std::string location_, std::string source_ = {})
+        : key(std::move(key_)), value(std::move(value_)), reason(std::move(reason_)), location(std::move(location_)),
+          source(std::move(source_)) {}
     std::string key;       // key path as a case would write it: "oil.X_L", "bearings.B1.mu_ehl"
     std::string value;     // as a case would write it, with its unit: "0.8", "95 degC", "20 deg"
     std::string reason;    // where the value comes from (the default's source)
     std::string location;  // "file:line:col" of the block that omits the key, or empty
+    // Who assumed it: empty for the case loader; the `source` of an entry of the case's own
+    // `assumed:` list ("REXS import"), which names values the case gives but its writer assumed.
+    std::string source;
 };
 
 struct Case {

@@ -8,6 +8,7 @@
 
 #include "gearloss/io/config.hpp"
 #include "gearloss/io/config_internal.hpp"
+#include "gearloss/io/declared_assumptions.hpp"
 
 namespace gearloss::io {
 
@@ -88,7 +89,7 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
     using detail::number_text;
     n.allow_keys({"name", "base", "viscosity", "density", "thermal_expansion", "piezoviscosity", "X_L",
                   "thermal_conductivity", "specific_heat", "bearing_friction", "gear_friction", "traction", "rheology",
-                  "max_temperature", "note"});
+                  "max_temperature", "note", "assumed"});
     lubricant::Oil oil;
     oil.name = n.at("name").as_title();
     oil.base = parse_base(n.at("base"));
@@ -320,6 +321,8 @@ lubricant::Oil load_oil(const YamlNode& n, std::vector<AssumedValue>* assumed) {
                    number_text(lubricant::BearingFrictionPair{}.mu_bl), "SKF (2004) boundary friction coefficient");
     }
     check_viscosity_law_range(oil, n.at("viscosity"));
+    // Values the oil file gives but declares assumed (an oil written by `gearloss import`).
+    if (assumed) read_declared_assumptions(n, *assumed, "oil.");
     return oil;
 }
 

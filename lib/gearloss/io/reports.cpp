@@ -215,9 +215,10 @@ std::string check_report(const Case& c) {
                      m.oil.max_temperature - 273.15);
     s += fmt::format("operating points: {}\n", c.grid.size());
     if (!c.assumed.empty()) {
-        s += fmt::format("\nassumed values ({}; the case and its oil do not give them):\n", c.assumed.size());
+        s += fmt::format("\nassumed values ({}; the case and its oil do not give them, or declare them assumed):\n", c.assumed.size());
         for (const auto& a : c.assumed)
-            s += fmt::format("  {} = {} ({}){}\n", a.key, a.value, a.reason, a.location.empty() ? "" : " at " + a.location);
+            s += fmt::format("  {} = {} ({}{}){}\n", a.key, a.value, a.reason, a.source.empty() ? "" : "; source: " + a.source,
+                             a.location.empty() ? "" : " at " + a.location);
     }
     if (!c.warnings.empty()) {
         s += fmt::format("\nplausibility ({}):\n", c.warnings.size());
@@ -381,11 +382,14 @@ std::string check_json(const Case& c) { return json_line(check_json_object(c)); 
 
 nlohmann::ordered_json assumed_json(const std::vector<AssumedValue>& assumed) {
     auto out = nlohmann::ordered_json::array();
-    for (const auto& a : assumed)
-        out.push_back({{"key", a.key},
-                       {"value", a.value},
-                       {"reason", a.reason},
-                       {"location", a.location.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(a.location)}});
+    for (const auto& a : assumed) {
+        nlohmann::ordered_json j = {{"key", a.key},
+                                    {"value", a.value},
+                                    {"reason", a.reason},
+                                    {"location", a.location.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(a.location)}};
+        if (!a.source.empty()) j["source"] = a.source;  // only values the case's own `assumed:` list declares
+        out.push_back(std::move(j));
+    }
     return out;
 }
 

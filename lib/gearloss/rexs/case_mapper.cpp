@@ -359,9 +359,14 @@ void Mapper::write_shafts_gears_meshes(YamlOut& y) {
         for (const Relation* r : m.relations_with("flank", "gear", c.id))
             for (const char* side : {"left", "right"})
                 if (const auto f = r->ref(side)) flank_ids += (flank_ids.empty() ? "" : "/") + std::to_string(*f);
-        y.line(4, "pressure_angle: " + num(g.alpha_n * 180 / std::numbers::pi) + " deg",
-               own_alpha || flank_ids.empty() ? (own_alpha ? src(c, "normal_pressure_angle") : "assumed: ISO 53 basic rack (REXS gives none)")
-                         : "REXS flanks " + flank_ids + " normal_pressure_angle");
+        bool flank_alpha = false;
+        for (const Relation* r : m.relations_with("flank", "gear", c.id))
+            for (const char* side : {"left", "right"})
+                if (const auto f = r->ref(side); f && m.at(*f).find("normal_pressure_angle")) flank_alpha = true;
+        // No pressure angle in REXS: the case omits it and the case loader assumes the ISO 53 rack (listed by check).
+        if (own_alpha || flank_alpha)
+            y.line(4, "pressure_angle: " + num(g.alpha_n * 180 / std::numbers::pi) + " deg",
+                   own_alpha ? src(c, "normal_pressure_angle") : "REXS flanks " + flank_ids + " normal_pressure_angle");
         y.line(4, "profile_shift: " + num(g.x),
                own_x ? src(c, "addendum_modification_coefficient")
                      : (flank_ids.empty() ? "REXS gives none: 0" : "REXS flanks " + flank_ids + " addendum_modification_coefficient"));
@@ -490,6 +495,7 @@ ImportResult map_to_case(const Model& m, const ImportOptions& options) {
     y.line(2, "output: " + mp.shafts[static_cast<size_t>(mp.output)].name, "REXS shaft with an external load transmitting torque");
     y.blank();
     mp.write_operating(y);
+    y.write_assumed_list();
     mp.result.case_yaml = y.str();
     if (options.write_oil) mp.result.oil_yaml = mp.oil_yaml();
     return mp.result;

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "gearloss/bearings/designation.hpp"
+#include "gearloss/bearings/skf_constants.hpp"
 #include "gearloss/rexs/case_mapper.hpp"
 #include "gearloss/rexs/units.hpp"
 
@@ -18,9 +20,15 @@ public:
     void blank() { text_ += "\n"; }
     void comment(int indent, const std::string& text);
     const std::string& str() const { return text_; }
+    // A value REXS does not carry: the line with the comment "assumed: <reason>", and `key` (its
+    // key path, "housing.oil_level") declared in the case's `assumed:` list (assumed_values.cpp).
+    void assumed(int indent, const std::string& text, const std::string& key, const std::string& reason);
+    // The `assumed:` list of the values declared so far (docs/config.md), for the case loader.
+    void write_assumed_list();
 
 private:
     std::string text_;
+    std::vector<std::pair<std::string, std::string>> assumed_;  // key path, reason
 };
 
 // A number for YAML: up to 10 significant digits, no trailing zeros (117, 0.231415, 4.5).
@@ -128,6 +136,13 @@ struct Mapper {
     void set_aside_unconnected_shafts();
     void write_shafts_gears_meshes(YamlOut& y);
     void write_bearings(YamlOut& y);
+    // bearing_mapper.cpp: what follows a bearing's name, shaft and position.
+    void write_bearing_data(YamlOut& y, const Component& c, const Shaft& s, double u, bool locating, const std::string& name);
+    void report_suffix(YamlOut& y, const Component& c, const bearings::DesignationKey& key, bearings::BearingType type,
+                       double D, bool designation_written);
+    void assumed_line(YamlOut& y, int indent, const std::string& text, const std::string& key, const std::string& reason) {
+        y.assumed(indent, text, key, reason);
+    }
     void write_seals(YamlOut& y);
     void write_housing_thermal(YamlOut& y);
     void write_operating(YamlOut& y);

@@ -1,6 +1,7 @@
-// A REXS model as a gearloss case: bearings, seals, housing and thermal data, operating points
-// and the oil file (case_mapper.hpp). What REXS does not carry is written as an assumed value
-// with its reason.
+// A REXS model as a gearloss case: bearings (placed here; their data in bearing_mapper.cpp),
+// seals, housing and thermal data, operating points and the oil file (case_mapper.hpp). What
+// REXS does not carry is written as an assumed value with its reason and declared in the case's
+// `assumed:` list (assumed_values.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,45 +9,15 @@
 #include <limits>
 #include <set>
 
-#include "gearloss/bearings/designation.hpp"
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/bearing_catalogue.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/rexs/mapper_internal.hpp"
 
 namespace gearloss::rexs::detail {
-namespace {
-
-// REXS bearing_type enum values -> gearloss bearing types (those the SKF (2004) model has).
-std::optional<bearings::BearingType> type_of_rexs(const std::string& t) {
-    using B = bearings::BearingType;
-    if (t == "radial_grooved_ball_bearing") return B::deep_groove_ball;
-    if (t == "angular_contact_ball_bearing") return B::angular_contact_ball;
-    if (t == "four_point_contact_ball_bearing") return B::four_point_contact;
-    if (t == "radial_self_aligning_ball_bearing") return B::self_aligning_ball;
-    if (t == "radial_roller_bearing") return B::cylindrical_roller;
-    if (t == "radial_needle_roller_bearing") return B::needle_roller;
-    if (t == "radial_tapered_roller_bearing") return B::tapered_roller;
-    if (t == "radial_self_aligning_roller_bearing") return B::spherical_roller;
-    if (t == "axial_grooved_ball_bearing") return B::thrust_ball;
-    if (t == "axial_roller_bearing") return B::cylindrical_roller_thrust;
-    return std::nullopt;
-}
-
-// The catalogue row of a type and bore with the smallest outer diameter (the lightest series).
-const io::CatalogueEntry* lightest_row(const io::BearingCatalogue& cat, bearings::BearingType t, double d) {
-    const io::CatalogueEntry* best = nullptr;
-    for (const auto& [key, e] : cat.entries())
-        if (e.type == t && std::abs(e.d - d) < 1e-6 && (!best || e.D < best->D)) best = &e;
-    return best;
-}
-
-}  // namespace
 
 void Mapper::write_bearings(YamlOut& y) {
     static const char* const kinds[] = {"rolling_bearing_with_catalog_geometry", "rolling_bearing_with_detailed_geometry",
                                         "concept_bearing"};
-    const io::BearingCatalogue& cat = io::shipped_bearing_catalogue("bearings (REXS import)");
     y.line(0, "bearings:");
     int written = 0;
     for (const auto& c : m.components) {
@@ -82,8 +53,6 @@ void Mapper::write_bearings(YamlOut& y) {
                                   s.length() * 1e3));
         const auto axial = text(m, c, "axial_force_absorption");
         const bool locating = axial && *axial != "no_direction";
-        const auto bore_given = quantity(m, c, "inner_diameter", Quantity::length);
-        const auto bore_shaft = s.diameter_at(u);
         const std::string name = "bearing_" + std::to_string(c.id);
         y.line(2, "- name: " + name, "REXS " + std::to_string(c.id) + " " + c.type + " '" + safe_name(c) + "'");
         if (planet >= 0) {
@@ -100,59 +69,7 @@ void Mapper::write_bearings(YamlOut& y) {
         }
         if (locating) y.line(4, "locating: true", src(c, "axial_force_absorption") + " " + io::excerpt(*axial, 30));
         ++written;
-        const char* const designation_attr = designation_attribute(m);
-        const auto designation = text(m, c, designation_attr);
-        if (designation) {
-            const auto key = bearings::designation_key(*designation);
-            if (const io::CatalogueEntry* e = key ? cat.find(key->key) : nullptr) {
-                y.line(4, "designation: " + quoted(*designation),
-                       src(c, designation_attr) + " (catalogue row " + e->designation + ")");
-                const double d = bore_given ? *bore_given : bore_shaft.value_or(e->d);
-                if (std::abs(d - e->d) > 1e-6)
-                    warn(c, fmt::format("catalogue bore {:g} mm of {} differs from the {:g} mm the model gives", e->d * 1e3,
-                                        e->designation, d * 1e3));
-                continue;
-            }
-            warn(c, "designation '" + io::excerpt(*designation, 40) + "' is not in the bearing catalogue (" +
-                        cat.summary() + "): imported as an assumed bearing of its bore");
-        }
-        // An assumed bearing of the bore the model gives (its inner_diameter, else the shaft's
-        // diameter at the bearing): REXS type when given, else a radial-only concept bearing is a
-        // cylindrical roller bearing and one taking axial load a deep groove ball bearing.
-        if (!bore_given && !bore_shaft) m.fail(c, "no inner_diameter and no shaft section at the bearing: its bore is unknown");
-        const double d = bore_given ? *bore_given : *bore_shaft;
-        const std::string bore_src = bore_given ? src(c, "inner_diameter")
-                                                : fmt::format("shaft {} outer diameter at the bearing", s.comp->id);
-        std::optional<bearings::BearingType> type;
-        std::string type_src;
-        if (const auto t = text(m, c, "bearing_type")) {
-            type = type_of_rexs(*t);
-            if (!type) m.fail(c, "bearing_type '" + io::excerpt(*t, 40) + "' has no SKF (2004) friction model in gearloss");
-            type_src = src(c, "bearing_type") + " " + *t;
-        } else {
-            type = locating ? bearings::BearingType::deep_groove_ball : bearings::BearingType::cylindrical_roller;
-            type_src = std::string("assumed: REXS gives no type; ") + (locating ? "takes axial load" : "radial only");
-        }
-        y.line(4, std::string("type: ") + bearings::to_string(*type), type_src);
-        y.line(4, "d: " + num(d * 1e3) + " mm", bore_src);
-        const auto D_given = quantity(m, c, "outer_diameter", Quantity::length);
-        const auto B_given = quantity(m, c, "width", Quantity::length);
-        const io::CatalogueEntry* row = lightest_row(cat, *type, d);
-        if (D_given) y.line(4, "D: " + num(*D_given * 1e3) + " mm", src(c, "outer_diameter"));
-        else if (row) y.line(4, "D: " + num(row->D * 1e3) + " mm", "assumed: catalogue row " + row->designation + " (same type and bore, lightest series)");
-        else y.line(4, "D: " + num(d * 1.5e3) + " mm", "assumed: 1.5 d (no catalogue row of this type and bore)");
-        if (B_given) y.line(4, "B: " + num(*B_given * 1e3) + " mm", src(c, "width"));
-        else if (row) y.line(4, "B: " + num(row->B * 1e3) + " mm", "assumed: catalogue row " + row->designation);
-        if (row) {
-            y.line(4, "series: \"" + row->skf_series + "\"", "assumed: SKF (2004) series of catalogue row " + row->designation);
-            if (row->C0) y.line(4, "C0: " + num(*row->C0 * 1e-3) + " kN", "assumed: catalogue row " + row->designation);
-            if (row->Y && *type == bearings::BearingType::tapered_roller)
-                y.line(4, "Y: " + num(*row->Y), "assumed: catalogue row " + row->designation);
-        } else if (*type == bearings::BearingType::deep_groove_ball) {
-            m.fail(c, fmt::format("no catalogue deep groove ball bearing of bore {:g} mm gives the static rating C0 the "
-                                  "friction model needs",
-                                  d * 1e3));
-        }
+        write_bearing_data(y, c, s, u, locating, name);
     }
     if (written == 0) y.line(2, "[]");
     y.blank();
@@ -166,8 +83,11 @@ void Mapper::write_seals(YamlOut& y) {
         const Shaft& s = shafts[static_cast<size_t>(i)];
         const double d = s.min_diameter();
         if (!(d > 0)) continue;
-        y.line(2, "- {name: seal_" + s.name + ", shaft: " + s.name + ", diameter: " + num(d * 1e3) + " mm}",
-               fmt::format("assumed: smallest diameter of shaft {} (its end)", s.comp->id));
+        y.assumed(2, "- {name: seal_" + s.name + ", shaft: " + s.name + ", diameter: " + num(d * 1e3) + " mm}",
+                  "seals.seal_" + s.name,
+                  fmt::format("REXS carries no seals: a radial lip seal where shaft {} leaves the casing, of its smallest "
+                              "diameter",
+                              s.comp->id));
     }
     y.blank();
 }
@@ -205,10 +125,12 @@ void Mapper::write_housing_thermal(YamlOut& y) {
     const double level = lowest_y - lowest_r + 3 * lowest_m;
     const double volume = a * c * std::max(level - y0, 0.0);
     y.line(0, "housing:");
-    y.line(2, "oil_volume: " + fmt::format("{:.2g}", volume * 1e3) + " L",
-           fmt::format("assumed: the box {:.0f} x {:.0f} mm (transverse, along the shafts) filled to the oil level", a * 1e3, c * 1e3));
-    y.line(2, "oil_level: " + num(std::round(level * 1e4) / 10) + " mm",
-           "assumed: the lowest gear dips 3 m_n (REXS gives no oil level)");
+    y.assumed(2, "oil_volume: " + fmt::format("{:.2g}", volume * 1e3) + " L", "housing.oil_volume",
+              fmt::format("REXS gives no oil volume: the box {:.0f} x {:.0f} mm (transverse, along the shafts) filled to the "
+                          "oil level",
+                          a * 1e3, c * 1e3));
+    y.assumed(2, "oil_level: " + num(std::round(level * 1e4) / 10) + " mm", "housing.oil_level",
+              "REXS gives no oil level: the lowest gear dips 3 m_n (dip lubrication, within the usual 2 to 5 m_n)");
     y.blank();
     // One lubricant temperature in every load case: a temperature-controlled run at that temperature.
     std::set<double> temperatures;
@@ -224,10 +146,12 @@ void Mapper::write_housing_thermal(YamlOut& y) {
         y.line(2, "mode: stabilised", temperatures.empty() ? "REXS gives no lubricant temperature"
                                                           : "REXS load cases give several lubricant temperatures");
     }
-    y.line(2, "ambient: 20 degC", "assumed: room temperature");
+    y.assumed(2, "ambient: 20 degC", "thermal.ambient", "REXS gives no ambient temperature: room temperature");
     y.line(2, "heat_rejection:");
-    y.line(4, fmt::format("housing: {{area: {:.2g} m^2, emissivity: 0.9, height: {:.2g} m}}", area, b),
-           "assumed: surface of the box around the gears; painted cast housing");
+    y.assumed(4, fmt::format("housing: {{area: {:.2g} m^2, emissivity: 0.9, height: {:.2g} m}}", area, b),
+              "thermal.heat_rejection.housing",
+              "REXS gives no casing geometry: the surface of the box around the gears, a painted cast housing (heat path "
+              "to the ambient air)");
     y.blank();
 }
 
@@ -260,8 +184,8 @@ void Mapper::write_operating(YamlOut& y) {
                fmt::format("REXS load cases {} (shaft {} rotational_speed, its external load torque_around_u_axis)", ids,
                            in.comp->id));
     } else {
-        y.line(2, "speeds: [500 rpm, 1000 rpm, 1500 rpm, 3000 rpm]", "assumed: REXS gives no load case");
-        y.line(2, "torques: [50 N*m, 100 N*m, 200 N*m]", "assumed: REXS gives no load case");
+        y.assumed(2, "speeds: [500 rpm, 1000 rpm, 1500 rpm, 3000 rpm]", "operating.speeds", "REXS gives no load case");
+        y.assumed(2, "torques: [50 N*m, 100 N*m, 200 N*m]", "operating.torques", "REXS gives no load case");
     }
 }
 
@@ -285,8 +209,9 @@ std::string Mapper::oil_yaml() const {
         if (iso && *iso == rexs_type) base = gearloss_base;
     if (base) y.line(0, std::string("base: ") + base, src(c, "lubricant_type_iso_6336_2006") + " " + *iso);
     else if (basis && *basis == "mineral") y.line(0, "base: mineral", src(c, "basis"));
-    else y.line(0, "base: mineral", basis ? "assumed: REXS basis '" + io::excerpt(*basis, 30) + "' names no base oil gearloss knows"
-                                          : "assumed: REXS gives no base oil type");
+    else y.assumed(0, "base: mineral", "base",
+                   basis ? "REXS basis '" + io::excerpt(*basis, 30) + "' names no base oil gearloss knows"
+                         : "REXS gives no base oil type");
     const double nu40 = required_quantity(m, c, "viscosity_at_40_degree_celsius", Quantity::kinematic_viscosity);
     const double nu100 = required_quantity(m, c, "viscosity_at_100_degree_celsius", Quantity::kinematic_viscosity);
     if (!(nu40 > nu100 && nu100 > 0)) m.fail(c, "the viscosity at 40 degC must exceed the one at 100 degC");
@@ -297,7 +222,8 @@ std::string Mapper::oil_yaml() const {
     y.line(4, "- [100 degC, " + num(nu100 * 1e6) + " cSt]", src(c, "viscosity_at_100_degree_celsius"));
     if (const auto rho = quantity(m, c, "density_at_15_degree_celsius", Quantity::density))
         y.line(0, "density: {value: " + num(*rho) + " kg/m^3, at: 15 degC}", src(c, "density_at_15_degree_celsius"));
-    else y.line(0, "density: {value: 880 kg/m^3, at: 15 degC}", "assumed: REXS gives no density (a mineral gear oil)");
+    else y.assumed(0, "density: {value: 880 kg/m^3, at: 15 degC}", "density", "REXS gives no density (a mineral gear oil)");
+    y.write_assumed_list();
     return y.str();
 }
 

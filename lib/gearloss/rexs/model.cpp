@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <set>
 
 #include "gearloss/core/errors.hpp"
@@ -112,11 +113,50 @@ void Model::index() {
                 fail(r, "its ref (role '" + x.role + "'" + (x.hint.empty() ? "" : ", hint '" + x.hint + "'") +
                             ") names component " + std::to_string(x.id) + ", which the model does not have");
     }
+    check_assembly_loops();
     for (const auto& lc : load_cases)
         for (const auto& c : lc.components)
             if (!find(c.id))
                 fail(c, "load case " + std::to_string(lc.id) + " names component " + std::to_string(c.id) +
                             ", which the model does not have");
+}
+
+// A component that is, through assembly relations, a part of itself (a shaft in its own gear,
+// a relation loop) describes no gearbox: an error at the relation that closes the loop.
+void Model::check_assembly_loops() const {
+    std::map<std::int64_t, std::vector<std::pair<std::int64_t, const Relation*>>> parts;  // assembly -> parts
+    for (const auto& r : relations) {
+        if (r.type != "assembly" && r.type != "ordered_assembly") continue;
+        const auto a = r.ref("assembly");
+        const auto p = r.ref("part");
+        if (!a || !p) continue;
+        if (*a == *p) fail(r, "component " + std::to_string(*a) + " is an assembly part of itself");
+        parts[*a].emplace_back(*p, &r);
+    }
+    // Iterative depth-first search (no recursion on hostile depth): 1 = on the path, 2 = done.
+    std::map<std::int64_t, int> state;
+    for (const auto& [root, unused] : parts) {
+        if (state[root]) continue;
+        std::vector<std::pair<std::int64_t, size_t>> stack{{root, 0}};
+        state[root] = 1;
+        while (!stack.empty()) {
+            auto& [id, next] = stack.back();
+            const auto it = parts.find(id);
+            if (it == parts.end() || next >= it->second.size()) {
+                state[id] = 2;
+                stack.pop_back();
+                continue;
+            }
+            const auto [child, rel] = it->second[next++];
+            if (state[child] == 1)
+                fail(*rel, "assembly relations form a loop: component " + std::to_string(child) +
+                               " is, through component " + std::to_string(id) + ", a part of itself");
+            if (state[child] == 0) {
+                state[child] = 1;
+                stack.emplace_back(child, 0);
+            }
+        }
+    }
 }
 
 void Model::fail(const Component& c, const std::string& message) const {

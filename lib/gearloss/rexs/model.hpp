@@ -100,6 +100,7 @@ struct Model {
     // Builds the id index; InputError for duplicate component ids, a relation to a missing
     // component and a load case naming a component the model does not have.
     void index();
+    void check_assembly_loops() const;  // index(): no component is a part of itself
 
     // The errors of a model name the file, the line when known and the component.
     [[noreturn]] void fail(const Component& c, const std::string& message) const;

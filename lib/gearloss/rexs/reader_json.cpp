@@ -31,6 +31,8 @@ public:
             });
         } catch (const json::parse_error& e) {
             throw InputError(shown_, 0, 0, "", std::string("not valid JSON: ") + e.what());
+        } catch (const json::out_of_range& e) {  // a number beyond a double (1e400): not a value of any model
+            throw InputError(shown_, 0, 0, "", std::string("not a valid REXS value: ") + e.what());
         }
         if (!doc.is_object() || !doc.contains("model") || !doc["model"].is_object())
             fail("", "not a REXS model: no \"model\" object at the top");

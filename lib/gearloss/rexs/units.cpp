@@ -78,6 +78,10 @@ std::optional<double> quantity(const Model& m, const Component& c, const std::st
     if (!v) return std::nullopt;
     const auto si = to_si(*v, a->unit, q);
     if (!si) m.fail(c, *a, "unit '" + a->unit + "' is not the unit of " + to_string(q) + " gearloss reads");
+    // No quantity of a gearbox reaches 1e13 in SI units (steel's modulus is 2.1e11 Pa): a larger
+    // value is corrupt, and would overflow when written back in mm or um.
+    if (!(std::abs(*si) <= 1e13))
+        m.fail(c, *a, "'" + a->text.substr(0, 40) + " " + a->unit + "' is out of the range of " + to_string(q));
     return si;
 }
 
