@@ -115,7 +115,8 @@ RatingPoint rate_speed(const solver::Model& m, double omega, const RatingOptions
         root = t_hi;
     } else {
         const auto [a, b] = boost::math::tools::toms748_solve(f, t_lo, t_hi, lo.dT, hi.dT, stop, iters);
-        root = 0.5 * (a + b);
+        (void)b;
+        root = a;  // the lower end: the oil at or just below the limit, so the point is admissible
     }
     if (left_range) return out_of_range(bad);
     p.status = RatingStatus::limit;
