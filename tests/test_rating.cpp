@@ -2,7 +2,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "gearloss/cycle/simulate.hpp"
 #include "gearloss/io/config.hpp"
+#include "gearloss/io/cycle_report.hpp"
 #include "gearloss/rating/thermal_rating.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "gearloss/thermal/cooler.hpp"
@@ -134,4 +136,39 @@ TEST_CASE("rating says when no torque is admissible or none reaches the limit", 
     CHECK(p.status == rating::RatingStatus::no_limit_below);
     CHECK(p.torque == 20.0);
     CHECK(p.point.oil_temperature < o.oil_limit);
+}
+
+TEST_CASE("the cooler is the same heat path in the transient: a long steady drive settles at map's temperature",
+          "[rating][cooler][cycle]") {
+    // The manual transmission at 80 km/h for 5 h with a cooler of UA 15 W/K against 30 degC
+    // coolant on every gear: the transient oil must end where the stabilised balance (housing +
+    // cooler) puts it, and the energy still balances (losses = heat to ambient and cooler + stored).
+    const auto c = test_support::load_shipped("configs/manual-6speed.yaml");
+    auto pt = io::load_powertrain(c, std::nullopt);
+    thermal::Cooler k;
+    k.kind = thermal::Cooler::Kind::conductance;
+    k.ua = 15.0;
+    k.coolant_temperature = 303.15;
+    for (auto& g : pt.gears) g.thermal.cooler = k;
+    cycle::DriveCycle dc;
+    dc.name = "steady";
+    for (int t = 0; t <= 18000; ++t) {
+        dc.time.push_back(t);
+        dc.speed.push_back(std::min(1.0, t / 30.0) * 80 / 3.6);
+    }
+    const double Ta = 293.15;
+    const auto r = cycle::simulate_cycle(pt, dc, cycle::uniform(Ta), Ta, true);
+    const auto& last = r.trace[r.trace.size() - 2];  // last step with a load
+    REQUIRE(last.gear > 0);
+    auto m = pt.gears[last.gear - 1];
+    std::get<thermal::HousingSurface>(m.thermal.rejection.model).air_speed = pt.vehicle.underbody_air * 80 / 3.6;
+    const auto p = solver::solve_point(m, last.input_speed, last.input_torque, false, Ta);
+    REQUIRE(p.status == solver::PointStatus::ok);
+    CHECK(r.totals.end[0] == Approx(p.oil_temperature).margin(0.05));
+    const double generated = r.totals.gearbox_loss() + r.totals.E_tc + r.totals.E_heater;
+    CHECK(generated == Approx(r.totals.E_ambient + r.totals.stored_end - r.totals.stored_start).epsilon(1e-9));
+    // Without the cooler the box runs hotter.
+    auto plain = io::load_powertrain(c, std::nullopt);
+    const auto hot = cycle::simulate_cycle(plain, dc, cycle::uniform(Ta), Ta, false);
+    CHECK(hot.totals.end[0] > r.totals.end[0] + 1.0);
 }
