@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
     std::vector<Entry> table;
     for (auto make : {app::make_map_command, app::make_point_command, app::make_diagnose_command, app::make_synth_command,
                       app::make_compare_command, app::make_mesh_profile_command, app::make_cycle_command, app::make_duty_command,
+                      app::make_rating_command,
                       app::make_merge_command, app::make_check_command, app::make_report_command,
                       app::make_import_command})
         table.push_back({make(), nullptr});

@@ -26,6 +26,7 @@ std::unique_ptr<Command> make_compare_command();
 std::unique_ptr<Command> make_mesh_profile_command();
 std::unique_ptr<Command> make_cycle_command();
 std::unique_ptr<Command> make_duty_command();
+std::unique_ptr<Command> make_rating_command();
 std::unique_ptr<Command> make_merge_command();
 std::unique_ptr<Command> make_check_command();
 std::unique_ptr<Command> make_report_command();

@@ -32,7 +32,9 @@ void transient_rates(const solver::Model& tm, const TransientLoad& load, double 
     const double P_extra = load.extra_oil_heat ? load.extra_oil_heat(os.nu_cSt) : 0.0;
     // Heat of the mechanisms that do not heat the oil goes to the clutch-pack node.
     const double P_other = load.gearbox ? L.total() - L.into_oil(*load.gearbox) : 0.0;
-    const double P_oil = L.total() - P_other + P_extra + load.heater;
+    // The external cooler draws from the oil node, as in the stabilised balance (Model::heat_flow).
+    const double Q_cooler = tm.thermal.cooler.present() ? tm.thermal.cooler.heat_flow(T[0], os.rho * os.cp) : 0.0;
+    const double P_oil = L.total() - P_other + P_extra + load.heater - Q_cooler;
     const double Q = tm.surface_heat_flow(thermal::surface_temperature(net, T), ambient, load.omega_in, load.air_speed);
     const auto d = thermal::node_rates(net, T, P_oil, P_other, Q);
     dx.fill(0.0);
@@ -41,7 +43,7 @@ void transient_rates(const solver::Model& tm, const TransientLoad& load, double 
     dx[kClutch] = d[2];
     for (size_t i = 0; i < L.power.size(); ++i) dx[kMech0 + i] = L.power[i];
     dx[kExtraHeat] = P_extra;
-    dx[kAmbient] = Q;
+    dx[kAmbient] = Q + Q_cooler;  // heat that left the transmission
     dx[kHeater] = load.heater;
 }
 

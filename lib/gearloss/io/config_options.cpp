@@ -51,9 +51,64 @@ void load_options(const YamlNode& n, solver::Model& m) {
     }
 }
 
+// thermal.cooler (gearloss/thermal/cooler.hpp): `duty`, or `oil_flow` with `inlet_temperature`
+// (injection), or `ua` with `coolant_temperature` (and `oil_flow`: the effectiveness-NTU form).
+static thermal::Cooler load_cooler_kind(const YamlNode& c);
+static thermal::Cooler load_cooler(const YamlNode& c) {
+    c.allow_keys({"duty", "oil_flow", "inlet_temperature", "ua", "coolant_temperature", "thermostat", "note"});
+    thermal::Cooler k = load_cooler_kind(c);
+    if (auto t = c.get("thermostat")) {
+        t->allow_keys({"opens", "full"});
+        k.valve_opens = t->at("opens").as_temperature();
+        k.valve_full = t->at("full").as_temperature();
+        if (!(k.valve_full > k.valve_opens)) t->at("full").fail("the valve must be fully open above the temperature it opens at");
+    }
+    return k;
+}
+
+static thermal::Cooler load_cooler_kind(const YamlNode& c) {
+    thermal::Cooler k;
+    const auto flow = units::make_dim(3, 0, -1, 0);
+    const auto conductance = units::make_dim(2, 1, -3, -1);
+    const auto temperature = [&](const char* key) {
+        const double T = c.at(key).as_temperature();
+        if (!(T > 0 && T < 1000)) c.at(key).fail("temperature outside 0..1000 K");
+        return T;
+    };
+    const bool duty = c.has("duty"), flow_given = c.has("oil_flow"), ua = c.has("ua");
+    if (duty) {
+        if (flow_given || ua || c.has("inlet_temperature") || c.has("coolant_temperature"))
+            c.fail("give either 'duty' (fixed heat removal) or the cooler's data (oil_flow, inlet_temperature, ua, "
+                   "coolant_temperature), not both");
+        k.kind = thermal::Cooler::Kind::duty;
+        k.duty = c.at("duty").as_quantity(units::dim::power, "20 kW");
+        if (!(k.duty >= 0 && k.duty <= 1e8)) c.at("duty").fail("duty must be in 0..100 MW");
+        return k;
+    }
+    if (flow_given) {
+        k.oil_flow = c.positive_quantity("oil_flow", flow, "10 L/min");
+        if (!(k.oil_flow <= 1.0)) c.at("oil_flow").fail("oil flow above 1 m^3/s");
+    }
+    if (ua) {
+        if (c.has("inlet_temperature"))
+            c.at("inlet_temperature").fail("with 'ua' give 'coolant_temperature' (the inlet follows from the exchanger)");
+        k.ua = c.positive_quantity("ua", conductance, "500 W/K");
+        if (!(k.ua <= 1e8)) c.at("ua").fail("UA above 100 MW/K");
+        k.coolant_temperature = temperature("coolant_temperature");
+        k.kind = flow_given ? thermal::Cooler::Kind::exchanger : thermal::Cooler::Kind::conductance;
+        return k;
+    }
+    if (!flow_given) c.fail("give 'duty', or 'oil_flow' with 'inlet_temperature', or 'ua' with 'coolant_temperature'");
+    if (c.has("coolant_temperature")) c.at("coolant_temperature").fail("'coolant_temperature' needs 'ua'");
+    k.inlet_temperature = temperature("inlet_temperature");
+    k.kind = thermal::Cooler::Kind::injection;
+    return k;
+}
+
 void load_thermal(const YamlNode& n, solver::ThermalSettings& t, std::vector<AssumedValue>* assumed) {
     n.allow_keys({"mode", "oil_temperature", "ambient", "heat_rejection", "max_oil_temperature", "heat_capacity",
-                  "network"});
+                  "network", "cooler"});
+    if (auto c = n.get("cooler")) t.cooler = load_cooler(*c);
     if (auto net = n.get("network")) {
         if (n.has("heat_capacity")) net->fail("give either 'heat_capacity' (one node) or 'network', not both");
         net->allow_keys({"oil", "housing", "oil_to_housing", "clutch_packs", "clutch_to_oil", "note"});

@@ -42,7 +42,23 @@ double Model::surface_heat_flow(double T_surface, double T_amb, double omega_in,
            (1.0 + calibration.cooling_per_1000rpm * n_k);
 }
 
+double Model::cooler_heat_flow(double T_oil) const {
+    if (!thermal.cooler.present()) return 0.0;
+    const lubricant::OilState s = oil.state(T_oil);
+    return thermal.cooler.heat_flow(T_oil, s.rho * s.cp);
+}
+
+double Model::cooler_conductance(double T_oil) const {
+    if (!thermal.cooler.present()) return 0.0;
+    const lubricant::OilState s = oil.state(T_oil);
+    return thermal.cooler.valve_share(T_oil) * thermal.cooler.conductance(s.rho * s.cp);
+}
+
 double Model::heat_flow(double T_oil, double T_amb, double omega_in) const {
+    return housing_heat_flow(T_oil, T_amb, omega_in) + cooler_heat_flow(T_oil);
+}
+
+double Model::housing_heat_flow(double T_oil, double T_amb, double omega_in) const {
     const auto& net = thermal.network;
     if (!net.has_housing()) return surface_heat_flow(T_oil, T_amb, omega_in);
     // Steady state: G (T_oil - T_h) = Q_surface(T_h) for T_h between ambient and T_oil;

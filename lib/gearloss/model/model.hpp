@@ -11,6 +11,7 @@
 #include "gearloss/gearbox/gearbox.hpp"
 #include "gearloss/losses/mechanism_set.hpp"
 #include "gearloss/lubricant/oil.hpp"
+#include "gearloss/thermal/cooler.hpp"
 #include "gearloss/thermal/equilibrium.hpp"
 #include "gearloss/thermal/heat_rejection.hpp"
 #include "gearloss/thermal/network.hpp"
@@ -34,6 +35,9 @@ struct ThermalSettings {
     double oil_temperature = 353.15;  // K, fixed mode
     double ambient = 298.15;          // K
     thermal::HeatRejection rejection;
+    // External cooler or injection lubrication: a heat path from the oil in parallel with the
+    // housing, in the stabilised balance and in the transient alike (thermal.cooler).
+    thermal::Cooler cooler;
     thermal::EquilibriumOptions equilibrium;
     double heat_capacity = 0;         // J/K of oil + housing (transient warm-up); 0 = not given
     // Lumped network for transients (a single oil node of heat_capacity unless a network is given).
@@ -67,9 +71,16 @@ struct Model {
     std::vector<std::string> ratio_names() const;
     // Oil state with the calibration's viscosity factor applied.
     lubricant::OilState oil_state(double T) const;
-    // Steady heat flow to ambient [W] at oil temperature T_oil, with the calibration applied;
-    // through the housing node's conductance in series when the network has one.
+    // Steady heat flow out of the oil [W] at oil temperature T_oil: through the housing to
+    // ambient (housing_heat_flow) plus the cooler's (cooler_heat_flow).
     double heat_flow(double T_oil, double T_amb, double omega_in) const;
+    // Steady heat flow to ambient through the housing [W], with the calibration applied;
+    // through the housing node's conductance in series when the network has one.
+    double housing_heat_flow(double T_oil, double T_amb, double omega_in) const;
+    // Heat removed by the external cooler [W] at oil temperature T_oil (0 without one).
+    double cooler_heat_flow(double T_oil) const;
+    // d(cooler_heat_flow)/dT at T_oil [W/K] (0 without a cooler or for a fixed duty).
+    double cooler_conductance(double T_oil) const;
     // Heat flow [W] leaving the rejecting surface (housing node, or the oil) at T_surface.
     // `air_speed`: air flow over a housing surface imposed from outside (vehicle) [m/s].
     double surface_heat_flow(double T_surface, double T_amb, double omega_in, double air_speed = 0.0) const;

@@ -142,11 +142,15 @@ std::string loss_fault(const Model& m, const PointState& p, double T, double amb
 
 thermal::Equilibrium solve_temperature(const Model& m, const PointState& p, double ambient) {
     auto F = [&](double Toil) { return total_loss(m, p, Toil) - m.heat_flow(Toil, ambient, p.omega_in); };
+    // Conductance of the bracketing steps: the housing's secant from ambient plus the cooler's slope.
     auto G = [&](double Toil) {
         const double Tq = std::max(Toil, ambient + 0.5);
-        return m.heat_flow(Tq, ambient, p.omega_in) / (Tq - ambient);
+        return m.housing_heat_flow(Tq, ambient, p.omega_in) / (Tq - ambient) + m.cooler_conductance(Toil);
     };
-    return thermal::solve_equilibrium(F, G, ambient, m.thermal.equilibrium);
+    // A cooler colder than the ambient can hold the oil below it: the search starts at the
+    // colder of the two (there F >= 0: the housing gains heat and the cooler removes none).
+    const double start = std::min(ambient, m.thermal.cooler.cold_side_temperature());
+    return thermal::solve_equilibrium(F, G, start, m.thermal.equilibrium);
 }
 
 PointResult solve_point(const Model& m, double omega_in, double torque_in, bool detail, double ambient) {
