@@ -212,10 +212,24 @@ check "worm stage JSON (null values): refused at the worm stage" grep -qE "compo
 # (4 with the bearings and the load, 6 joined to it through couplings) and a connecting shaft 260
 # with no gear and no bearing. As published its concept bearings (REXS 1.1 gives them no
 # diameters) take the shafts' bores, 43.2 mm for the planets, which have no catalogue row for an
-# assumed bearing; it is no longer refused at the carrier.
+# assumed bearing: the nearest bore's row is scaled to it.
 fpl=$data/FVA_Planetary_stage_-_Minus_gearing_1.1.rexs
 "$bin" import "$fpl" -o "$tmp/pl.yaml" 2> "$tmp/pl.err"
+check "FVA planetary 1.1 as published: exit 0" test $? -eq 0
 check "FVA planetary 1.1: the carrier of two shafts is not refused" bash -c "! grep -q 'planet_carrier_shaft' '$tmp/pl.err'"
+# Its planet bearing 232 (a concept bearing taking axial load: deep groove ball) sits on the
+# 43.2 mm planet pin; the catalogue's deep groove ball bearings nearest that bore are at 45 mm,
+# the lightest 16009 (configs/bearings/catalogue.yaml: 45 x 75 x 10 mm, C0 10.8 kN). Scaled by
+# 43.2/45 = 0.96: D = 72 mm, B = 9.6 mm, C0 = 10.8 x 0.96^2 = 9.95328 kN, series 160, declared assumed.
+check "FVA planetary 1.1: the 43.2 mm planet bearing scaled from 16009 (warning)" grep -q "component 232 .*no catalogue deep_groove_ball bearing of bore 43.2 mm: assumed as 16009 x 0.96 (bore 45 mm)" "$tmp/pl.err"
+check "FVA planetary 1.1: D = 75 x 0.96 = 72 mm" bash -c "grep -A10 'name: bearing_232 ' '$tmp/pl.yaml' | grep -q 'D: 72 mm'"
+check "FVA planetary 1.1: B = 10 x 0.96 = 9.6 mm" bash -c "grep -A10 'name: bearing_232 ' '$tmp/pl.yaml' | grep -q 'B: 9.6 mm'"
+check "FVA planetary 1.1: C0 = 10.8 x 0.9216 = 9.95328 kN" bash -c "grep -A10 'name: bearing_232 ' '$tmp/pl.yaml' | grep -q 'C0: 9.95328 kN'"
+check "FVA planetary 1.1: the scaled values are declared assumed" grep -q "key: bearings.bearing_232.C0, reason: \"catalogue row 16009 x 0.96" "$tmp/pl.yaml"
+"$bin" check "$tmp/pl.yaml" > "$tmp/pl.check" 2>&1
+check "FVA planetary 1.1 as published: check accepts it, i = 1 + 61/17 = 4.58824" grep -q "i = n_in/n_out = 4.58824)" "$tmp/pl.check"
+"$bin" map "$tmp/pl.yaml" -o "$tmp/pl.csv" 2> /dev/null
+check "FVA planetary 1.1 as published: map solves it" test $? -eq 0
 # With catalogue bores given to its concept bearings (REXS 1.3 names, inner_diameter): sun 17,
 # ring 61 (held: connected to the housing only), carrier output, i = 1 + 61/17 = 4.58824.
 "$py" - "$fpl" "$tmp/pl3.rexs" <<'PY'

@@ -60,6 +60,17 @@ std::string duty_csv(const DutyResult& d) {
     return out;
 }
 
+namespace {
+// An energy for the reader: kWh, MWh or GWh, whichever keeps it below 10 000, four figures.
+std::string energy_text(double joules) {
+    const double kwh = joules / kWh;
+    const double a = std::abs(kwh);
+    if (a >= 1e7) return fmt::format("{:.4g} GWh", kwh / 1e6);
+    if (a >= 1e4) return fmt::format("{:.4g} MWh", kwh / 1e3);
+    return fmt::format("{:.4g} kWh", kwh);
+}
+}  // namespace
+
 std::string duty_summary_text(const DutyResult& d, const Spectrum& s) {
     const bool level = d.kind == SpectrumKind::time_at_level;
     std::string t = fmt::format("duty {} ({}, {} {}): {:.6g} h\n", s.file,
@@ -70,11 +81,11 @@ std::string duty_summary_text(const DutyResult& d, const Spectrum& s) {
         t += d.transient ? fmt::format("  oil from {:.1f} degC at ambient {:.1f} degC, integrated in time\n",
                                        d.start_temperature - 273.15, d.ambient - 273.15)
                          : fmt::format("  oil held at {:.1f} degC (fixed)\n", d.start_temperature - 273.15);
-    t += fmt::format("  energy supplied {:.6g} kWh, delivered {:.6g} kWh, lost {:.6g} kWh\n", d.E_supplied / kWh,
-                     d.E_delivered / kWh, d.loss() / kWh);
+    t += fmt::format("  energy supplied {}, delivered {}, lost {}\n", energy_text(d.E_supplied),
+                     energy_text(d.E_delivered), energy_text(d.loss()));
     t += fmt::format("  energy-weighted efficiency {}\n", std::isfinite(d.efficiency()) ? fmt::format("{:.5f}", d.efficiency()) : "-");
     for (size_t j = 0; j < d.mechanisms.size(); ++j)
-        t += fmt::format("    {:<14} {:12.6g} kWh  {:5.1f} %\n", d.mechanisms[j], d.E_mech[j] / kWh,
+        t += fmt::format("    {:<14} {:>12}  {:5.1f} %\n", d.mechanisms[j], energy_text(d.E_mech[j]),
                          d.loss() > 0 ? 100 * d.E_mech[j] / d.loss() : 0.0);
     if (std::isfinite(d.T_oil_min))
         t += fmt::format("  oil {:.1f} .. {:.1f} degC{}; permissible {:.1f} degC\n", d.T_oil_min - 273.15,
@@ -86,8 +97,8 @@ std::string duty_summary_text(const DutyResult& d, const Spectrum& s) {
     else
         t += fmt::format("  time above the oil's limit: {:.6g} s\n", d.time_above_limit);
     if (d.transient)
-        t += fmt::format("  heat to ambient {:.6g} kWh, stored {:+.6g} kWh (loss = ambient + stored)\n", d.E_ambient / kWh,
-                         d.stored_change / kWh);
+        t += fmt::format("  heat to ambient {}, stored {} (loss = ambient + stored)\n", energy_text(d.E_ambient),
+                         energy_text(d.stored_change));
     return t;
 }
 

@@ -51,6 +51,31 @@ const io::CatalogueEntry* nearest_row(const io::BearingCatalogue& cat, bearings:
     return best;
 }
 
+// A bearing of a bore the catalogue has no row of this type for (a concept bearing on a 43.2 mm
+// planet pin): the lightest row of the type at the nearest bore, scaled to this bore. Within one
+// dimension series the boundary dimensions grow about in proportion to the bore (ISO 15:2017's
+// diameter and width series), and the static rating C0 = f0 i Z Dw^2 cos(alpha) (ISO 76:2006)
+// with the ball diameter, i.e. with the square of the scale; the SKF (2004) friction constants are
+// those of the series, kept as they are.
+std::optional<io::CatalogueEntry> scaled_row(const io::BearingCatalogue& cat, bearings::BearingType t, double d) {
+    const io::CatalogueEntry* best = nullptr;
+    for (const auto& [key, e] : cat.entries()) {
+        if (e.type != t || !(e.d > 0)) continue;
+        const double gap = std::abs(std::log(e.d / d)), best_gap = best ? std::abs(std::log(best->d / d)) : 0.0;
+        if (!best || gap < best_gap - 1e-12 || (std::abs(gap - best_gap) <= 1e-12 && e.D < best->D)) best = &e;
+    }
+    if (!best) return std::nullopt;
+    io::CatalogueEntry row = *best;
+    const double k = d / best->d;
+    row.designation = fmt::format("{} x {:.4g} (bore {:g} mm)", best->designation, k, best->d * 1e3);
+    row.d = d;
+    row.D = best->D * k;
+    row.B = best->B * k;
+    if (row.C0) row.C0 = *best->C0 * k * k;
+    if (row.C) row.C = std::nullopt;  // the dynamic rating is not used by the loss model
+    return row;
+}
+
 // Components placed in `owner` by an assembly or ordered_assembly relation, of `type`.
 std::vector<const Component*> parts_of(const Model& m, std::int64_t owner, const std::string& type) {
     std::vector<const Component*> out;
@@ -179,7 +204,14 @@ void Mapper::write_bearing_data(YamlOut& y, const Component& c, const Shaft& s, 
     if (!type_reason.empty()) assumed_line(y, 4, std::string("type: ") + bearings::to_string(*type), key_prefix + "type", type_reason);
     y.line(4, "d: " + num(d * 1e3) + " mm", bore_given ? src(c, "inner_diameter") : fmt::format("shaft {} outer diameter at the bearing", s.comp->id));
     const io::CatalogueEntry* row = nearest_row(cat, *type, d, D_given, B_given);
-    const std::string row_how = D_given ? " (same type and bore, nearest outer diameter)" : " (same type and bore, lightest series)";
+    std::string row_how = D_given ? " (same type and bore, nearest outer diameter)" : " (same type and bore, lightest series)";
+    std::optional<io::CatalogueEntry> scaled;
+    if (!row && (scaled = scaled_row(cat, *type, d))) {
+        row = &*scaled;
+        row_how = " (no row of this bore: the nearest bore's lightest row, D and B scaled with d, C0 with d^2)";
+        warn(c, fmt::format("no catalogue {} bearing of bore {:g} mm: assumed as {}", bearings::to_string(*type), d * 1e3,
+                            scaled->designation));
+    }
     if (D_given) y.line(4, "D: " + num(*D_given * 1e3) + " mm", src(c, "outer_diameter"));
     else if (row) assumed_line(y, 4, "D: " + num(row->D * 1e3) + " mm", key_prefix + "D", "catalogue row " + row->designation + row_how);
     else assumed_line(y, 4, "D: " + num(d * 1.5e3) + " mm", key_prefix + "D", "1.5 d (no catalogue row of this type and bore)");
