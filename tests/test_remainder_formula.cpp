@@ -65,6 +65,19 @@ double speed_exponent(const std::string& basis) {
     return std::stod(basis.substr(head.size() + 1));
 }
 
+// The transfer box as shipped with one concealed empirical loss term of `coefficient` W times
+// `factor` (the truth of a campaign outside the library).
+io::Case transfer_box_with(double coefficient, const losses::EmpiricalFactor& factor) {
+    auto truth = test_support::load_shipped("configs/transfer-box.yaml");
+    auto* emp = dynamic_cast<losses::EmpiricalMechanism*>(truth.model.mechanisms.find("empirical"));
+    REQUIRE(emp);
+    losses::EmpiricalTerm term;
+    term.coefficient = coefficient;
+    term.factors = {factor};
+    emp->set_terms({term});
+    return truth;
+}
+
 }  // namespace
 
 TEST_CASE("a loss switching on above 70.2 degC is found as the step at the midpoint 70.25 degC", "[remainder]") {
@@ -197,17 +210,11 @@ TEST_CASE("the written calibration reproduces recordings with a hot-oil loss wit
     // loss heats the oil), 1.5 % loss noise. Diagnosed against the case without it, the
     // calibrated case written, reloaded and evaluated at the recorded points: its loss RMSE
     // is within 1.5 x the noise RMS (0.015 x the RMS recorded loss).
-    auto truth = test_support::load_shipped("configs/transfer-box.yaml");
-    auto* emp = dynamic_cast<losses::EmpiricalMechanism*>(truth.model.mechanisms.find("empirical"));
-    REQUIRE(emp);
-    losses::EmpiricalTerm step;
-    step.coefficient = 40;
     losses::EmpiricalFactor hot;
     hot.variable = losses::EmpiricalVariable::oil_temperature;
     hot.shape = losses::EmpiricalShape::step;
     hot.threshold = 273.15 + 70;
-    step.factors = {hot};
-    emp->set_terms({step});
+    const auto truth = transfer_box_with(40, hot);
     diagnosis::SynthOptions so;
     so.seed = 7;
     const auto rec = diagnosis::read_recordings_text(
@@ -239,18 +246,12 @@ TEST_CASE("windage standing in for a fourth power of speed on 12 points is not n
     // the simpler account and predicts better under cross-validation: the verdict must not be a
     // confident missing_physics, the formula must carry the exponent 4 +- 0.3, and the summary
     // must say why (not "the main finding is confident").
-    auto truth = test_support::load_shipped("configs/transfer-box.yaml");
-    auto* emp = dynamic_cast<losses::EmpiricalMechanism*>(truth.model.mechanisms.find("empirical"));
-    REQUIRE(emp);
-    losses::EmpiricalTerm power;
-    power.coefficient = 54;
     losses::EmpiricalFactor n4;
     n4.variable = losses::EmpiricalVariable::speed;
     n4.shape = losses::EmpiricalShape::power;
     n4.reference = 1000 * std::numbers::pi / 30;
     n4.exponent = 4;
-    power.factors = {n4};
-    emp->set_terms({power});
+    const auto truth = transfer_box_with(54, n4);
     diagnosis::SynthOptions so;
     so.seed = 1;
     const auto rec = diagnosis::read_recordings_text(

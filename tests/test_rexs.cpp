@@ -10,37 +10,15 @@
 #include <string>
 
 #include "gearloss/core/errors.hpp"
+#include "rexs_test_support.hpp"
 #include "gearloss/rexs/case_mapper.hpp"
 #include "gearloss/rexs/reader.hpp"
 #include "gearloss/rexs/units.hpp"
 
 using namespace gearloss;
+using namespace rexs_test;
 
 namespace {
-
-std::string data(const std::string& name) { return std::string(GEARLOSS_SOURCE_DIR) + "/tests/data/rexs/" + name; }
-
-std::string slurp(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-    const auto p = s.find(from);
-    REQUIRE(p != std::string::npos);
-    return s.replace(p, from.size(), to);
-}
-
-// The message of the InputError `f` throws ("" when it throws none).
-template <class F>
-std::string error_of(F f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
 
 // The case text without the header line that names the model file.
 std::string body(const std::string& yaml) { return yaml.substr(yaml.find('\n') + 1); }

@@ -10,11 +10,13 @@
 #include "gearloss/bearings/designation_suffix.hpp"
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/config.hpp"
+#include "rexs_test_support.hpp"
 #include "gearloss/rexs/case_mapper.hpp"
 #include "gearloss/rexs/reader.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;
+using namespace rexs_test;
 
 namespace {
 
@@ -23,11 +25,6 @@ std::string fva_xml() {
     return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
 }
 
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-    const auto p = s.find(from);
-    REQUIRE(p != std::string::npos);
-    return s.replace(p, from.size(), to);
-}
 
 // The codes of a designation's suffix as "code:kind" words.
 std::string codes(const std::string& designation) {

@@ -13,35 +13,14 @@
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/config.hpp"
+#include "rexs_test_support.hpp"
 #include "gearloss/rexs/case_mapper.hpp"
 #include "gearloss/rexs/reader.hpp"
 
 using namespace gearloss;
+using namespace rexs_test;
 
 namespace {
-
-std::string data(const std::string& name) { return std::string(GEARLOSS_SOURCE_DIR) + "/tests/data/rexs/" + name; }
-
-std::string slurp(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-    const auto p = s.find(from);
-    REQUIRE(p != std::string::npos);
-    return s.replace(p, from.size(), to);
-}
-
-template <class F>
-std::string error_of(F f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
 
 // The imported case loaded as gearloss loads a hand-written one (case and oil in a temporary folder).
 io::Case imported(const rexs::ImportResult& r, const std::string& tag) {
