@@ -4,7 +4,7 @@
 Every run happens in a fresh temporary directory holding a copy of the shipped configs
 (cases, oils, the bearing catalogue, drive cycles), a small recording made by `synth`,
 the FVA example REXS model and a copy of the program itself. A run draws a command (check,
-point, map, report, compare, cycle, diagnose, synth, merge, mesh-profile, duty, import: a hostile
+point, map, report, compare, cycle, diagnose, synth, merge, mesh-profile, duty, rating, import: a hostile
 REXS model, see hostile_rexs), a shipped case, possibly a
 mutated case or oil file (a value replaced by a hostile token: no unit, a wrong unit
 kind, NaN, 1e308, a negative, a control character, a YAML tag, a duplicate key, a
@@ -271,7 +271,7 @@ def draw_run(rng, t):
         return a
 
     cmd = rng.choice(["check", "point", "map", "map", "report", "compare", "cycle", "diagnose", "synth", "merge",
-                      "mesh-profile", "duty", "import"])
+                      "mesh-profile", "duty", "import", "rating"])
     outs = []
     argv = ["./gl", cmd]
     if cmd == "check":
@@ -347,6 +347,17 @@ def draw_run(rng, t):
         argv += [model, "-o", o]
         if rng.random() < 0.2:
             argv += ["--oil", c + rng.choice(OILS)]
+    elif cmd == "rating":
+        o = out_path(".csv"); outs += [o, o + ".meta.json"]
+        argv += [case, "-o", o]
+        if rng.random() < 0.5:
+            argv += ["--speed", rng.choice(CLI_SPEEDS[:3]) if rng.random() < 0.8 else rng.choice(CLI_SPEEDS)]
+        if rng.random() < 0.3:
+            argv += ["--oil-limit", rng.choice(["95degC", "110degC", "20degC", "nan degC", "-300degC", "95"])]
+        if rng.random() < 0.2:
+            argv += ["--target-oil-temp", rng.choice(["60degC", "200degC", "x"])]
+        if rng.random() < 0.3:
+            j = out_path(".json"); outs.append(j); argv += ["--json", j]
     elif cmd == "mesh-profile":
         o = out_path(".csv"); outs += [o, o + ".meta.json"]
         argv += [c + "spur-seed000.yaml", "--mesh", rng.choice(["m1", "mesh", ""]), "--speed",
