@@ -158,6 +158,13 @@ mut R1 empirical lib/gearloss/mechanisms/empirical_mechanism.cpp "empirical step
     'case EmpiricalShape::step: return (below ? x <= threshold : x > threshold) ? 1.0 : 0.0;' 'case EmpiricalShape::step: return (below ? x > threshold : x <= threshold) ? 1.0 : 0.0;'
 mut R2 empirical lib/gearloss/mechanisms/empirical_mechanism.cpp "empirical power law exponent off by 0.2" \
     'return std::pow(std::max(0.0, x / reference), exponent);' 'return std::pow(std::max(0.0, x / reference), exponent + 0.2);'
+# Issues 40 and 41: the cooler heat path and the REXS bearing scaled to a bore the catalogue lacks.
+mut T5 thermal lib/gearloss/thermal/cooler.cpp "epsilon-NTU: effectiveness 1 - exp(-NTU/2) instead of 1 - exp(-NTU)" \
+    'const double eps = -std::expm1(-ua / C);' 'const double eps = -std::expm1(-0.5 * ua / C);'
+mut T6 thermal lib/gearloss/thermal/cooler.cpp "bypass valve share ignored (always fully open)" \
+    'const double share = valve_share(T_oil);' 'const double share = 1.0;'
+mut B9 rexs lib/gearloss/rexs/bearing_mapper.cpp "scaled catalogue row: C0 with the scale instead of its square" \
+    'if (row.C0) row.C0 = *best->C0 * k * k;' 'if (row.C0) row.C0 = *best->C0 * k;'
 mut C5 churning lib/gearloss/churning/mauz_1987.cpp "Mauz C_2 denominator 80 -> 60" \
     'const double C2 = e / (80.0 * e0) + 0.2;' 'const double C2 = e / (60.0 * e0) + 0.2;'
 

@@ -35,7 +35,7 @@ if [ "$(id -u)" -ne 0 ]; then
     exit 77
 fi
 
-tmp=$(mktemp -d)
+source "$(dirname "$0")/cli_common.sh" "$@"  # tmp, check, pass/fail (its trap is replaced below)
 chmod 700 "$tmp"
 pids=()
 cleanup() {
@@ -48,13 +48,6 @@ cleanup() {
     rm -rf "$tmp"
 }
 trap cleanup EXIT
-pass=0
-fail=0
-check() {  # check NAME CONDITION...
-    local name=$1
-    shift
-    if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi
-}
 logs() {
     echo "--- slurmctld.log (end)"; tail -n 30 "$tmp/slurmctld.log" 2> /dev/null
     echo "--- slurmd.log (end)"; tail -n 30 "$tmp/slurmd.log" 2> /dev/null

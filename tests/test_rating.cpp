@@ -172,3 +172,18 @@ TEST_CASE("the cooler is the same heat path in the transient: a long steady driv
     const auto hot = cycle::simulate_cycle(plain, dc, cycle::uniform(Ta), Ta, false);
     CHECK(hot.totals.end[0] > r.totals.end[0] + 1.0);
 }
+
+TEST_CASE("a thermostatic bypass opens the cooler linearly between its two temperatures", "[rating][cooler]") {
+    // UA 1000 W/K against a 25 degC coolant; the bypass opens at 55 degC and is fully open at
+    // 65 degC. By hand: at 50 degC the cooler is bypassed, 0 W; at 60 degC half open,
+    // 0.5 x 1000 x (60 - 25) = 17 500 W; at 70 degC fully open, 1000 x (70 - 25) = 45 000 W.
+    thermal::Cooler c;
+    c.kind = thermal::Cooler::Kind::conductance;
+    c.ua = 1000;
+    c.coolant_temperature = 273.15 + 25;
+    c.valve_opens = 273.15 + 55;
+    c.valve_full = 273.15 + 65;
+    CHECK(c.heat_flow(273.15 + 50, 1.7e6) == 0.0);
+    CHECK(c.heat_flow(273.15 + 60, 1.7e6) == Approx(17500).epsilon(1e-12));
+    CHECK(c.heat_flow(273.15 + 70, 1.7e6) == Approx(45000).epsilon(1e-12));
+}
