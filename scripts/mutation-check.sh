@@ -133,6 +133,14 @@ mut D1 diagnosis lib/gearloss/diagnosis/effects.cpp "forced convection may take 
     'if (!cooling_may_fall) lo = std::max(lo, std::min(0.0, e.neutral));' 'if (false) lo = std::max(lo, std::min(0.0, e.neutral));'
 mut D2 diagnosis lib/gearloss/diagnosis/diagnose.cpp "the whole-mismatch formula never downgrades findings that stand in for it" \
     'if (d.remainder->on_case && enough_points' 'if (false && d.remainder->on_case && enough_points'
+mut D4 diagnosis lib/gearloss/diagnosis/hypothesis_basis.cpp "a running-in term not in proportion to the model's loss" \
+    'fn(k[i]) * (of_the_loss ? f.model_loss_W[i] : 1.0)' 'fn(k[i]) * (of_the_loss ? 1.0 : 1.0)'
+mut D5 diagnosis lib/gearloss/diagnosis/diagnose.cpp "several findings stand against a simpler formula predicting as well" \
+    '         simpler_and_as_good)) {' '         false)) {'
+mut D6 diagnosis lib/gearloss/diagnosis/hypothesis.cpp "the exponent interval at one unit of chi-square (68 %) instead of 3.84" \
+    'if (sse <= least + kChiSquare95 * sigma2)' 'if (sse <= least + sigma2)'
+mut D7 diagnosis lib/gearloss/diagnosis/hypothesis_basis.cpp "powers of speed searched up to 4 only" \
+    'v.id == EmpiricalVariable::speed ? 5.0' 'v.id == EmpiricalVariable::speed ? 4.0'
 mut D3 diagnosis lib/gearloss/diagnosis/adequacy.cpp "power from the critical value alone (median ignored)" \
     'return std::sqrt(std::max(0.0, critical / median - 1));' 'return std::sqrt(std::max(0.0, critical - 1));'
 mut V1 vehicle lib/gearloss/vehicle/vehicle.cpp "rotating-mass factor subtracted instead of added" \

@@ -7,7 +7,7 @@ Beside the honesty score of scoring.py (not named with confidence), two measures
     campaign (RMS over its rows of the drawn relative noise x the noise-free recorded loss):
     <= 1.5 is modelled. The report's own `final_cv_rmse_over_noise` is kept beside it.
   * form recovered by a term of the remainder formula (contract: terms[].shape, variable,
-    exponent, threshold, lower/upper, gate):
+    exponent, threshold, lower/upper, gate, window):
       speed_step    a step/threshold in speed_rpm (or a gate on it) within one grid step (the spacing
                     of the two speed levels the truth lies between)
       hot_loss      a step/threshold in oil_temp_C (or a gate on it) within one grid step of oil
@@ -99,6 +99,9 @@ def _locations(terms, variable):
         g = t.get("gate")
         if isinstance(g, dict) and g.get("variable") == variable and _num(g.get("threshold")) is not None:
             out.append(g["threshold"])
+        wdw = t.get("window")  # a term confined to a band of another variable (docs/diagnosis-remainder.md)
+        if isinstance(wdw, dict) and wdw.get("variable") == variable:
+            out += [wdw[k] for k in ("lower", "upper") if _num(wdw.get(k)) is not None]
     return out
 
 

@@ -322,10 +322,20 @@ void model_the_remainder(const Campaign& c, const JointFit& j, const Adequacy& a
     if (!d.remainder || d.verdict != "missing_physics") return;
     // On few points the formula must also be the simpler account: fewer terms than findings
     // (one power of speed against windage plus a second finding).
+    // ... unless it predicts twice as well as they do, which no selection among hundreds of
+    // terms buys on noise alone.
+    constexpr double kFarBetter = 0.5;
     const bool enough_points = d.fit_points > kFewForFormulaComparison ||
-                               (d.fit_points == kFewForFormulaComparison && d.remainder->terms.size() < d.findings.size());
-    if (d.remainder->on_case && enough_points && d.remainder->terms.size() <= d.findings.size() &&
-        d.remainder->cv_rmse_after < kClearlyBetter * d.remainder->findings_cv_rmse) {
+                               (d.fit_points == kFewForFormulaComparison && d.remainder->terms.size() < d.findings.size()) ||
+                               (d.remainder->on_case && d.remainder->cv_rmse_after < kFarBetter * d.remainder->findings_cv_rmse);
+    // Several findings against a formula of fewer terms that predicts as well: the simpler
+    // account stands (Occam), and the findings are not shown to be the cause.
+    const bool simpler_and_as_good = d.remainder->terms.size() < d.findings.size() &&
+                                     d.remainder->cv_rmse_after <= d.remainder->findings_cv_rmse;
+    if (d.remainder->on_case && enough_points &&
+        ((d.remainder->terms.size() <= d.findings.size() &&
+          d.remainder->cv_rmse_after < kClearlyBetter * d.remainder->findings_cv_rmse) ||
+         simpler_and_as_good)) {
         // A formula for the whole mismatch predicts the recordings better than the findings:
         // they likely stand in for an effect outside the library (a constant parasitic loss for
         // a running-in, windage for another power of speed). Not on a rig's 3 x 3 or 3 x 4

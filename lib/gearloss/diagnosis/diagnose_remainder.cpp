@@ -25,9 +25,11 @@ hypothesis::Proposal fit_on(const Engine& E, const CampaignOils& oils, const Hyp
         f.oil_temp_C.push_back(T - 273.15);
         f.viscosity_cSt.push_back(point_viscosity(E, o, T) * h.cal.viscosity_factor);
         if (std::isfinite(o.run)) f.order.push_back(o.run);  // only where a run order is recorded
+        f.model_loss_W.push_back(p.loss[static_cast<size_t>(i)]);
         if (oils.count_tested() >= 2) f.oil.push_back(oils.models[static_cast<size_t>(o.oil)].oil.name);
     }
     if (f.order.size() != f.speed_rpm.size()) f.order.clear();  // no run-order term without a recorded order
+    if (f.order.empty()) f.model_loss_W.clear();                  // used by the run-order terms only
     hypothesis::Settings s;
     s.noise_relative = noise_relative;
     return hypothesis::propose(resid, scale, f, s);
@@ -59,8 +61,14 @@ std::optional<hypothesis::Proposal> model_remainder(const Engine& E, const Campa
             // The findings leave nothing a formula models: they stand unless the formula alone
             // predicts a fifth better than they do (a finding of the right physics and a
             // formula of its shape predict alike; the finding names the physics).
+            // Nor do several findings stand against one formula of fewer terms that predicts
+            // as well (a constant parasitic loss plus a seal friction for one power of speed,
+            // n^0.5): the simpler account of the same data is the formula, and the findings
+            // are then not shown to be the cause.
             const double findings_cv = after.cv_rmse_before * optimism(static_cast<double>(findings));
-            replace = whole.found && whole.cv_rmse_after <= 0.8 * findings_cv;
+            replace = whole.found && (whole.cv_rmse_after <= 0.8 * findings_cv ||
+                                      (whole.terms.size() < static_cast<std::size_t>(findings) &&
+                                       whole.cv_rmse_after <= findings_cv));
         }
         if (replace) {
             whole.on_case = true;

@@ -39,7 +39,9 @@ std::string oils_text(const Diagnosis& d) {
 std::string remainder_text(const hypothesis::Proposal& r) {
     std::string s = fmt::format("\nhypothesis for what is left (not a finding): {}\n", r.formula);
     for (const auto& t : r.terms) {
-        s += fmt::format("  {:>10.4g} +/- {:<9.2g} W  {}", t.coefficient, t.uncertainty, t.basis);
+        s += fmt::format("  {:>10.4g} +/- {:<9.2g} {} {}", t.coefficient, t.uncertainty, t.relative ? "x" : "W", t.basis);
+        if (std::isfinite(t.exponent_low) && t.exponent_high > t.exponent_low)
+            s += fmt::format(" (exponent {:.1f} to {:.1f}, 95 %)", t.exponent_low, t.exponent_high);
         if (std::isfinite(t.oil_temp_equivalent))
             s += fmt::format(" (the oil {} {:.4g} degC)", t.above ? "below" : "above", t.oil_temp_equivalent);
         s += "\n";
@@ -75,10 +77,15 @@ nlohmann::ordered_json remainder_json(const hypothesis::Proposal& p) {
     if (p.on_case) r["findings_cv_rmse_W"] = p.findings_cv_rmse;
     auto& terms = r["terms"] = nlohmann::ordered_json::array();
     for (const auto& t : p.terms) {
-        nlohmann::ordered_json o{{"basis", t.basis}, {"coefficient_W", t.coefficient}, {"uncertainty_W", t.uncertainty}};
+        // A relative term's coefficient is a share of the model's loss, not watts.
+        nlohmann::ordered_json o{{"basis", t.basis}};
+        o[t.relative ? "coefficient_share" : "coefficient_W"] = t.coefficient;
+        o[t.relative ? "uncertainty_share" : "uncertainty_W"] = t.uncertainty;
+        if (t.relative) o["relative"] = true;
         o["shape"] = t.shape;
         o["variable"] = t.variable.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(t.variable);
         if (std::isfinite(t.exponent)) o["exponent"] = t.exponent;
+        if (std::isfinite(t.exponent_low)) o["exponent_range"] = {t.exponent_low, t.exponent_high};
         if (std::isfinite(t.threshold)) {
             o["threshold"] = t.threshold;
             o["side"] = t.above ? "above" : "below";
@@ -88,6 +95,7 @@ nlohmann::ordered_json remainder_json(const hypothesis::Proposal& p) {
         if (std::isfinite(t.upper)) o["upper"] = t.upper;
         if (t.gate)
             o["gate"] = {{"variable", t.gate->variable}, {"threshold", t.gate->threshold}, {"side", t.gate->above ? "above" : "below"}};
+        if (t.window) o["window"] = {{"variable", t.window->variable}, {"lower", t.window->lower}, {"upper", t.window->upper}};
         if (!t.oil.empty()) o["oil"] = t.oil;
         o["writable"] = t.empirical.has_value();
         terms.push_back(std::move(o));

@@ -204,6 +204,52 @@ double standard_error(const Eigen::VectorXd& v) {
     return std::sqrt((v.array() - m).square().sum() / (n - 1) / n);
 }
 
+// The weighted residual sum of squares of a least-squares fit of y on X.
+double fit_sse(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, const Eigen::VectorXd& w) {
+    const Eigen::MatrixXd A = w.cwiseSqrt().asDiagonal() * X;
+    const Eigen::VectorXd b = w.cwiseSqrt().cwiseProduct(y);
+    return (b - A * A.completeOrthogonalDecomposition().solve(b)).squaredNorm();
+}
+
+// A plain power of one variable (no gate, oil, window or second factor): its exponent can be
+// profiled over the grid's other powers of the same variable.
+bool plain_power(const Column& c) {
+    const Term& t = c.term;
+    return t.shape == "power" && std::isfinite(t.exponent) && !t.gate && t.oil.empty() && !t.relative &&
+           t.empirical && t.empirical->factors.size() == 1;
+}
+
+// The exponent's uncertainty: the selected power column replaced by each power of the same
+// variable on the grid, the others refitted, and the exponents whose weighted residual sum of
+// squares is within 3.84 sigma^2 of the least (Delta chi^2 <= 3.84: one parameter's 95 %
+// profile-likelihood interval), sigma^2 = least SSE / (n - p).
+void exponent_intervals(std::vector<Column>& lib, const std::vector<Eigen::Index>& sel, const Eigen::VectorXd& y,
+                        const Eigen::VectorXd& w, double sse_chosen) {
+    const auto N = y.size();
+    const auto P = static_cast<Eigen::Index>(sel.size());
+    for (Eigen::Index j = 0; j < P; ++j) {
+        Column& chosen = lib[static_cast<std::size_t>(sel[static_cast<std::size_t>(j)])];
+        if (!plain_power(chosen)) continue;
+        Eigen::MatrixXd X(N, P);
+        for (Eigen::Index k = 0; k < P; ++k) X.col(k) = lib[static_cast<std::size_t>(sel[static_cast<std::size_t>(k)])].x;
+        std::vector<std::pair<double, double>> profile = {{chosen.term.exponent, sse_chosen}};
+        for (const Column& c : lib) {
+            if (&c == &chosen || !plain_power(c) || c.term.variable != chosen.term.variable) continue;
+            X.col(j) = c.x;
+            profile.emplace_back(c.term.exponent, fit_sse(X, y, w));
+        }
+        double least = sse_chosen;
+        for (const auto& pr : profile) least = std::min(least, pr.second);
+        const double sigma2 = least / std::max(1.0, static_cast<double>(N - P));
+        constexpr double kChiSquare95 = 3.84;  // chi-square quantile, one degree of freedom, 95 %
+        double lo = chosen.term.exponent, hi = chosen.term.exponent;
+        for (const auto& [a, sse] : profile)
+            if (sse <= least + kChiSquare95 * sigma2) lo = std::min(lo, a), hi = std::max(hi, a);
+        chosen.term.exponent_low = lo;
+        chosen.term.exponent_high = hi;
+    }
+}
+
 }  // namespace
 
 Proposal propose(const std::vector<double>& residual, const std::vector<double>& scale, const Features& f,
@@ -216,6 +262,7 @@ Proposal propose(const std::vector<double>& residual, const std::vector<double>&
     check_size(f.oil_temp_C, n, "oil_temp_C");
     check_size(f.viscosity_cSt, n, "viscosity_cSt");
     check_size(f.order, n, "order");
+    check_size(f.model_loss_W, n, "model loss");
     check_size(f.oil, n, "oil");
     check_finite(residual, "residual");
     check_finite(scale, "scale");
@@ -224,6 +271,7 @@ Proposal propose(const std::vector<double>& residual, const std::vector<double>&
     check_finite(f.oil_temp_C, "oil_temp_C");
     check_finite(f.viscosity_cSt, "viscosity_cSt");
     check_finite(f.order, "order");
+    check_finite(f.model_loss_W, "model loss");
     // A zero or negative scale has no weight 1/scale^2; it is an input error, not a point to drop.
     for (double s : scale)
         if (!(s > 0)) throw std::invalid_argument("hypothesis: scale must be positive");
@@ -338,6 +386,8 @@ Proposal propose(const std::vector<double>& residual, const std::vector<double>&
     for (std::size_t j = 0; j < sel.size(); ++j) Xs.col(static_cast<Eigen::Index>(j)) = lib[static_cast<std::size_t>(sel[j])].x;
     const Fit fit = refit(Xs, y, w);
 
+    exponent_intervals(lib, sel, y, w, fit_sse(Xs, y, w));
+
     out.formula = "dP = ";
     for (std::size_t t = 0; t < sel.size(); ++t) {
         const Column& c = lib[static_cast<std::size_t>(sel[t])];
@@ -346,7 +396,7 @@ Proposal propose(const std::vector<double>& residual, const std::vector<double>&
         term.coefficient = fit.beta(ti);
         term.uncertainty = fit.se(ti);
         if (term.empirical) term.empirical->coefficient = term.coefficient;
-        const std::string mag = detail::fmt(std::fabs(term.coefficient)) + " W " + c.term.basis;
+        const std::string mag = detail::fmt(std::fabs(term.coefficient)) + (c.term.relative ? " " : " W ") + c.term.basis;
         if (t == 0)
             out.formula += (term.coefficient < 0 ? "-" : "") + mag;
         else

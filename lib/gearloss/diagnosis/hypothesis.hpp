@@ -26,6 +26,10 @@ struct Features {
     std::vector<double> oil_temp_C;     // oil temperature (recorded, or the model's)
     std::vector<double> viscosity_cSt;  // kinematic viscosity of the oil at that temperature
     std::vector<double> order;          // run order (only where the campaign records one)
+    // The model's loss at each point [W] (empty: not given): a running-in or a drift changes
+    // the losses by a share that fades along the run order, so its order terms are also
+    // offered in proportion to the loss.
+    std::vector<double> model_loss_W;
     std::vector<std::string> oil;       // the oil of each point (only where several were recorded)
 };
 
@@ -38,15 +42,25 @@ struct Gate {
     bool above = true;
 };
 
+// A window that confines a term to one band of another variable (a power of load at one
+// speed level).
+struct Window {
+    std::string variable;  // "speed_rpm"
+    double lower = 0, upper = 0;  // in the variable's unit
+};
+
 // One selected term: coefficient x basis function.
 struct Term {
     std::string basis;        // "(n/1000 rpm)^2.9", "[n > 1050 rpm]", "(T_in/250 N*m)^2 [n = 1200 rpm]", "exp(-k/12)"
-    double coefficient = 0;   // W per unit of the basis
+    double coefficient = 0;   // W per unit of the basis (relative: a share of the model's loss)
     double uncertainty = 0;   // one standard error, W per unit
     // The form: shape "power" | "step" | "threshold" | "window" | "constant" | "exp"; variable
     // "speed_rpm" | "torque_Nm" | "oil_temp_C" | "viscosity_cSt" | "order" | "oil".
     std::string shape, variable;
     double exponent = kNone;             // power: the fitted exponent
+    // power of one variable: the exponents of the grid whose refit is within 3.84 units of
+    // chi-square of the best (a 95 % profile-likelihood interval, to the grid's 0.1)
+    double exponent_low = kNone, exponent_high = kNone;
     double threshold = kNone;            // step, threshold: the location, in the variable's unit
     bool above = true;                   // step, threshold: above it (else at and below it)
     double lower = kNone, upper = kNone; // window, in the variable's unit
@@ -55,7 +69,11 @@ struct Term {
     // temperature below this), or NaN when they do not split by temperature alone.
     double oil_temp_equivalent = kNone;
     std::optional<Gate> gate;
+    std::optional<Window> window;
     std::string oil;                     // the term holds for this oil only (empty: every oil)
+    // The basis is multiplied by the model's loss at each point (Features::model_loss_W), so the
+    // coefficient is a share of the loss, without a unit.
+    bool relative = false;
     // The same term as a calibration term (SI), with the coefficient; nullopt for a term of
     // the run order (no law of the operating point, so nothing a case file could hold).
     std::optional<losses::EmpiricalTerm> empirical;

@@ -123,6 +123,7 @@ std::string mechanism_of(const Term& t) {
             m = "mesh friction (load-dependent)";
         else
             m = "bearing or churning drag (viscous)";
+        if (t.window) m += ", only at one speed (a resonance or a local contact problem?)";
         if (gated && t.gate->variable == "oil_temp_C")
             m += t.gate->above ? ", only in hot oil (a thermostat, a bypass or a thinning film?)" : ", only in cold oil";
         else if (gated)
@@ -290,8 +291,8 @@ std::vector<Column> build_library(const Features& f, std::size_t n) {
         if (v.id == EmpiricalVariable::torque) torque = &v;
     }
 
-    // Powers with the exponent searched on a grid of 0.1: speed 0.5-4 (seals ~1, churning
-    // 1.5-2, windage ~2.9), load 0.5-3, viscosity -1.5-1.5 (Petroff drag ~ nu, Palmgren ~ nu^(2/3)).
+    // Powers with the exponent searched on a grid of 0.1: speed 0.3-5 (seals ~1, churning
+    // 1.5-2, windage ~2.9, oil squeezing and pumping faster), load 0.5-3, viscosity -1.5-1.5 (Petroff drag ~ nu, Palmgren ~ nu^(2/3)).
     auto power_term = [&](const Variable& v, double a) {
         Term t;
         t.shape = "power";
@@ -301,8 +302,8 @@ std::vector<Column> build_library(const Features& f, std::size_t n) {
     };
     for (const auto& v : vars) {
         if (v.id == EmpiricalVariable::oil_temperature) continue;  // no physical reference for a power of it
-        const double lo = v.id == EmpiricalVariable::speed ? 0.5 : v.id == EmpiricalVariable::torque ? 0.5 : -1.5;
-        const double hi = v.id == EmpiricalVariable::speed ? 4.0 : v.id == EmpiricalVariable::torque ? 3.0 : 1.5;
+        const double lo = v.id == EmpiricalVariable::speed ? 0.3 : v.id == EmpiricalVariable::torque ? 0.5 : -1.5;
+        const double hi = v.id == EmpiricalVariable::speed ? 5.0 : v.id == EmpiricalVariable::torque ? 3.0 : 1.5;
         for (int k = 0; lo + 0.1 * k <= hi + 1e-9; ++k) {
             const double a = std::round((lo + 0.1 * k) * 10) / 10;
             if (a != 0) power_term(v, a);
@@ -366,7 +367,14 @@ std::vector<Column> build_library(const Features& f, std::size_t n) {
                 t.lower = lower;
                 t.upper = upper;
                 add({w}, t);
-                if (torque) add({power(*torque, 2), w}, t);  // the same window, growing with load squared
+                if (torque) {  // the same window, growing with load squared: a power of load in a window
+                    Term tq;
+                    tq.shape = "power";
+                    tq.variable = "torque_Nm";
+                    tq.exponent = 2;
+                    tq.window = Window{"speed_rpm", lower, upper};
+                    add({power(*torque, 2), w}, tq);
+                }
             }
         }
     }
@@ -414,20 +422,27 @@ std::vector<Column> build_library(const Features& f, std::size_t n) {
         std::vector<double> k(n);
         for (std::size_t r = 0; r < n; ++r) k[idx[r]] = static_cast<double>(r);
         const double Nd = static_cast<double>(n);
-        auto run = [&](std::string basis, const char* shape, auto fn) {
+        auto run = [&](std::string basis, const char* shape, auto fn, bool of_the_loss) {
             Term t;
             t.basis = std::move(basis);
             t.shape = shape;
             t.variable = "order";
+            t.relative = of_the_loss;
             Eigen::VectorXd x(N);
-            for (std::size_t i = 0; i < n; ++i) x(static_cast<Eigen::Index>(i)) = fn(k[i]);
+            for (std::size_t i = 0; i < n; ++i)
+                x(static_cast<Eigen::Index>(i)) = fn(k[i]) * (of_the_loss ? f.model_loss_W[i] : 1.0);
             lib.add(t, x);
         };
-        for (double frac : {0.1, 0.2, 0.4}) {
+        for (double frac : {0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.6}) {
             const double tau = frac * Nd;
-            run("exp(-k/" + num(tau, 3) + ")", "exp", [tau](double kk) { return std::exp(-kk / tau); });
+            run("exp(-k/" + num(tau, 3) + ")", "exp", [tau](double kk) { return std::exp(-kk / tau); }, false);
+            // Running-in smooths the contacts, so the friction losses fall by a share that
+            // fades with the running time: at each point that share of the loss.
+            if (!f.model_loss_W.empty())
+                run("exp(-k/" + num(tau, 3) + ") P_model", "exp", [tau](double kk) { return std::exp(-kk / tau); }, true);
         }
-        run("(k/" + num(Nd, 4) + ")", "power", [Nd](double kk) { return kk / Nd; });
+        run("(k/" + num(Nd, 4) + ")", "power", [Nd](double kk) { return kk / Nd; }, false);
+        if (!f.model_loss_W.empty()) run("(k/" + num(Nd, 4) + ") P_model", "power", [Nd](double kk) { return kk / Nd; }, true);
     }
     return std::move(lib.cols);
 }
