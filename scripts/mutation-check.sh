@@ -168,9 +168,13 @@ mut R2 empirical lib/gearloss/mechanisms/empirical_mechanism.cpp "empirical powe
     'return std::pow(std::max(0.0, x / reference), exponent);' 'return std::pow(std::max(0.0, x / reference), exponent + 0.2);'
 # Issues 40 and 41: the cooler heat path and the REXS bearing scaled to a bore the catalogue lacks.
 mut T5 thermal lib/gearloss/thermal/cooler.cpp "epsilon-NTU: effectiveness 1 - exp(-NTU/2) instead of 1 - exp(-NTU)" \
-    'const double eps = -std::expm1(-ua / C);' 'const double eps = -std::expm1(-0.5 * ua / C);'
+    'return -std::expm1(-ua / C_oil) * C_oil;' 'return -std::expm1(-0.5 * ua / C_oil) * C_oil;'
 mut T6 thermal lib/gearloss/thermal/cooler.cpp "bypass valve share ignored (always fully open)" \
     'const double share = valve_share(T_oil);' 'const double share = 1.0;'
+mut T7 thermal lib/gearloss/thermal/cooler.cpp "counterflow: C_r dropped from the effectiveness's denominator" \
+    '(one_minus_C_r - C_r * em1)' '(one_minus_C_r - em1)'
+mut T8 thermal lib/gearloss/thermal/heat_rejection.cpp "housing resistance path: 1 % more heat at every temperature" \
+    'return (T - Ta) / r->resistance(omega);' 'return 1.01 * (T - Ta) / r->resistance(omega);'
 mut B9 rexs lib/gearloss/rexs/bearing_mapper.cpp "scaled catalogue row: C0 with the scale instead of its square" \
     'if (row.C0) row.C0 = *best->C0 * k * k;' 'if (row.C0) row.C0 = *best->C0 * k;'
 mut C5 churning lib/gearloss/churning/mauz_1987.cpp "Mauz C_2 denominator 80 -> 60" \

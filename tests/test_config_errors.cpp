@@ -226,3 +226,29 @@ TEST_CASE("the stated ambient range includes its ends as written in degC", "[con
     CHECK_FALSE(solver::ambient_fault(300.0 + 273.15));
     CHECK(solver::ambient_fault(-100.01 + 273.15));
 }
+
+TEST_CASE("the cooler's coolant capacity rate: read with an exchanger, refused elsewhere", "[config][cooler]") {
+    const std::string housing = "  heat_rejection:\n";
+    auto cooler = [&](const std::string& c) { return "  cooler: " + c + "\n" + housing; };
+    // A counterflow exchanger: UA, the coolant's inlet and capacity rate, the oil's flow.
+    {
+        TempConfig cfg(test_support::replace_once(
+            base(), housing,
+            cooler("{ua: 5.25 kW/K, coolant_temperature: 35 degC, oil_flow: 100 L/min, coolant_capacity_rate: 3.344 kW/K}")));
+        const auto c = io::load_case(cfg.path);
+        CHECK(c.model.thermal.cooler.kind == thermal::Cooler::Kind::exchanger);
+        CHECK(c.model.thermal.cooler.coolant_capacity_rate == Catch::Detail::Approx(3344.0).epsilon(1e-12));
+    }
+    const std::string rate = "coolant_capacity_rate: 3 kW/K";
+    expect_error({housing, cooler("{ua: 500 W/K, coolant_temperature: 30 degC, " + rate + "}"), rate,
+                  "thermal.cooler.coolant_capacity_rate", "needs 'oil_flow'"});
+    expect_error({housing, cooler("{oil_flow: 10 L/min, inlet_temperature: 40 degC, " + rate + "}"), rate,
+                  "thermal.cooler.coolant_capacity_rate", "needs 'ua'"});
+    expect_error({housing, cooler("{duty: 2 kW, " + rate + "}"), "duty: 2 kW", "thermal.cooler", "not both"});
+    expect_error({housing, cooler("{ua: 500 W/K, coolant_temperature: 30 degC, oil_flow: 10 L/min, "
+                                  "coolant_capacity_rate: 0 W/K}"),
+                  "coolant_capacity_rate: 0", "thermal.cooler.coolant_capacity_rate", "must be positive"});
+    expect_error({housing, cooler("{ua: 500 W/K, coolant_temperature: 30 degC, oil_flow: 10 L/min, "
+                                  "coolant_capacity_rate: 3 kW}"),
+                  "coolant_capacity_rate: 3 kW", "thermal.cooler.coolant_capacity_rate", ""});
+}

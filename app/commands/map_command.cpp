@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <optional>
 #include <fmt/format.h>
 
@@ -180,52 +179,22 @@ private:
         return kOk;
     }
 
-    // `path` is `prefix` or a key below it ("oil", "oil.name"; not "oil_level").
-    static bool under(const std::string& path, const char* prefix) {
-        const size_t n = std::strlen(prefix);
-        return path.compare(0, n, prefix) == 0 && (path.size() == n || path[n] == '.');
-    }
-
-    // The option given on the command line that sets the case's value at `path`, if any.
-    const char* option_setting(const std::string& path) const {
-        if (!common_.oil.empty() && under(path, "oil")) return "--oil";
-        if (!common_.oil_temp.empty() && (path == "thermal.mode" || under(path, "thermal.oil_temperature"))) return "--oil-temp";
-        if (!common_.ratio.empty() && path == "gearbox.ratio") return "--ratio";
-        const bool points = under(path, "operating.points");
-        if (grid_.speeds_given() && (points || under(path, "operating.speeds"))) return "--speed";
-        if (grid_.torques_given() && (points || under(path, "operating.torques"))) return "--torque";
-        return nullptr;
-    }
-
     // The variants of the case's sweep, loaded one at a time with the command line's options
     // (`k`: the case itself, loaded with them). Unless an axis sets the operating points and
     // the command line does not fix them, every variant has k's grid: the job's rows are
     // counted and keyed without loading a variant.
     map::MapJob sweep_job(const io::Case& k, const std::shared_ptr<io::Sweep>& sweep) {
-        std::vector<std::string> labels;
-        bool grid_swept = false, thermal_swept = false;
-        for (const auto& a : sweep->axes()) {
-            labels.push_back(a.label);
-            for (const auto& p : a.paths) {
-                grid_swept = grid_swept || under(p, "operating");
-                thermal_swept = thermal_swept || p == "thermal.mode";
-                // An option that sets what an axis sets would make the axis's column a label of
-                // values never used: an error, not a silent winner.
-                if (const char* option = option_setting(p))
-                    throw InputError("", 0, 0, option, fmt::format("the case's sweep sets '{}': {} would replace the value of "
-                                                                   "every variant; give one or the other", p, option));
-            }
-        }
-        map::MapJob::Source src = map::MapJob::sweep_source(sweep, [this](io::Case c) {
+        const map::SweepOverrides given{.oil = common_.oil.empty() ? nullptr : "--oil",
+                                        .oil_temperature = common_.oil_temp.empty() ? nullptr : "--oil-temp",
+                                        .ratio = common_.ratio.empty() ? nullptr : "--ratio",
+                                        .speeds = grid_.speeds_given() ? "--speed" : nullptr,
+                                        .torques = grid_.torques_given() ? "--torque" : nullptr};
+        return map::sweep_job(sweep, k, [this](io::Case c) {
             // Each variant's plausibility warnings too (io::print_warnings prints a text once).
             c = with_options(std::move(c), common_);
             grid_.apply_checked(c, kMapExamples, map::kMaxStreamedPoints);
             return c;
-        });
-        if (!grid_swept || (grid_.speeds_given() && grid_.torques_given())) src.grid = k.grid;
-        const bool fixed = k.model.thermal.mode == solver::ThermalMode::fixed;
-        src.thermal = thermal_swept && common_.oil_temp.empty() ? "swept" : fixed ? "fixed" : "stabilised";
-        return map::MapJob(std::move(labels), std::move(src));
+        }, given);
     }
 
     // The map streamed to its file: the case's grid, every sweep variant, or one shard of

@@ -3,7 +3,6 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <type_traits>
@@ -81,12 +80,6 @@ auto interruptible(map::MapOptions& opt, F&& f) -> decltype(f()) {
         watch.finish();  // throw_if_interrupted's error after Ctrl-C
         throw;
     }
-}
-
-// `path` is `prefix` or a key below it ("oil", "oil.name"; not "oil_level").
-bool under(const std::string& path, const char* prefix) {
-    const size_t n = std::strlen(prefix);
-    return path.compare(0, n, prefix) == 0 && (path.size() == n || path[n] == '.');
 }
 
 }  // namespace
@@ -199,32 +192,13 @@ py::dict sweeps(const PyCase& c, const OptionalAxis& speeds_rpm, const OptionalA
         one.push_back({{}, std::move(first)});
         job.emplace(std::vector<std::string>{}, std::move(one));
     } else {
-        std::vector<std::string> labels;
-        bool grid_swept = false, thermal_swept = false;
-        for (const auto& a : sweep->axes()) {
-            labels.push_back(a.label);
-            for (const auto& p : a.paths) {
-                grid_swept = grid_swept || under(p, "operating");
-                thermal_swept = thermal_swept || p == "thermal.mode";
-                // An argument that sets what an axis sets would make the axis's column a label of
-                // values never used (as the CLI's options).
-                const bool points = under(p, "operating.points");
-                const char* argument = !c.oil_file.empty() && under(p, "oil")                              ? "with_oil"
-                                       : oil_temp_C && (p == "thermal.mode" || under(p, "thermal.oil_temperature")) ? "oil_temp_C"
-                                       : s.ratio && p == "gearbox.ratio"                                   ? "ratio"
-                                       : speeds_rpm && (points || under(p, "operating.speeds"))            ? "speeds_rpm"
-                                       : torques_Nm && (points || under(p, "operating.torques"))           ? "torques_Nm"
-                                                                                                           : nullptr;
-                if (argument)
-                    throw InputError("", 0, 0, argument, fmt::format("the case's sweep sets '{}': {} would replace the value "
-                                                                     "of every variant; give one or the other", p, argument));
-            }
-        }
-        map::MapJob::Source src = map::MapJob::sweep_source(sweep, load);
-        if (!grid_swept || (speeds_rpm && torques_Nm)) src.grid = first.grid;
-        const bool fixed = first.model.thermal.mode == solver::ThermalMode::fixed;
-        src.thermal = thermal_swept && !oil_temp_C ? "swept" : fixed ? "fixed" : "stabilised";
-        job.emplace(std::move(labels), std::move(src));
+        // An argument that sets what an axis sets is refused, as the CLI's options are.
+        const map::SweepOverrides given{.oil = c.oil_file.empty() ? nullptr : "with_oil",
+                                        .oil_temperature = oil_temp_C ? "oil_temp_C" : nullptr,
+                                        .ratio = s.ratio ? "ratio" : nullptr,
+                                        .speeds = speeds_rpm ? "speeds_rpm" : nullptr,
+                                        .torques = torques_Nm ? "torques_Nm" : nullptr};
+        job.emplace(map::sweep_job(sweep, first, load, given));
     }
     std::string text;
     interruptible(opt, [&] {

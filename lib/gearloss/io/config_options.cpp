@@ -52,10 +52,12 @@ void load_options(const YamlNode& n, solver::Model& m) {
 }
 
 // thermal.cooler (gearloss/thermal/cooler.hpp): `duty`, or `oil_flow` with `inlet_temperature`
-// (injection), or `ua` with `coolant_temperature` (and `oil_flow`: the effectiveness-NTU form).
+// (injection), or `ua` with `coolant_temperature` (and `oil_flow`: the effectiveness-NTU form;
+// and `coolant_capacity_rate`: a counterflow exchanger with a coolant stream of that m c_p).
 static thermal::Cooler load_cooler_kind(const YamlNode& c);
 static thermal::Cooler load_cooler(const YamlNode& c) {
-    c.allow_keys({"duty", "oil_flow", "inlet_temperature", "ua", "coolant_temperature", "thermostat", "note"});
+    c.allow_keys({"duty", "oil_flow", "inlet_temperature", "ua", "coolant_temperature", "coolant_capacity_rate",
+                  "thermostat", "note"});
     thermal::Cooler k = load_cooler_kind(c);
     if (auto t = c.get("thermostat")) {
         t->allow_keys({"opens", "full"});
@@ -77,7 +79,8 @@ static thermal::Cooler load_cooler_kind(const YamlNode& c) {
     };
     const bool duty = c.has("duty"), flow_given = c.has("oil_flow"), ua = c.has("ua");
     if (duty) {
-        if (flow_given || ua || c.has("inlet_temperature") || c.has("coolant_temperature"))
+        if (flow_given || ua || c.has("inlet_temperature") || c.has("coolant_temperature") ||
+            c.has("coolant_capacity_rate"))
             c.fail("give either 'duty' (fixed heat removal) or the cooler's data (oil_flow, inlet_temperature, ua, "
                    "coolant_temperature), not both");
         k.kind = thermal::Cooler::Kind::duty;
@@ -96,8 +99,15 @@ static thermal::Cooler load_cooler_kind(const YamlNode& c) {
         if (!(k.ua <= 1e8)) c.at("ua").fail("UA above 100 MW/K");
         k.coolant_temperature = temperature("coolant_temperature");
         k.kind = flow_given ? thermal::Cooler::Kind::exchanger : thermal::Cooler::Kind::conductance;
+        if (c.has("coolant_capacity_rate")) {
+            if (!flow_given)
+                c.at("coolant_capacity_rate").fail("'coolant_capacity_rate' needs 'oil_flow' (the oil's capacity rate)");
+            k.coolant_capacity_rate = c.positive_quantity("coolant_capacity_rate", conductance, "3 kW/K");
+            if (!(k.coolant_capacity_rate <= 1e8)) c.at("coolant_capacity_rate").fail("capacity rate above 100 MW/K");
+        }
         return k;
     }
+    if (c.has("coolant_capacity_rate")) c.at("coolant_capacity_rate").fail("'coolant_capacity_rate' needs 'ua'");
     if (!flow_given) c.fail("give 'duty', or 'oil_flow' with 'inlet_temperature', or 'ua' with 'coolant_temperature'");
     if (c.has("coolant_temperature")) c.at("coolant_temperature").fail("'coolant_temperature' needs 'ua'");
     k.inlet_temperature = temperature("inlet_temperature");

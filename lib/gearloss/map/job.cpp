@@ -1,6 +1,7 @@
 #include "gearloss/map/job.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <fmt/format.h>
 #include <numbers>
 
@@ -40,6 +41,44 @@ std::string thermal_mode(const io::Case& c) {
     return c.model.thermal.mode == solver::ThermalMode::fixed ? "fixed" : "stabilised";
 }
 }  // namespace
+
+namespace {
+// `path` is `prefix` or a key below it ("oil", "oil.name"; not "oil_level").
+bool under(const std::string& path, const char* prefix) {
+    const size_t n = std::strlen(prefix);
+    return path.compare(0, n, prefix) == 0 && (path.size() == n || path[n] == '.');
+}
+}  // namespace
+
+const char* SweepOverrides::setting(const std::string& path) const {
+    if (oil && under(path, "oil")) return oil;
+    if (oil_temperature && (path == "thermal.mode" || under(path, "thermal.oil_temperature"))) return oil_temperature;
+    if (ratio && path == "gearbox.ratio") return ratio;
+    const bool points = under(path, "operating.points");
+    if (speeds && (points || under(path, "operating.speeds"))) return speeds;
+    if (torques && (points || under(path, "operating.torques"))) return torques;
+    return nullptr;
+}
+
+MapJob sweep_job(std::shared_ptr<io::Sweep> sweep, const io::Case& first, std::function<io::Case(io::Case)> prepare,
+                 const SweepOverrides& given) {
+    std::vector<std::string> labels;
+    bool grid_swept = false, thermal_swept = false;
+    for (const auto& a : sweep->axes()) {
+        labels.push_back(a.label);
+        for (const auto& p : a.paths) {
+            grid_swept = grid_swept || under(p, "operating");
+            thermal_swept = thermal_swept || p == "thermal.mode";
+            if (const char* name = given.setting(p))
+                throw InputError("", 0, 0, name, fmt::format("the case's sweep sets '{}': {} would replace the value of "
+                                                             "every variant; give one or the other", p, name));
+        }
+    }
+    MapJob::Source src = MapJob::sweep_source(std::move(sweep), std::move(prepare));
+    if (!grid_swept || (given.speeds && given.torques)) src.grid = first.grid;
+    src.thermal = thermal_swept && !given.oil_temperature ? "swept" : thermal_mode(first);
+    return MapJob(std::move(labels), std::move(src));
+}
 
 MapJob::Source MapJob::sweep_source(std::shared_ptr<io::Sweep> sweep, std::function<io::Case(io::Case)> prepare) {
     Source src;

@@ -85,6 +85,27 @@ struct Shard {
 // "K/N" with 1 <= K <= N.
 Shard parse_shard(const std::string& text);
 
+// What a call fixes beside a case's sweep (the CLI's options, the Python module's
+// arguments): for each, the name to report when an axis of the sweep sets the same value,
+// or null when the call leaves it to the case.
+struct SweepOverrides {
+    const char* oil = nullptr;              // another oil file
+    const char* oil_temperature = nullptr;  // a fixed oil temperature
+    const char* ratio = nullptr;            // the gearbox ratio
+    const char* speeds = nullptr;           // the grid's speeds
+    const char* torques = nullptr;          // the grid's torques
+    // The name of the override that sets the case's value at `path` ("oil.name",
+    // "operating.points", ...), or null.
+    const char* setting(const std::string& path) const;
+};
+// The job of a case's sweep: every variant loaded through `prepare` (the caller's options
+// and checks); `first`, the first variant so prepared, gives the grid of every variant when
+// no axis touches the operating points (or `given` fixes both speeds and torques) and the
+// thermal mode of the fingerprint. An axis that sets what `given` fixes is an InputError
+// naming the override: its column would label values never used.
+MapJob sweep_job(std::shared_ptr<io::Sweep> sweep, const io::Case& first, std::function<io::Case(io::Case)> prepare,
+                 const SweepOverrides& given);
+
 // The job, or one shard of it (then with a first line `# gearloss shard ...`), to `write`;
 // every row also to `summary` when given. Returns the rows written.
 size_t run_job(const MapJob& job, const MapOptions& opt, const std::optional<Shard>& shard, const TextSink& write,

@@ -10,7 +10,13 @@
 //   UA, coolant T, flow:   Q = eps rho c_p V (T_oil - T_coolant), eps = 1 - exp(-NTU),
 //                          NTU = UA / (rho c_p V): the effectiveness of any exchanger whose other
 //                          stream has a far larger capacity rate, C_r -> 0 (Incropera et al. 2007,
-//                          Table 11.3, the row C_r = 0).
+//                          Table 11.3, the row C_r = 0);
+//   ... and coolant C_c:   a counterflow exchanger with a coolant of capacity rate C_c = m c_p
+//                          (T_coolant its inlet): Q = eps C_min (T_oil - T_coolant), C_min and
+//                          C_max the smaller and larger of the oil's rho c_p V and C_c, C_r =
+//                          C_min/C_max, NTU = UA/C_min, eps = (1 - e^(-NTU(1-C_r))) /
+//                          (1 - C_r e^(-NTU(1-C_r))), eps = NTU/(1 + NTU) at C_r = 1 (Incropera et
+//                          al. 2007, Table 11.3, counterflow); C_c -> infinity gives the form above.
 // An optional thermostatic bypass valve (wax element) sends the oil past the cooler when cold: the
 // share through the cooler rises linearly from 0 at `opens` to 1 at `full` (a proportional band,
 // assumed linear), so Q is continuous in T_oil and the heat balance keeps a root.
@@ -23,7 +29,8 @@ struct Cooler {
     double oil_flow = 0;             // m^3/s (injection, exchanger)
     double inlet_temperature = 0;    // K (injection)
     double ua = 0;                   // W/K (conductance, exchanger)
-    double coolant_temperature = 0;  // K (conductance, exchanger)
+    double coolant_temperature = 0;  // K (conductance, exchanger): the coolant's inlet
+    double coolant_capacity_rate = 0;  // W/K (exchanger): the coolant's m c_p; 0: far larger than the oil's
     double valve_opens = 0, valve_full = 0;  // K; valve_full > valve_opens: a thermostatic bypass
 
     bool present() const { return kind != Kind::none; }
