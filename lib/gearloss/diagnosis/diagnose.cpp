@@ -336,7 +336,8 @@ void model_the_remainder(const Campaign& c, const JointFit& j, const Adequacy& a
         ((d.remainder->terms.size() <= d.findings.size() &&
           d.remainder->cv_rmse_after < kClearlyBetter * d.remainder->findings_cv_rmse) ||
          simpler_and_as_good)) {
-        // A formula for the whole mismatch predicts the recordings better than the findings:
+        // A formula for the whole mismatch predicts the recordings better than the findings, or as
+        // well with fewer terms:
         // they likely stand in for an effect outside the library (a constant parasitic loss for
         // a running-in, windage for another power of speed). Not on a rig's 3 x 3 or 3 x 4
         // grid: a formula picked from hundreds of terms beats a one-parameter finding under
@@ -346,10 +347,11 @@ void model_the_remainder(const Campaign& c, const JointFit& j, const Adequacy& a
         d.main_finding.confidence = "tentative";
         d.remaining_structure.reset();  // no confident finding for a smaller structure to stand apart from
         d.remaining = fmt::format(
-            "not shown to be the cause: a formula of the operating point ({}) predicts the recordings better "
-            "under cross-validation than the findings ({:.3g} W against {:.3g} W), so they may stand in for an "
-            "effect outside the library",
-            d.remainder->formula, d.remainder->cv_rmse_after, d.remainder->findings_cv_rmse);
+            "not shown to be the cause: a formula of the operating point ({}) predicts the recordings {} the "
+            "findings under cross-validation ({:.3g} W against {:.3g} W), so they may stand in for an effect "
+            "outside the library",
+            d.remainder->formula, hypothesis::on_case_comparison(*d.remainder), d.remainder->cv_rmse_after,
+            d.remainder->findings_cv_rmse);
     } else if (!d.remaining_structure) {
         // What the confident name leaves passed the tests against the noise: a formula there
         // reads noise as structure (a 3 x 3 campaign's "resonance at one speed").

@@ -53,9 +53,9 @@ std::string remainder_text(const hypothesis::Proposal& r) {
     s += "\n";
     if (r.on_case)
         s += fmt::format("  this formula is for the whole mismatch of the case as described: alone it predicts the "
-                         "recordings better than the findings with a formula for what they leave (cross-validated "
+                         "recordings {} the findings with a formula for what they leave (cross-validated "
                          "{:.3g} W against {:.3g} W), so the findings may stand in for an effect outside the library\n",
-                         r.cv_rmse_after, r.findings_cv_rmse);
+                         hypothesis::on_case_comparison(r), r.cv_rmse_after, r.findings_cv_rmse);
     for (const auto& n : r.nearest) s += "  resembles: " + n + "\n";
     return s;
 }
@@ -72,7 +72,7 @@ nlohmann::ordered_json remainder_json(const hypothesis::Proposal& p) {
         r["final_cv_rmse_over_noise"] = p.cv_rmse_after / p.noise_W;
     }
     // on_case: the formula models the whole mismatch of the case as described, not what the
-    // findings leave (it predicts the recordings better than findings + formula).
+    // findings leave (it predicts the recordings better than findings + formula, or as well and more simply).
     r["on_case"] = p.on_case;
     if (p.on_case) r["findings_cv_rmse_W"] = p.findings_cv_rmse;
     auto& terms = r["terms"] = nlohmann::ordered_json::array();
@@ -349,7 +349,8 @@ void write_calibrated_config(const std::string& config_in, const std::string& co
         if (!terms.empty()) cal["empirical"]["terms"] = list;
         std::string note = "calibrated by gearloss diagnose (" + d.verdict + "): the remainder formula " + d.remainder->formula +
                            " for the whole mismatch (fitted to the recordings, not a published law); the findings are not "
-                           "written, the formula alone predicts the recordings better";
+                           "written, the formula alone predicts the recordings " +
+                           std::string(hypothesis::on_case_comparison(*d.remainder)) + " they do";
         cal["note"] = note;
         root["calibration"] = cal;
         write_case_yaml(root, config_in, config_out);

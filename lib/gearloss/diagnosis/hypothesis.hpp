@@ -95,6 +95,13 @@ struct Proposal {
     double findings_cv_rmse = 0;
 };
 
+// How an on_case formula compares with the findings, for the report: "better than" when its
+// cross-validated residual is lower, else "about as well as, and more simply than," (it
+// replaced them as the simpler account).
+inline const char* on_case_comparison(const Proposal& p) {
+    return p.cv_rmse_after < p.findings_cv_rmse ? "better than" : "about as well as, and more simply than,";
+}
+
 struct Settings {
     int max_terms = 3;
     std::uint64_t seed = 20261123;

@@ -433,7 +433,7 @@ std::vector<Column> build_library(const Features& f, std::size_t n) {
                 x(static_cast<Eigen::Index>(i)) = fn(k[i]) * (of_the_loss ? f.model_loss_W[i] : 1.0);
             lib.add(t, x);
         };
-        for (double frac : {0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.6}) {
+        for (double frac : {0.08, 0.1, 0.12, 0.15, 0.18, 0.21, 0.24, 0.27, 0.3, 0.35, 0.4, 0.5, 0.6}) {
             const double tau = frac * Nd;
             run("exp(-k/" + num(tau, 3) + ")", "exp", [tau](double kk) { return std::exp(-kk / tau); }, false);
             // Running-in smooths the contacts, so the friction losses fall by a share that
