@@ -1,5 +1,5 @@
 // REXS bearings (lib/gearloss/rexs/bearing_mapper.cpp) and the values an imported case declares
-// assumed (its `assumed:` list, lib/gearloss/io/declared_assumptions.hpp), on the FVA two-stage
+// assumed (its `assumed:` list, lib/gearloss/case/declared_assumptions.hpp), on the FVA two-stage
 // example (tests/data/rexs). The expected codes and sizes are read off the SKF (2018) designation
 // system and the ISO 15 boundary dimensions by hand, as each comment says.
 #include <catch2/catch.hpp>
@@ -9,7 +9,7 @@
 
 #include "gearloss/bearings/designation_suffix.hpp"
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "rexs_test_support.hpp"
 #include "gearloss/rexs/case_mapper.hpp"
 #include "gearloss/rexs/reader.hpp"

@@ -12,7 +12,7 @@
 #include <unistd.h>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "rexs_test_support.hpp"
 #include "gearloss/rexs/case_mapper.hpp"
 #include "gearloss/rexs/reader.hpp"

@@ -11,7 +11,7 @@
 #include "gearloss/bearings/designation.hpp"
 #include "gearloss/bearings/designation_suffix.hpp"
 #include "gearloss/bearings/skf_constants.hpp"
-#include "gearloss/io/bearing_catalogue.hpp"
+#include "gearloss/case/bearing_catalogue.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/rexs/mapper_internal.hpp"
 

@@ -1,4 +1,4 @@
-#include "gearloss/io/issue_location.hpp"
+#include "gearloss/case/issue_location.hpp"
 
 #include <filesystem>
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/rating/thermal_rating.hpp"
 
 namespace gearloss::io {

@@ -1,11 +1,11 @@
-#include "gearloss/io/mechanism_config.hpp"
+#include "gearloss/case/mechanism_config.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 
 #include "gearloss/io/csv_read.hpp"
-#include "gearloss/io/empirical_config.hpp"
+#include "gearloss/case/empirical_config.hpp"
 #include "gearloss/losses/loss_mechanism.hpp"
 #include "gearloss/losses/registry.hpp"
 #include "gearloss/units/units.hpp"

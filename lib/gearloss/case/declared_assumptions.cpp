@@ -1,10 +1,10 @@
 // The case's own `assumed:` list (declared_assumptions.hpp).
-#include "gearloss/io/declared_assumptions.hpp"
+#include "gearloss/case/declared_assumptions.hpp"
 
 #include <optional>
 #include <string>
 
-#include "gearloss/io/config_internal.hpp"
+#include "gearloss/case/config_internal.hpp"
 
 namespace gearloss::io {
 namespace {

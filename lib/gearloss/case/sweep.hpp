@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 
 namespace gearloss::io {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "gearloss/bearings/skf_model.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include <vector>
 
 namespace gearloss::io::detail {

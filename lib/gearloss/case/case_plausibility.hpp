@@ -2,8 +2,8 @@
 // Runs the model's plausibility checks (gearloss/solver/plausibility.hpp) on a loaded case and
 // locates each finding at the YAML key it concerns: errors throw InputError, warnings
 // and notes go to Case::warnings.
-#include "gearloss/io/config.hpp"
-#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/case/config.hpp"
+#include "gearloss/case/yaml_reader.hpp"
 #include "gearloss/solver/plausibility.hpp"
 
 namespace gearloss::io {

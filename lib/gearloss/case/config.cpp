@@ -1,5 +1,5 @@
 // Case loader: assembles a Case (gearbox ratios, housing, operating grid) from the sections of config_*.cpp.
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -8,13 +8,13 @@
 #include <fmt/ranges.h>
 #include <map>
 
-#include "gearloss/io/case_plausibility.hpp"
-#include "gearloss/io/config_internal.hpp"
-#include "gearloss/io/declared_assumptions.hpp"
+#include "gearloss/case/case_plausibility.hpp"
+#include "gearloss/case/config_internal.hpp"
+#include "gearloss/case/declared_assumptions.hpp"
 #include "gearloss/io/csv_read.hpp"
-#include "gearloss/io/issue_location.hpp"
-#include "gearloss/io/mechanism_config.hpp"
-#include "gearloss/io/sweep.hpp"
+#include "gearloss/case/issue_location.hpp"
+#include "gearloss/case/mechanism_config.hpp"
+#include "gearloss/case/sweep.hpp"
 #include "gearloss/model/validate.hpp"
 #include "gearloss/units/ranges.hpp"
 

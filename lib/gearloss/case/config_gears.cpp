@@ -5,7 +5,7 @@
 #include <set>
 #include <string>
 
-#include "gearloss/io/config_internal.hpp"
+#include "gearloss/case/config_internal.hpp"
 #include "gearloss/io/csv_read.hpp"
 
 namespace gearloss::io::detail {

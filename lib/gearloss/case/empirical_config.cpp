@@ -1,5 +1,5 @@
 // Reading and writing the empirical terms of a calibration (empirical_config.hpp).
-#include "gearloss/io/empirical_config.hpp"
+#include "gearloss/case/empirical_config.hpp"
 
 #include <fmt/format.h>
 

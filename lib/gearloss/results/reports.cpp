@@ -1,4 +1,4 @@
-#include "gearloss/io/reports.hpp"
+#include "gearloss/results/reports.hpp"
 
 #include <cmath>
 #include <fmt/format.h>

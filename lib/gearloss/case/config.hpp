@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "gearloss/io/bearing_catalogue.hpp"
-#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/case/bearing_catalogue.hpp"
+#include "gearloss/case/yaml_reader.hpp"
 #include "gearloss/model/model.hpp"
 #include "gearloss/torque_converter/torque_converter.hpp"
 #include "gearloss/vehicle/vehicle.hpp"
@@ -26,7 +26,7 @@ struct OperatingGrid {
     }
 };
 
-// One axis of a design-space sweep (gearloss/io/sweep.hpp).
+// One axis of a design-space sweep (gearloss/case/sweep.hpp).
 struct SweepAxis {
     std::string label;               // CSV column name (the first path)
     std::vector<std::string> paths;  // set together (e.g. both gears of a mesh)
@@ -55,7 +55,7 @@ struct Case {
     OperatingGrid grid;
     std::optional<vehicle::Vehicle> vehicle;  // for `gearloss cycle`
     std::optional<torque_converter::TorqueConverter> torque_converter;
-    std::vector<SweepAxis> sweep;  // `sweep:` axes (map runs every combination; gearloss/io/sweep.hpp)
+    std::vector<SweepAxis> sweep;  // `sweep:` axes (map runs every combination; gearloss/case/sweep.hpp)
     // Plausibility findings ("file:line:col: key: warning: ..."), printed by every
     // command on stderr and listed by `check`.
     std::vector<std::string> warnings;

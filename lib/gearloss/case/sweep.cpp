@@ -23,7 +23,7 @@
 // order: every variant starts from the document as parsed, as each variant of the old
 // expansion started from a fresh copy, and a path is resolved as it was there (after the
 // earlier axes of the same variant only).
-#include "gearloss/io/sweep.hpp"
+#include "gearloss/case/sweep.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "gearloss/io/bearing_catalogue.hpp"
+#include "gearloss/case/bearing_catalogue.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 
 #include "gearloss/bearings/designation.hpp"
 #include "gearloss/io/data_dir.hpp"
-#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/case/yaml_reader.hpp"
 
 namespace gearloss::io {
 

@@ -1,5 +1,5 @@
 // Case loader: the `options:` block (the loss mechanisms' choices) and the `thermal:` block (heat path, docs/config.md).
-#include "gearloss/io/config_internal.hpp"
+#include "gearloss/case/config_internal.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 
 #include <fmt/format.h>

@@ -3,7 +3,7 @@
 // parameters, plus the oil and heat-path terms) and `mechanisms:` (each mechanism's
 // settings and selected forms). Keys come from the mechanisms themselves
 // (losses::LossMechanism::parameters, forms), so a new mechanism needs no edit here.
-#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/case/yaml_reader.hpp"
 #include "gearloss/model/model.hpp"
 
 namespace gearloss::io {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
-#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/case/config.hpp"
+#include "gearloss/case/yaml_reader.hpp"
 
 namespace gearloss::io {
 

@@ -1,4 +1,4 @@
-#include "gearloss/io/cycle_report.hpp"
+#include "gearloss/results/cycle_report.hpp"
 
 #include "gearloss/losses/loss_mechanism.hpp"
 

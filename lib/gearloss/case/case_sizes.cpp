@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 #include <numbers>
 
-#include "gearloss/io/case_plausibility.hpp"
+#include "gearloss/case/case_plausibility.hpp"
 
 namespace gearloss::io {
 

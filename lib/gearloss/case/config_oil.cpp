@@ -6,9 +6,9 @@
 #include <utility>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
-#include "gearloss/io/config_internal.hpp"
-#include "gearloss/io/declared_assumptions.hpp"
+#include "gearloss/case/config.hpp"
+#include "gearloss/case/config_internal.hpp"
+#include "gearloss/case/declared_assumptions.hpp"
 
 namespace gearloss::io {
 

@@ -8,7 +8,7 @@
 
 #include "gearloss/bearings/designation.hpp"
 #include "gearloss/bearings/skf_constants.hpp"
-#include "gearloss/io/config_internal.hpp"
+#include "gearloss/case/config_internal.hpp"
 #include "gearloss/io/csv_read.hpp"
 
 namespace gearloss::io::detail {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "gearloss/core/source_index.hpp"
-#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/case/yaml_reader.hpp"
 
 namespace gearloss::io {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "gearloss/cycle/simulate.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 
 namespace gearloss::io {
 

@@ -1,4 +1,4 @@
-#include "gearloss/io/rating_report.hpp"
+#include "gearloss/results/rating_report.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-#include "gearloss/io/drive_cycle_csv.hpp"
+#include "gearloss/case/drive_cycle_csv.hpp"
 
 #include <cmath>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "gearloss/io/case_plausibility.hpp"
+#include "gearloss/case/case_plausibility.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -21,7 +21,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/case/yaml_reader.hpp"
 #include "gearloss/mechanisms/empirical_mechanism.hpp"
 
 namespace gearloss::io {

@@ -1,4 +1,4 @@
-#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/case/yaml_reader.hpp"
 
 #include <algorithm>
 #include <cctype>
