@@ -58,7 +58,7 @@ void Loader::load_bearings() {
     std::optional<BearingCatalogue> own_catalogue;
     for (const auto& n : root.at("bearings").items()) {
         n.allow_keys({"name", "type", "series", "designation", "d", "D", "B", "C0", "Y", "shaft", "position",
-                      "under_gear", "locating", "lubrication", "seals", "seal_counterface", "constants", "oil_bath",
+                      "under_gear", "outer_shaft", "locating", "lubrication", "seals", "seal_counterface", "constants", "oil_bath",
                       "note", "count"});
         gearbox::Bearing b;
         b.name = n.at("name").as_name();
@@ -266,6 +266,16 @@ void Loader::load_bearings() {
             if (g.is_planet()) b.multiplicity = g.planets;  // listed once, runs in every planet
         } else {
             b.position = n.quantity("position", dim::length, "20 mm");
+        }
+        // A pilot bearing: its outer ring in another shaft, so it runs at the two shafts' relative speed.
+        if (auto os = n.get("outer_shaft")) {
+            if (n.has("under_gear"))
+                os->fail("a bearing has 'outer_shaft' (a pilot bearing between two shafts) or 'under_gear' (under a "
+                         "free gear or planet), not both");
+            b.outer_shaft = shaft_ref(*os);
+            if (b.outer_shaft == b.shaft)
+                os->fail("outer_shaft names the bearing's own shaft '" + n.at("shaft").as_string() +
+                         "': a bearing in the housing has no 'outer_shaft'");
         }
         if (auto lc = n.get("locating")) b.locating = lc->as_bool();
         int count = 1;
