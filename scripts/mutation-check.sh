@@ -111,7 +111,7 @@ mut B1 bearings lib/gearloss/bearings/skf_model.cpp "SKF inlet shear constant 1.
     'p.a_ish = 1.84e-9' 'p.a_ish = 1.93e-9'
 mut B2 bearings lib/gearloss/bearings/skf_model.cpp "SKF roller drag factor 4 -> 0.4 (the ball factor)" \
     'first = 4.0 * b.bath_VM * K_roll' 'first = 0.4 * b.bath_VM * K_roll'
-mut B3 bearings lib/gearloss/io/config_bearings.cpp "a one-side suffix seal (RS1) given the moment of both sides" \
+mut B3 bearings lib/gearloss/case/config_bearings.cpp "a one-side suffix seal (RS1) given the moment of both sides" \
     's.seal_KS1 *= seal_sides / 2;' 's.seal_KS1 *= 1.0;'
 mut E1 seals lib/gearloss/seals/radial_lip_seal.hpp "ISO/TR 14179-2 seal constant 7.69e-6 -> 7.96e-6 (digits swapped)" \
     'return 7.69e-6 * d_mm' 'return 7.96e-6 * d_mm'

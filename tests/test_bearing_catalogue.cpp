@@ -9,8 +9,8 @@
 #include <string>
 
 #include "gearloss/bearings/designation.hpp"
-#include "gearloss/io/bearing_catalogue.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/bearing_catalogue.hpp"
+#include "gearloss/case/config.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "gearloss/bearings/skf_model.hpp"
-#include "gearloss/io/case_plausibility.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/case_plausibility.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "loss_parts.hpp"
 #include "test_support.hpp"

@@ -17,11 +17,11 @@
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/diagnosis/recordings.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/io/csv_read.hpp"
-#include "gearloss/io/drive_cycle_csv.hpp"
-#include "gearloss/io/reports.hpp"
-#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/case/drive_cycle_csv.hpp"
+#include "gearloss/results/reports.hpp"
+#include "gearloss/case/yaml_reader.hpp"
 #include "test_support.hpp"
 #include "gearloss/units/units.hpp"
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "gearloss/geometry/gear_geometry.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/solver/plausibility.hpp"
 #include "test_support.hpp"
 

@@ -10,7 +10,7 @@
 
 #include "gearloss/churning/fitted_range.hpp"
 #include "gearloss/churning/heingartner_mba.hpp"
-#include "gearloss/io/reports.hpp"
+#include "gearloss/results/reports.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "gearloss/solver/plausibility.hpp"
 #include "loss_parts.hpp"

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "gearloss/churning/changenet_velex.hpp"
-#include "gearloss/io/reports.hpp"
+#include "gearloss/results/reports.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "loss_parts.hpp"
 #include "test_support.hpp"

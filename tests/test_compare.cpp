@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 #include <sstream>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/compare.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "test_support.hpp"

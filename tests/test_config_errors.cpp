@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/model/validate.hpp"
 #include "test_support.hpp"
 

@@ -10,7 +10,7 @@
 #include "gearloss/diagnosis/diagnose.hpp"
 #include "gearloss/diagnosis/recordings.hpp"
 #include "gearloss/diagnosis/synth.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 

@@ -16,9 +16,9 @@
 #include "gearloss/diagnosis/effects.hpp"
 #include "gearloss/diagnosis/recordings.hpp"
 #include "gearloss/diagnosis/synth.hpp"
-#include "gearloss/io/config.hpp"
-#include "gearloss/io/cycle_report.hpp"
-#include "gearloss/io/drive_cycle_csv.hpp"
+#include "gearloss/case/config.hpp"
+#include "gearloss/results/cycle_report.hpp"
+#include "gearloss/case/drive_cycle_csv.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "test_support.hpp"
 

@@ -15,7 +15,7 @@
 #include "gearloss/diagnosis/recordings.hpp"
 #include "gearloss/diagnosis/run_order.hpp"
 #include "gearloss/diagnosis/synth.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

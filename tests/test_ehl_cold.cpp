@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/losses/mechanism_set.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 #include "gearloss/mesh/friction.hpp"

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/geometry/gear_geometry.hpp"
 #include "gearloss/mesh/ehl_contact.hpp"
 #include "gearloss/mesh/ehl_path.hpp"

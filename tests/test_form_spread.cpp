@@ -9,7 +9,7 @@
 #include <set>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/form_spread.hpp"
 #include "gearloss/model/validate.hpp"
 #include "gearloss/solver/operating_point.hpp"

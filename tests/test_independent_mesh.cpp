@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "gearloss/geometry/gear_geometry.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 #include "gearloss/mesh/ehl_contact.hpp"
 #include "gearloss/mesh/friction.hpp"

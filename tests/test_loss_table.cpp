@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/co2mpas_fit.hpp"
 #include "gearloss/map/loss_table.hpp"
 #include "gearloss/solver/operating_point.hpp"

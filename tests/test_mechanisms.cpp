@@ -6,7 +6,7 @@
 #include <set>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/losses/loss_mechanism.hpp"
 #include "gearloss/losses/registry.hpp"
 #include "gearloss/map/map_runner.hpp"

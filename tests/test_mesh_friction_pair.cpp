@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
-#include "gearloss/io/reports.hpp"
+#include "gearloss/case/config.hpp"
+#include "gearloss/results/reports.hpp"
 
 #include <nlohmann/json.hpp>
 #include "gearloss/losses/registry.hpp"

@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/output_metadata.hpp"
 #include "test_support.hpp"
 

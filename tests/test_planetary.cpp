@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 

@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/case_plausibility.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/case_plausibility.hpp"
+#include "gearloss/case/config.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

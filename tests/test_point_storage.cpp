@@ -5,7 +5,7 @@
 #include <numbers>
 #include <thread>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 

@@ -8,7 +8,7 @@
 #include <random>
 #include <sstream>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/io/csv_format.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/map/map_stream.hpp"

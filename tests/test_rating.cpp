@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "gearloss/cycle/simulate.hpp"
-#include "gearloss/io/config.hpp"
-#include "gearloss/io/cycle_report.hpp"
+#include "gearloss/case/config.hpp"
+#include "gearloss/results/cycle_report.hpp"
 #include "gearloss/rating/thermal_rating.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "gearloss/thermal/cooler.hpp"

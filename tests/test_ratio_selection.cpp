@@ -7,7 +7,7 @@
 #include <string>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "loss_parts.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"

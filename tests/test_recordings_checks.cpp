@@ -14,7 +14,7 @@
 #include "gearloss/diagnosis/diagnose.hpp"
 #include "gearloss/diagnosis/recordings.hpp"
 #include "gearloss/diagnosis/synth.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "test_support.hpp"
 

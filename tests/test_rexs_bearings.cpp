@@ -1,5 +1,5 @@
 // REXS bearings (lib/gearloss/rexs/bearing_mapper.cpp) and the values an imported case declares
-// assumed (its `assumed:` list, lib/gearloss/io/declared_assumptions.hpp), on the FVA two-stage
+// assumed (its `assumed:` list, lib/gearloss/case/declared_assumptions.hpp), on the FVA two-stage
 // example (tests/data/rexs). The expected codes and sizes are read off the SKF (2018) designation
 // system and the ISO 15 boundary dimensions by hand, as each comment says.
 #include <catch2/catch.hpp>
@@ -9,7 +9,7 @@
 
 #include "gearloss/bearings/designation_suffix.hpp"
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "rexs_test_support.hpp"
 #include "gearloss/rexs/case_mapper.hpp"
 #include "gearloss/rexs/reader.hpp"
@@ -147,6 +147,46 @@ TEST_CASE("rexs: a bearing with detailed geometry keeps its size and finds its s
         "<attribute id=\"diameter_of_rolling_element\" unit=\"mm\">11</attribute><attribute id=\"length_of_rolling_element\" unit=\"mm\">12</attribute>"));
     const std::string cb = bearing_block(c.case_yaml, "bearing_33");
     CHECK_THAT(cb, Catch::Contains("type: cylindrical_roller") && Catch::Contains("series: \"22\""));
+}
+
+TEST_CASE("rexs: a bearing of a designation not in the catalogue takes the designation's series", "[rexs][bearings]") {
+    // 6299 is not a bearing (bore code 99), but its series digits are those of the 62 series (ISO 15:
+    // deep groove ball, diameter series 2): on shaft 12's 50 mm bore the 62 row is 6210
+    // (50 x 90 x 20 mm, C0 23.2 kN), not the lightest row of that bore, 16010 (50 x 80 x 10 mm).
+    const auto r = import_text(replaced(fva_xml(), ">6210-2Z<", ">6299-2RS1<"));
+    const std::string b = bearing_block(r.case_yaml, "bearing_33");
+    CHECK_THAT(b, Catch::Contains("D: 90 mm") && Catch::Contains("B: 20 mm") && Catch::Contains("C0: 23.2 kN"));
+    CHECK_THAT(b, Catch::Contains("series: \"62\"") && Catch::Contains("series 62 of the designation"));
+}
+
+TEST_CASE("rexs: a scaled bearing row is of the designation's series, else the lightest, said so", "[rexs][bearings]") {
+    // A 43.2 mm bore has no catalogue deep groove ball row; the nearest bore is 45 mm
+    // (k = 43.2/45 = 0.96). Designation "63" (the series alone): 6309 (45 x 100 x 25 mm, C0 31.5 kN)
+    // scaled: D = 96 mm, B = 24 mm, C0 = 31.5 x 0.96^2 = 29.0304 kN.
+    const std::string attrs = "<attribute id=\"bearing_type\" unit=\"\">radial_grooved_ball_bearing</attribute>"
+                              "<attribute id=\"inner_diameter\" unit=\"mm\">43.2</attribute>";
+    const std::string row = "<attribute id=\"number_of_rolling_elements\" unit=\"none\">8</attribute>";
+    const std::string ball = "<attribute id=\"diameter_of_rolling_element\" unit=\"mm\">15</attribute>";
+    const auto r = import_text(detailed_33("<attribute id=\"catalogue_designation\" unit=\"\">63</attribute>" + attrs, row, ball));
+    const std::string b = bearing_block(r.case_yaml, "bearing_33");
+    CHECK_THAT(b, Catch::Contains("D: 96 mm") && Catch::Contains("B: 24 mm") && Catch::Contains("C0: 29.0304 kN"));
+    CHECK_THAT(b, Catch::Contains("series: \"63\"") && Catch::Contains("row of series 63 of the designation"));
+    CHECK_THAT(all_warnings(r), Catch::Contains("assumed as 6309 x 0.96 (bore 45 mm) (series 63 of the designation)"));
+    // No designation: the lightest row at 45 mm, 16009 (45 x 75 x 10 mm, C0 10.8 kN), scaled:
+    // D = 72 mm, B = 9.6 mm, C0 = 10.8 x 0.9216 = 9.95328 kN; the reason says the model gave no series.
+    const auto q = import_text(detailed_33(attrs, row, ball));
+    const std::string qb = bearing_block(q.case_yaml, "bearing_33");
+    CHECK_THAT(qb, Catch::Contains("D: 72 mm") && Catch::Contains("B: 9.6 mm") && Catch::Contains("C0: 9.95328 kN"));
+    CHECK_THAT(qb, Catch::Contains("the nearest bore's lightest row, REXS gives no designation"));
+    CHECK_THAT(all_warnings(q), Catch::Contains("assumed as 16009 x 0.96 (bore 45 mm) (the lightest row at the nearest bore: "
+                                                "REXS gives no designation)"));
+    // No bearing_type either: the designation's series gives the type. NU 2299: series NU 22, a
+    // cylindrical roller bearing; at 50 mm its row is NU 2210 ECP (50 x 90 x 23 mm).
+    const auto t = import_text(replaced(fva_xml(), ">6210-2Z</attribute>\r\n      <attribute id=\"bearing_type\" unit=\"\">radial_grooved_ball_bearing</attribute>",
+                                        ">NU 2299</attribute>"));
+    const std::string tb = bearing_block(t.case_yaml, "bearing_33");
+    CHECK_THAT(tb, Catch::Contains("type: cylindrical_roller") && Catch::Contains("the designation's series NU 22 is of this type"));
+    CHECK_THAT(tb, Catch::Contains("D: 90 mm") && Catch::Contains("B: 23 mm") && Catch::Contains("series: \"22\""));
 }
 
 TEST_CASE("rexs: what REXS does not carry is declared assumed and listed by the loader", "[rexs][assumed]") {

@@ -12,7 +12,7 @@
 #include <unistd.h>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "rexs_test_support.hpp"
 #include "gearloss/rexs/case_mapper.hpp"
 #include "gearloss/rexs/reader.hpp"
@@ -179,10 +179,48 @@ TEST_CASE("rexs: two planetary stages in series", "[rexs]") {
     CHECK(speed_of(c, "shaft_53") == Approx(0).margin(1e-12));
 }
 
-TEST_CASE("rexs: a pilot bearing between two shafts keeps its warning", "[rexs]") {
-    // Sun bearing B (116) with its outer ring in the carrier shaft 12 instead of the casing: gearloss's
-    // bearing turns with one shaft against the housing (or under a free gear or planet), so it is
-    // placed on the sun shaft with a warning naming both shafts.
+namespace {
+
+// The speed of bearing `name` per unit input speed in the loaded case (the ring speed its
+// friction is taken at).
+double bearing_speed_of(const io::Case& c, const std::string& name) {
+    const auto& gb = c.model.gearbox;
+    for (size_t i = 0; i < gb.bearings.size(); ++i)
+        if (gb.bearings[i].name == name) return c.model.layout.bearing_speed_ratio[i];
+    FAIL("no bearing " << name);
+    return 0;
+}
+
+bool warned_about(const rexs::ImportResult& r, const std::string& component, const std::string& text) {
+    for (const auto& w : r.warnings)
+        if (w.find("component " + component + " ") != std::string::npos && w.find(text) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("rexs: a pilot bearing between two coaxial shafts runs at their relative speed", "[rexs][pilot]") {
+    // handmade_coaxial_pilot_1-4.rexs: input shaft 11 (z 20) -> layshaft 12 (z 40 | z 20) -> output
+    // shaft 13 (z 40), coaxial with the input. n_12 / n_11 = -20/40 = -0.5 and
+    // n_13 / n_11 = (-20/40)(-20/40) = +0.25 (two external meshes: the same sense as the input).
+    // Pilot bearing 117 (inner ring on shaft 11, outer ring in shaft 13's hub) turns at
+    // |1 - 0.25| = 0.75 of the input speed; the input shaft's speed (1.0) or the output's (0.25)
+    // would be wrong.
+    const auto r = import_text(slurp(data("handmade_coaxial_pilot_1-4.rexs")), "pilot.rexs");
+    INFO(r.case_yaml);
+    CHECK(r.case_yaml.find("outer_shaft: shaft_13") != std::string::npos);
+    CHECK_FALSE(warned_about(r, "117", "against the housing"));
+    const auto c = imported(r, "pilot");
+    CHECK(speed_of(c, "shaft_13") == Approx(0.25).epsilon(1e-12));
+    CHECK(bearing_speed_of(c, "bearing_117") == Approx(0.75).epsilon(1e-12));
+    CHECK(bearing_speed_of(c, "bearing_115") == Approx(1.0).epsilon(1e-12));
+    CHECK(bearing_speed_of(c, "bearing_135") == Approx(0.25).epsilon(1e-12));
+}
+
+TEST_CASE("rexs: a pilot bearing between the sun and the carrier runs at their relative speed", "[rexs][pilot]") {
+    // Sun bearing B (116) with its outer ring in the carrier shaft 12 instead of the casing. Sun 16,
+    // ring 62 held, carrier the output: n_c / n_s = 16 / (16 + 62) = 0.205128, so the bearing turns
+    // at 1 - 16/78 = 62/78 = 0.794872 of the input speed.
     const std::string xml =
         replaced(slurp(data("handmade_planetary_1-4.rexs")),
                  "<ref hint=\"rolling_bearing_with_catalog_geometry\" id=\"116\" role=\"assembly\"/>\n      <ref hint=\"shaft\" id=\"11\" "
@@ -190,8 +228,10 @@ TEST_CASE("rexs: a pilot bearing between two shafts keeps its warning", "[rexs]"
                  "<ref hint=\"rolling_bearing_with_catalog_geometry\" id=\"116\" role=\"assembly\"/>\n      <ref hint=\"shaft\" id=\"11\" "
                  "role=\"inner_part\"/>\n      <ref hint=\"shaft\" id=\"12\" role=\"outer_part\"/>");
     const auto r = import_text(xml, "pilot.rexs");
-    bool warned = false;
-    for (const auto& w : r.warnings) warned = warned || (w.find("component 116") != std::string::npos && w.find("between shafts 11 and 12") != std::string::npos);
-    CHECK(warned);
+    INFO(r.case_yaml);
+    CHECK_FALSE(warned_about(r, "116", "against the housing"));
     CHECK(r.case_yaml.find("under_gear: gear_21") == std::string::npos);
+    CHECK(r.case_yaml.find("outer_shaft: shaft_12") != std::string::npos);
+    const auto c = imported(r, "sunpilot");
+    CHECK(bearing_speed_of(c, "bearing_116") == Approx(62.0 / 78.0).epsilon(1e-12));
 }

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 #include "gearloss/mesh/ehl_path.hpp"
 #include "gearloss/solver/operating_point.hpp"

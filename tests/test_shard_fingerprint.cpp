@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/fingerprint.hpp"
 #include "gearloss/map/job.hpp"
 #include "test_support.hpp"

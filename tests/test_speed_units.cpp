@@ -12,7 +12,7 @@
 #include <string>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "test_support.hpp"
 #include "gearloss/units/units.hpp"
 

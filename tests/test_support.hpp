@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 
 namespace test_support {
 

@@ -6,7 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/sweep.hpp"
+#include "gearloss/case/sweep.hpp"
 #include "gearloss/map/job.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "test_support.hpp"

@@ -24,7 +24,7 @@
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/geometry/gear_geometry.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 #include "gearloss/mesh/loss_factor.hpp"
 #include "test_support.hpp"

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/vecto.hpp"
 #include "test_support.hpp"
 

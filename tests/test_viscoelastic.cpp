@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/mechanisms/mesh_friction_mechanism.hpp"
 #include "gearloss/mesh/ehl_contact.hpp"
 #include "gearloss/mesh/ehl_path.hpp"

@@ -8,7 +8,7 @@
 #include <numbers>
 #include <string>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "gearloss/clutch/film_heating.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;

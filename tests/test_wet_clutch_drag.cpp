@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "gearloss/clutch/film_heating.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "gearloss/thermal/air.hpp"

@@ -8,7 +8,7 @@
 #include "gearloss/core/message_text.hpp"
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/json_text.hpp"
-#include "gearloss/io/reports.hpp"
+#include "gearloss/results/reports.hpp"
 
 namespace gearloss::app {
 namespace {

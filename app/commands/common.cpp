@@ -10,7 +10,7 @@
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/atomic_file.hpp"
-#include "gearloss/io/case_plausibility.hpp"
+#include "gearloss/case/case_plausibility.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/data_dir.hpp"
 #include "gearloss/io/interrupt.hpp"

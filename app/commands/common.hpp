@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/output_metadata.hpp"
 #include "gearloss/units/units.hpp"
 

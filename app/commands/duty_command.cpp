@@ -9,7 +9,7 @@
 #include "gearloss/duty/spectrum.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/io/output_paths.hpp"
-#include "gearloss/io/reports.hpp"
+#include "gearloss/results/reports.hpp"
 
 namespace gearloss::app {
 namespace {

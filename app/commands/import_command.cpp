@@ -8,7 +8,7 @@
 #include "commands/command.hpp"
 #include "commands/common.hpp"
 #include "gearloss/io/atomic_file.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/io/output_paths.hpp"
 #include "gearloss/rexs/case_mapper.hpp"
 #include "gearloss/rexs/reader.hpp"

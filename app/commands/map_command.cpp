@@ -14,7 +14,7 @@
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/interrupt.hpp"
 #include "gearloss/io/output_paths.hpp"
-#include "gearloss/io/sweep.hpp"
+#include "gearloss/case/sweep.hpp"
 #include "gearloss/map/form_spread.hpp"
 #include "gearloss/map/job.hpp"
 #include "gearloss/map/map_runner.hpp"

@@ -4,7 +4,7 @@
 #include "commands/grid_overrides.hpp"
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/output_paths.hpp"
-#include "gearloss/io/reports.hpp"
+#include "gearloss/results/reports.hpp"
 
 namespace gearloss::app {
 namespace {

@@ -3,7 +3,7 @@
 #include "commands/common.hpp"
 #include "commands/grid_overrides.hpp"
 #include "gearloss/io/atomic_file.hpp"
-#include "gearloss/io/reports.hpp"
+#include "gearloss/results/reports.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/map/point_json.hpp"
 

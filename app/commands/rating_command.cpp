@@ -5,7 +5,7 @@
 #include "commands/grid_overrides.hpp"
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/output_paths.hpp"
-#include "gearloss/io/rating_report.hpp"
+#include "gearloss/results/rating_report.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/model/validate.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "gearloss/io/case_plausibility.hpp"
+#include "gearloss/case/case_plausibility.hpp"
 #include "gearloss/map/map_runner.hpp"
 
 namespace gearloss::python {

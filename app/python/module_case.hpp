@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "gearloss/core/errors.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/io/interrupt.hpp"
 
 namespace gearloss::python {

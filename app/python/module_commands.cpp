@@ -9,11 +9,11 @@
 
 #include <fmt/format.h>
 
-#include "gearloss/io/cycle_report.hpp"
+#include "gearloss/results/cycle_report.hpp"
 #include "gearloss/io/data_dir.hpp"
-#include "gearloss/io/drive_cycle_csv.hpp"
-#include "gearloss/io/reports.hpp"
-#include "gearloss/io/sweep.hpp"
+#include "gearloss/case/drive_cycle_csv.hpp"
+#include "gearloss/results/reports.hpp"
+#include "gearloss/case/sweep.hpp"
 #include "gearloss/map/compare_oils.hpp"
 #include "gearloss/map/form_spread.hpp"
 #include "gearloss/map/job.hpp"

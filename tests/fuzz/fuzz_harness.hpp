@@ -20,8 +20,8 @@
 #include "gearloss/core/errors.hpp"
 #include "gearloss/cycle/simulate.hpp"
 #include "gearloss/diagnosis/recordings.hpp"
-#include "gearloss/io/config.hpp"
-#include "gearloss/io/reports.hpp"
+#include "gearloss/case/config.hpp"
+#include "gearloss/results/reports.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/solver/operating_point.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 // Drive cycles: vehicle speed traces (read from 1 Hz CSV `time_s,speed_kmh[,gear]`, and the
-// named regulatory cycles shipped in configs/cycles/, by gearloss/io/drive_cycle_csv.hpp).
+// named regulatory cycles shipped in configs/cycles/, by gearloss/case/drive_cycle_csv.hpp).
 #include <string>
 #include <vector>
 
@@ -22,6 +22,6 @@ struct DriveCycle {
 // `a` followed by `b`, b starting one time step after a's last sample.
 DriveCycle concatenate(const DriveCycle& a, const DriveCycle& b, const std::string& name);
 
-// Reading cycle files and the named cycles: gearloss/io/drive_cycle_csv.hpp.
+// Reading cycle files and the named cycles: gearloss/case/drive_cycle_csv.hpp.
 
 }  // namespace gearloss::cycle

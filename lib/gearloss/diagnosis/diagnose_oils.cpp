@@ -10,7 +10,7 @@
 #include <map>
 
 #include "gearloss/diagnosis/diagnose_internal.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 
 namespace gearloss::diagnosis::detail {
 

@@ -1,5 +1,5 @@
 #include "gearloss/diagnosis/diagnose.hpp"
-#include "gearloss/io/mechanism_config.hpp"
+#include "gearloss/case/mechanism_config.hpp"
 
 // The diagnosis as text, JSON and a residuals table, and the calibrated case file.
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "gearloss/diagnosis/p_value_text.hpp"
 #include "gearloss/io/atomic_file.hpp"
-#include "gearloss/io/empirical_config.hpp"
+#include "gearloss/case/empirical_config.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/json_text.hpp"
 

@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/model/model.hpp"
 
 namespace gearloss::diagnosis {

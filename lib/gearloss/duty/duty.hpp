@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "gearloss/duty/spectrum.hpp"
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/solver/operating_point.hpp"
 
 namespace gearloss::duty {

@@ -461,6 +461,9 @@ Layout analyse(const Gearbox& gb) {
                 for (const Bearing& o : gb.bearings) n += (o.under_gear == br.under_gear);
                 L.bearing_Fcf_per_w2[i] = mass * ws * ws * a / n;
             }
+        } else if (br.outer_shaft >= 0) {
+            // A pilot bearing: its rings turn with two shafts, at the difference of their speeds.
+            L.bearing_speed_ratio[i] = std::abs(ws - L.body_speed_ratio[L.body_of_shaft[br.outer_shaft]]);
         } else {
             L.bearing_speed_ratio[i] = std::abs(ws);
         }

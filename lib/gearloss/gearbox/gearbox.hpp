@@ -54,6 +54,11 @@ struct Bearing {
     int shaft = -1;
     double position = 0;        // axial [m]
     int under_gear = -1;        // >= 0: between this free (or planet) gear and its shaft (or carrier)
+    // >= 0: a pilot bearing between two shafts, its outer ring in this shaft (the input shaft's end
+    // in the output shaft's hub of a coaxial gearbox): it turns at the difference of the two shafts'
+    // speeds. It supports `shaft` in the statics; its reaction on this shaft is not carried on to
+    // this shaft's bearings. -1: the outer ring is in the housing.
+    int outer_shaft = -1;
     bool locating = false;      // takes the shaft's axial load
     int multiplicity = 1;       // identical copies running alike (one per planet)
 };

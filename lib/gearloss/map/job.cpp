@@ -8,7 +8,7 @@
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/csv_format.hpp"
 #include "gearloss/io/interrupt.hpp"
-#include "gearloss/io/sweep.hpp"
+#include "gearloss/case/sweep.hpp"
 
 namespace gearloss::map {
 

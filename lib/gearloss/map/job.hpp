@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
-#include "gearloss/io/sweep.hpp"
+#include "gearloss/case/config.hpp"
+#include "gearloss/case/sweep.hpp"
 #include "gearloss/map/fingerprint.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/map/map_stream.hpp"

@@ -16,8 +16,8 @@
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/atomic_file.hpp"
-#include "gearloss/io/issue_location.hpp"
-#include "gearloss/io/yaml_reader.hpp"
+#include "gearloss/case/issue_location.hpp"
+#include "gearloss/case/yaml_reader.hpp"
 #include "gearloss/losses/loss_mechanism.hpp"
 #include "gearloss/model/validate.hpp"
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/map_summary.hpp"
 #include "gearloss/solver/operating_point.hpp"
 

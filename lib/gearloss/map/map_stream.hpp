@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/map/map_summary.hpp"
 

@@ -10,7 +10,7 @@
 #include "gearloss/io/atomic_file.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/io/output_paths.hpp"
-#include "gearloss/io/reports.hpp"
+#include "gearloss/results/reports.hpp"
 #include "gearloss/losses/loss_mechanism.hpp"
 #include "gearloss/map/fingerprint.hpp"
 

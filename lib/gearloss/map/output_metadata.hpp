@@ -3,14 +3,14 @@
 // file was computed from (program version, command line, case and its hash, oil, thermal
 // mode, ratio, model forms, the values the case left to defaults, sweep axes) and what each
 // column holds (name and unit). Schema "gearloss-metadata/1", every key in docs/outputs.md.
-// In map/ rather than io/ because the case hash follows the files the case names
+// In map/ rather than results/ because the case hash follows the files the case names
 // (map::named_files, the rule `merge` uses for its fingerprint).
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 
 namespace gearloss::map {
 

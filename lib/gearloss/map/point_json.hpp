@@ -5,7 +5,7 @@
 // (the cells `map --detail` writes for it, by column name), with the sidecar's metadata.
 #include <nlohmann/json.hpp>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/solver/operating_point.hpp"
 
 namespace gearloss::map {

@@ -208,6 +208,8 @@ void validate_gearbox(const Model& m, std::vector<Issue>& out) {
         Collector c{out, "bearings", b.name};
         if (!index_ok(b.shaft, gb.shafts)) c.structural("shaft", "not one of the shafts");
         if (b.under_gear >= 0 && !index_ok(b.under_gear, gb.gears)) c.structural("under_gear", "not one of the gears");
+        if (b.outer_shaft >= 0 && (!index_ok(b.outer_shaft, gb.shafts) || b.outer_shaft == b.shaft || b.under_gear >= 0))
+            c.structural("outer_shaft", "not one of the other shafts, or given with under_gear");
         c.range("d", s.d, 0.5e-3, 100.0, "bore d [m]");  // the smallest catalogue bearings: 0.6 mm
         c.range("D", s.D, 1e-3, 100.0, "outer diameter D [m]");
         if (finite(s.d) && finite(s.D) && !(s.D > s.d)) c.add("D", fmt::format("outer diameter {:g} m must exceed the bore {:g} m", s.D, s.d));

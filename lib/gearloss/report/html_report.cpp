@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "gearloss/io/json_text.hpp"
-#include "gearloss/io/reports.hpp"
+#include "gearloss/results/reports.hpp"
 #include "gearloss/report/html.hpp"
 #include "gearloss/report/report_maps.hpp"
 #include "gearloss/report/report_summary.hpp"

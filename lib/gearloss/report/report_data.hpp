@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/form_spread.hpp"
 #include "gearloss/solver/operating_point.hpp"
 

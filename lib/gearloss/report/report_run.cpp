@@ -5,7 +5,7 @@
 
 #include "gearloss/core/errors.hpp"
 #include "gearloss/io/interrupt.hpp"
-#include "gearloss/io/sweep.hpp"
+#include "gearloss/case/sweep.hpp"
 #include "gearloss/map/form_spread.hpp"
 #include "gearloss/map/output_metadata.hpp"
 #include "gearloss/report/map_values.hpp"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "gearloss/io/config.hpp"
+#include "gearloss/case/config.hpp"
 #include "gearloss/map/map_runner.hpp"
 #include "gearloss/report/report_data.hpp"
 

@@ -1,6 +1,6 @@
 // Values of an imported case that REXS does not carry (mapper_internal.hpp, YamlOut::assumed):
 // each is written with its reason as a comment and declared in the case's `assumed:` list, which
-// the case loader reads (gearloss/io/declared_assumptions.hpp), so `check` and the sidecars of
+// the case loader reads (gearloss/case/declared_assumptions.hpp), so `check` and the sidecars of
 // map runs list them as they list the loader's own assumed values.
 #include "gearloss/rexs/mapper_internal.hpp"
 

@@ -6,12 +6,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "gearloss/bearings/designation.hpp"
 #include "gearloss/bearings/designation_suffix.hpp"
 #include "gearloss/bearings/skf_constants.hpp"
-#include "gearloss/io/bearing_catalogue.hpp"
+#include "gearloss/case/bearing_catalogue.hpp"
 #include "gearloss/io/csv_read.hpp"
 #include "gearloss/rexs/mapper_internal.hpp"
 
@@ -34,14 +35,47 @@ std::optional<bearings::BearingType> type_of_rexs(const std::string& t) {
     return std::nullopt;
 }
 
-// The catalogue row of a type and bore nearest the given outer diameter and width (the lightest
-// series when the model gives neither).
+// A catalogue series name as compared with a designation: upper case, no blanks ("NU 22" -> "NU22").
+std::string series_spelling(const std::string& series) {
+    std::string out;
+    for (const char ch : series)
+        if (ch != ' ') out += static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    return out;
+}
+
+// A catalogue row of the series a designation names when its own row is not in the catalogue
+// (of type `t` when given): an ISO 15 basic designation is the series (type and dimension series
+// digits) followed by the two-digit bore code, d = 5 x code mm from 04 on (ISO 15:2017; ISO 355
+// for tapered roller bearings), so "6299-2RS1" is of the 62 series, "NU 2299" of NU 22, "7299 B"
+// of 72 B; a designation that gives only the series ("62", "NU 22") names it as well. Null when
+// no series matches (the bearing then takes the lightest row, and says so).
+const io::CatalogueEntry* series_row_of_designation(const io::BearingCatalogue& cat, std::optional<bearings::BearingType> t,
+                                                    const bearings::DesignationKey& k) {
+    std::string number = k.number;
+    const auto slash = number.find('/');  // "62/28": the bore after the slash
+    const std::string rest = k.key.size() >= k.prefix.size() + k.number.size() ? k.key.substr(k.prefix.size() + k.number.size()) : "";
+    const std::string whole = k.prefix + number + rest;
+    std::string without_bore;
+    if (slash != std::string::npos) without_bore = k.prefix + number.substr(0, slash) + rest;
+    else if (number.size() >= 3) without_bore = k.prefix + number.substr(0, number.size() - 2) + rest;
+    for (const auto& [key, e] : cat.entries()) {
+        if ((t && e.type != *t) || e.series.empty()) continue;
+        const std::string s = series_spelling(e.series);
+        if (s == without_bore || s == whole) return &e;
+    }
+    return nullptr;
+}
+
+// The catalogue row of a type and bore nearest the given outer diameter and width; when the model
+// gives neither, the row of `series` (the designation's) if the catalogue has one of this bore,
+// else the lightest.
 const io::CatalogueEntry* nearest_row(const io::BearingCatalogue& cat, bearings::BearingType t, double d,
-                                      std::optional<double> D, std::optional<double> B) {
+                                      std::optional<double> D, std::optional<double> B, const std::string& series) {
     const io::CatalogueEntry* best = nullptr;
     double best_score = 0;
     for (const auto& [key, e] : cat.entries()) {
         if (e.type != t || std::abs(e.d - d) > 1e-6) continue;
+        if (!D && !series.empty() && e.series != series) continue;
         const double score = D ? std::abs(e.D - *D) + (B ? 0.5 * std::abs(e.B - *B) : 0.0) : e.D;
         if (!best || score < best_score) {
             best = &e;
@@ -52,15 +86,18 @@ const io::CatalogueEntry* nearest_row(const io::BearingCatalogue& cat, bearings:
 }
 
 // A bearing of a bore the catalogue has no row of this type for (a concept bearing on a 43.2 mm
-// planet pin): the lightest row of the type at the nearest bore, scaled to this bore. Within one
-// dimension series the boundary dimensions grow about in proportion to the bore (ISO 15:2017's
-// diameter and width series), and the static rating C0 = f0 i Z Dw^2 cos(alpha) (ISO 76:2006)
-// with the ball diameter, i.e. with the square of the scale; the SKF (2004) friction constants are
-// those of the series, kept as they are.
-std::optional<io::CatalogueEntry> scaled_row(const io::BearingCatalogue& cat, bearings::BearingType t, double d) {
+// planet pin): the row of the type at the nearest bore, scaled to this bore; of `series` (the
+// designation's) when given, else the lightest row there. Within one dimension series the
+// boundary dimensions grow about in proportion to the bore (ISO 15:2017's diameter and width
+// series), and the static rating C0 = f0 i Z Dw^2 cos(alpha) (ISO 76:2006) with the ball
+// diameter, i.e. with the square of the scale; the SKF (2004) friction constants are those of the
+// series, kept as they are.
+std::optional<io::CatalogueEntry> scaled_row(const io::BearingCatalogue& cat, bearings::BearingType t, double d,
+                                             const std::string& series) {
     const io::CatalogueEntry* best = nullptr;
     for (const auto& [key, e] : cat.entries()) {
         if (e.type != t || !(e.d > 0)) continue;
+        if (!series.empty() && e.series != series) continue;
         const double gap = std::abs(std::log(e.d / d)), best_gap = best ? std::abs(std::log(best->d / d)) : 0.0;
         if (!best || gap < best_gap - 1e-12 || (std::abs(gap - best_gap) <= 1e-12 && e.D < best->D)) best = &e;
     }
@@ -188,10 +225,14 @@ void Mapper::write_bearing_data(YamlOut& y, const Component& c, const Shaft& s, 
 
     std::optional<bearings::BearingType> type;
     std::string type_reason;
+    const io::CatalogueEntry* series_row = nullptr;  // a row of the series the designation names
     if (const auto t = text(m, c, "bearing_type")) {
         type = type_of_rexs(*t);
         if (!type) m.fail(c, "bearing_type '" + io::excerpt(*t, 40) + "' has no SKF (2004) friction model in gearloss");
         y.line(4, std::string("type: ") + bearings::to_string(*type), src(c, "bearing_type") + " " + *t);
+    } else if (key && (series_row = series_row_of_designation(cat, std::nullopt, *key))) {
+        type = series_row->type;
+        type_reason = "REXS gives no bearing_type; the designation's series " + series_row->series + " is of this type";
     } else if (!elements.empty()) {
         type = roller ? bearings::BearingType::cylindrical_roller : bearings::BearingType::deep_groove_ball;
         type_reason = roller ? "REXS gives no bearing_type; its rolling elements have a length: a cylindrical roller bearing"
@@ -203,14 +244,25 @@ void Mapper::write_bearing_data(YamlOut& y, const Component& c, const Shaft& s, 
     }
     if (!type_reason.empty()) assumed_line(y, 4, std::string("type: ") + bearings::to_string(*type), key_prefix + "type", type_reason);
     y.line(4, "d: " + num(d * 1e3) + " mm", bore_given ? src(c, "inner_diameter") : fmt::format("shaft {} outer diameter at the bearing", s.comp->id));
-    const io::CatalogueEntry* row = nearest_row(cat, *type, d, D_given, B_given);
-    std::string row_how = D_given ? " (same type and bore, nearest outer diameter)" : " (same type and bore, lightest series)";
+    // The series the model gives: that of a designation the catalogue has no row of ("6299-2RS1":
+    // 62, "NU 22"), else none, and the lightest row stands in (said in each assumed value's reason).
+    if (key && !series_row) series_row = series_row_of_designation(cat, *type, *key);
+    const std::string series = series_row && series_row->type == *type ? series_row->series : std::string();
+    const std::string no_series = designation ? "the designation names no catalogue series of the type" : "REXS gives no designation";
+    const io::CatalogueEntry* row = nearest_row(cat, *type, d, D_given, B_given, series);
+    std::string row_how = D_given            ? " (same type and bore, nearest outer diameter)"
+                          : !series.empty() ? " (same type and bore, series " + series + " of the designation)"
+                                            : " (same type and bore, lightest series: " + no_series + ")";
     std::optional<io::CatalogueEntry> scaled;
-    if (!row && (scaled = scaled_row(cat, *type, d))) {
+    if (!row && (scaled = scaled_row(cat, *type, d, series))) {
         row = &*scaled;
-        row_how = " (no row of this bore: the nearest bore's lightest row, D and B scaled with d, C0 with d^2)";
-        warn(c, fmt::format("no catalogue {} bearing of bore {:g} mm: assumed as {}", bearings::to_string(*type), d * 1e3,
-                            scaled->designation));
+        row_how = series.empty() ? " (no row of this bore: the nearest bore's lightest row, " + no_series +
+                                       "; D and B scaled with d, C0 with d^2)"
+                                 : " (no row of this bore: the nearest bore's row of series " + series +
+                                       " of the designation, D and B scaled with d, C0 with d^2)";
+        warn(c, fmt::format("no catalogue {} bearing of bore {:g} mm: assumed as {} ({})", bearings::to_string(*type), d * 1e3,
+                            scaled->designation,
+                            series.empty() ? "the lightest row at the nearest bore: " + no_series : "series " + series + " of the designation"));
     }
     if (D_given) y.line(4, "D: " + num(*D_given * 1e3) + " mm", src(c, "outer_diameter"));
     else if (row) assumed_line(y, 4, "D: " + num(row->D * 1e3) + " mm", key_prefix + "D", "catalogue row " + row->designation + row_how);

@@ -43,10 +43,21 @@ void Mapper::write_bearings(YamlOut& y) {
         }
         if (si < 0) m.fail(c, "neither side of the bearing is a shaft");
         const Shaft& s = shafts[static_cast<size_t>(si)];
-        if (planet < 0 && inner && outer && shaft_index_of(*inner) >= 0 && shaft_index_of(*outer) >= 0)
-            warn(c, fmt::format("the bearing runs between shafts {} and {}: it is placed on shaft {} against the housing "
-                                "(its speed is that shaft's, not the difference of the two)",
-                                *inner, *outer, s.comp->id));
+        // A pilot bearing (between two shafts, e.g. the input shaft's end in the output shaft's hub):
+        // on its inner shaft with `outer_shaft`, so it runs at the relative speed of the two. A shaft
+        // the case does not write as a shaft of its own (a carrier part, an unconnected shaft) has
+        // no speed there: the bearing then stays against the housing, with a warning.
+        int outer_shaft = -1;
+        if (planet < 0 && inner && outer && shaft_index_of(*inner) >= 0 && shaft_index_of(*outer) >= 0) {
+            outer_shaft = shaft_index_of(*outer);
+            if (shafts[static_cast<size_t>(outer_shaft)].role != ShaftRole::plain || s.role != ShaftRole::plain) {
+                warn(c, fmt::format("the bearing runs between shafts {} and {}: it is placed on shaft {} against the housing "
+                                    "(its speed is that shaft's, not the difference of the two: shaft {} is not a shaft "
+                                    "of the case)",
+                                    *inner, *outer, s.comp->id, s.role != ShaftRole::plain ? *inner : *outer));
+                outer_shaft = -1;
+            }
+        }
         const double u = required_quantity(m, c, u_attr, Quantity::length);
         if (!s.sections.empty() && (u < -1e-9 || u > s.length() + 1e-9))
             m.fail(c, fmt::format("{} = {:g} mm lies outside shaft {} (0 to {:g} mm)", u_attr, u * 1e3, s.comp->id,
@@ -66,6 +77,10 @@ void Mapper::write_bearings(YamlOut& y) {
                        "assumed: " + src(c, u_attr) + " = " + num(u * 1e3) + " mm; paired with the nearer outer support");
             else
                 y.line(4, "position: " + num(u * 1e3) + " mm", src(c, u_attr));
+            if (outer_shaft >= 0)
+                y.line(4, "outer_shaft: " + shafts[static_cast<size_t>(outer_shaft)].name,
+                       fmt::format("REXS side relation {}: outer ring in shaft {} (a pilot bearing, at the relative speed)",
+                                   side.id, shafts[static_cast<size_t>(outer_shaft)].comp->id));
         }
         if (locating) y.line(4, "locating: true", src(c, "axial_force_absorption") + " " + io::excerpt(*axial, 30));
         ++written;
