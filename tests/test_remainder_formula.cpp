@@ -78,6 +78,25 @@ io::Case transfer_box_with(double coefficient, const losses::EmpiricalFactor& fa
     return truth;
 }
 
+// The transfer box as shipped diagnosed against recordings synthesised (`synth`, 1.5 % loss
+// noise, `seed`) from it with a concealed W (n/1000 rpm)^exponent on the grid speeds x torques
+// [rpm, N*m]: an effect outside the library, whose loss also heats the oil.
+diagnosis::Diagnosis diagnose_speed_power(double W, double exponent, const std::vector<double>& speeds,
+                                          const std::vector<double>& torques, std::uint64_t seed) {
+    losses::EmpiricalFactor power;
+    power.variable = losses::EmpiricalVariable::speed;
+    power.shape = losses::EmpiricalShape::power;
+    power.reference = 1000 * std::numbers::pi / 30;
+    power.exponent = exponent;
+    const auto truth = transfer_box_with(W, power);
+    diagnosis::SynthOptions so;
+    so.seed = seed;
+    const auto rec = diagnosis::read_recordings_text(
+        diagnosis::synthesize(truth.model, test_support::rpm_grid(speeds, torques), so), "rec.csv");
+    const auto c = test_support::load_shipped("configs/transfer-box.yaml");
+    return diagnosis::diagnose(c.model, rec, {});
+}
+
 }  // namespace
 
 TEST_CASE("a loss switching on above 70.2 degC is found as the step at the midpoint 70.25 degC", "[remainder]") {
@@ -254,18 +273,7 @@ TEST_CASE("windage standing in for a fourth power of speed on 12 points is not n
     // interval holds 4 (12 points at 12 W noise do not fix the exponent to 0.3: at 880 rpm
     // n^4 and n^4.7 scaled to agree at 1200 rpm differ by 6 W), and the summary must say why
     // (not "the main finding is confident").
-    losses::EmpiricalFactor n4;
-    n4.variable = losses::EmpiricalVariable::speed;
-    n4.shape = losses::EmpiricalShape::power;
-    n4.reference = 1000 * std::numbers::pi / 30;
-    n4.exponent = 4;
-    const auto truth = transfer_box_with(54, n4);
-    diagnosis::SynthOptions so;
-    so.seed = 1;
-    const auto rec = diagnosis::read_recordings_text(
-        diagnosis::synthesize(truth.model, test_support::rpm_grid({400, 720, 880, 1200}, {200, 250, 300}), so), "rec.csv");
-    const auto c = test_support::load_shipped("configs/transfer-box.yaml");
-    const auto d = diagnosis::diagnose(c.model, rec, {});
+    const auto d = diagnose_speed_power(54, 4, {400, 720, 880, 1200}, {200, 250, 300}, 1);
     INFO(diagnosis::diagnosis_text(d));
     CHECK(d.verdict == "partly_explained");
     CHECK(d.main_finding.confidence == "tentative");
@@ -330,19 +338,7 @@ TEST_CASE("a constant parasitic loss plus a seal friction standing in for n^0.5 
     // and 1.2: at most 0.03 of 1.1, below the 1.5 % noise), so two findings fit it; one power of
     // speed with one term is the simpler account predicting as well. The verdict must not be a
     // confident missing_physics, and the formula must carry the exponent 0.5 +- 0.3.
-    losses::EmpiricalFactor n05;
-    n05.variable = losses::EmpiricalVariable::speed;
-    n05.shape = losses::EmpiricalShape::power;
-    n05.reference = 1000 * std::numbers::pi / 30;
-    n05.exponent = 0.5;
-    const auto truth = transfer_box_with(60, n05);
-    diagnosis::SynthOptions so;
-    so.seed = 2;
-    const auto rec = diagnosis::read_recordings_text(
-        diagnosis::synthesize(truth.model, test_support::rpm_grid({400, 600, 800, 1000, 1200}, {150, 200, 250, 300}), so),
-        "rec.csv");
-    const auto c = test_support::load_shipped("configs/transfer-box.yaml");
-    const auto d = diagnosis::diagnose(c.model, rec, {});
+    const auto d = diagnose_speed_power(60, 0.5, {400, 600, 800, 1000, 1200}, {150, 200, 250, 300}, 2);
     INFO(diagnosis::diagnosis_text(d));
     CHECK(d.verdict != "missing_physics");
     REQUIRE(d.remainder);
