@@ -72,6 +72,9 @@ public:
             throw InputError(recordings_, 0, 0, e.key, e.message);  // about the recordings as a whole
         }
         if (tty) std::fputs("\r\033[K", stderr);
+        // On stderr too, as every command warns: the report's own list is at its end, after the
+        // candidates, where a script piping stdout would never see an ignored column.
+        for (const auto& w : d.warnings) std::fprintf(stderr, "gearloss: warning: %s\n", w.c_str());
         io::write_stdout(diagnosis::diagnosis_text(d));
         write_optional_file(json_, diagnosis::diagnosis_json(d));
         if (!residuals_.empty()) write_csv_file(residuals_, diagnosis::residuals_csv(d), k);

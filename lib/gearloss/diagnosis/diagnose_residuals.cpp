@@ -185,11 +185,14 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
         if (!r.bad_fit && !r.bad_structure) continue;
         A.adequate = false;
         (r.what == std::string("loss") ? A.loss_fails : A.temp_fails) = true;
-        std::string s = fmt::format("{} residual RMS {:.3g} {} against a noise of {}", r.what, r.rms * r.unit_scale, r.unit,
-                                    r.noise_text);
+        // A residual within the noise fails only by its structure: say so, not "against".
+        std::string s = fmt::format("{} residual RMS {:.3g} {} {} a noise of {}", r.what, r.rms * r.unit_scale, r.unit,
+                                    r.bad_fit ? "against" : "within", r.noise_text);
+        if (!r.bad_fit) s += ", but";
         if (r.bad_fit) s += ", " + p_value_text(r.fit->p_value);
         if (r.bad_structure)
-            s += fmt::format("; systematic along {} (a smoother explains {:.0f} % of it, {})", r.structure->coordinate,
+            s += fmt::format("{} systematic along {} (a smoother explains {:.0f} % of it, {})", r.bad_fit ? ";" : "",
+                             r.structure->coordinate,
                              100 * r.structure->gain, p_value_text(r.structure->p_value));
         left.push_back(s);
     }

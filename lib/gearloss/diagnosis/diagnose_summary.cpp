@@ -52,6 +52,12 @@ std::string summary_paragraph(const Diagnosis& d, const std::string& baseline_cl
         else if (d.verdict == "partly_explained")
             s += ". But what is left is not measurement noise: " + adequacy_text +
                  ". The names above are partial explanations, not the cause of the whole mismatch";
+        if (d.remainder && d.remainder->on_case && d.remaining.rfind("not shown to be the cause", 0) != 0)
+            s += fmt::format(". A formula of the operating point for the whole mismatch ({}) predicts the recordings {} "
+                             "the findings under cross-validation ({:.3g} W against {:.3g} W): they may stand in for an "
+                             "effect outside the library",
+                             d.remainder->formula, hypothesis::on_case_comparison(*d.remainder),
+                             d.remainder->cv_rmse_after, d.remainder->findings_cv_rmse);
         return s + ".";
     } else if (d.verdict == "unexplained_mismatch") {
         const auto& c = d.candidates.front();

@@ -46,7 +46,9 @@ std::string remainder_text(const hypothesis::Proposal& r) {
             s += fmt::format(" (the oil {} {:.4g} degC)", t.above ? "below" : "above", t.oil_temp_equivalent);
         s += "\n";
     }
-    s += fmt::format("  cross-validated loss RMSE {:.3g} W -> {:.3g} W", r.cv_rmse_before, r.cv_rmse_after);
+    // The formula is fitted with weights 1/recorded loss^2, so its RMS is the weighted one (in W).
+    s += fmt::format("  cross-validated loss RMSE (weighted as fitted, 1/loss^2) {:.3g} W -> {:.3g} W", r.cv_rmse_before,
+                     r.cv_rmse_after);
     if (r.noise_W > 0)
         s += fmt::format(" against a noise of {:.3g} W: the final model leaves {:.2g} times the noise",
                          r.noise_W, r.cv_rmse_after / r.noise_W);
@@ -158,8 +160,11 @@ std::string diagnosis_text(const Diagnosis& d) {
              : std::string("run order: not recorded (no run, date or time column): the rows may be in any order, so no "
                            "drift or running-in hypothesis is formed\n");
     if (!d.main_finding.effect.empty())
-        s += fmt::format("main finding: {} ({}){}\n", d.main_finding.effect, d.main_finding.confidence,
-                         d.completeness.empty() ? "" : "; " + d.completeness);
+        s += fmt::format("main finding: {} ({}){}{}\n", d.main_finding.effect, d.main_finding.confidence,
+                         d.completeness.empty() ? "" : "; " + d.completeness,
+                         d.remainder && d.remainder->on_case
+                             ? "; the formula for the whole mismatch is the better account (see the hypothesis)"
+                             : "");
     s += "\ncandidates (delta BIC, > 10 is very strong evidence):\n";
     for (const auto& c : d.candidates) {
         if (c.rejected.empty()) s += fmt::format("  {:<24} {:8.1f}   fitted {:.4g}\n", c.effect, c.delta_bic, c.value);
