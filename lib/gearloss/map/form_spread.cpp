@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <string>
 #include <numbers>
 
 #include "gearloss/core/errors.hpp"
@@ -174,8 +175,11 @@ void spread_summary_json(nlohmann::ordered_json& j, const std::vector<SpreadAxis
     for (const auto& n : spread.not_applicable) s["not_applicable"].push_back(combination_label(axes, n.combination));
     s["points_with_unsolved_combinations"] = points_unsolved;
     s["widest_relative_spread"] = widest;
-    if (widest > 0)
-        s["widest_at"] = {{"speed_in_rpm", nominal[at].speed_in * 30.0 / std::numbers::pi}, {"torque_in_Nm", nominal[at].torque_in}};
+    if (widest > 0) {
+        // The grid's speed back in rpm to 12 digits: the rad/s round trip leaves 799.9999999999999 for 800.
+        const double rpm = std::stod(fmt::format("{:.12g}", nominal[at].speed_in * 30.0 / std::numbers::pi));
+        s["widest_at"] = {{"speed_in_rpm", rpm}, {"torque_in_Nm", nominal[at].torque_in}};
+    }
     j["spread"] = std::move(s);
 }
 
