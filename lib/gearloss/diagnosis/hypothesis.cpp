@@ -219,34 +219,43 @@ bool plain_power(const Column& c) {
            t.empirical && t.empirical->factors.size() == 1;
 }
 
-// The exponent's uncertainty: the selected power column replaced by each power of the same
-// variable on the grid, the others refitted, and the exponents whose weighted residual sum of
-// squares is within 3.84 sigma^2 of the least (Delta chi^2 <= 3.84: one parameter's 95 %
-// profile-likelihood interval), sigma^2 = least SSE / (n - p).
-void exponent_intervals(std::vector<Column>& lib, const std::vector<Eigen::Index>& sel, const Eigen::VectorXd& y,
-                        const Eigen::VectorXd& w, double sse_chosen) {
+// Each selected power of one variable profiled over the grid's other powers of the same
+// variable (the others refitted): the exponent moves to the least weighted residual sum of
+// squares on all points (the selection chose it by its folds' error), and its 95 %
+// profile-likelihood interval is the exponents within Delta chi^2 = 3.84 sigma^2 of the least,
+// sigma^2 = least SSE / (n - p).
+void exponent_intervals(std::vector<Column>& lib, std::vector<Eigen::Index>& sel, const Eigen::VectorXd& y,
+                        const Eigen::VectorXd& w) {
     const auto N = y.size();
     const auto P = static_cast<Eigen::Index>(sel.size());
     for (Eigen::Index j = 0; j < P; ++j) {
-        Column& chosen = lib[static_cast<std::size_t>(sel[static_cast<std::size_t>(j)])];
-        if (!plain_power(chosen)) continue;
+        const auto chosen_index = sel[static_cast<std::size_t>(j)];
+        if (!plain_power(lib[static_cast<std::size_t>(chosen_index)])) continue;
+        const std::string variable = lib[static_cast<std::size_t>(chosen_index)].term.variable;
         Eigen::MatrixXd X(N, P);
         for (Eigen::Index k = 0; k < P; ++k) X.col(k) = lib[static_cast<std::size_t>(sel[static_cast<std::size_t>(k)])].x;
-        std::vector<std::pair<double, double>> profile = {{chosen.term.exponent, sse_chosen}};
-        for (const Column& c : lib) {
-            if (&c == &chosen || !plain_power(c) || c.term.variable != chosen.term.variable) continue;
-            X.col(j) = c.x;
-            profile.emplace_back(c.term.exponent, fit_sse(X, y, w));
+        std::vector<std::pair<Eigen::Index, double>> profile;  // column, SSE
+        for (Eigen::Index c = 0; c < static_cast<Eigen::Index>(lib.size()); ++c) {
+            const Column& col = lib[static_cast<std::size_t>(c)];
+            if (!plain_power(col) || col.term.variable != variable) continue;
+            if (c != chosen_index && std::find(sel.begin(), sel.end(), c) != sel.end()) continue;
+            X.col(j) = col.x;
+            profile.emplace_back(c, fit_sse(X, y, w));
         }
-        double least = sse_chosen;
-        for (const auto& pr : profile) least = std::min(least, pr.second);
+        auto best = std::min_element(profile.begin(), profile.end(),
+                                     [](const auto& a, const auto& b) { return a.second < b.second; });
+        const double least = best->second;
         const double sigma2 = least / std::max(1.0, static_cast<double>(N - P));
         constexpr double kChiSquare95 = 3.84;  // chi-square quantile, one degree of freedom, 95 %
-        double lo = chosen.term.exponent, hi = chosen.term.exponent;
-        for (const auto& [a, sse] : profile)
+        sel[static_cast<std::size_t>(j)] = best->first;
+        Term& t = lib[static_cast<std::size_t>(best->first)].term;
+        double lo = t.exponent, hi = t.exponent;
+        for (const auto& [c, sse] : profile) {
+            const double a = lib[static_cast<std::size_t>(c)].term.exponent;
             if (sse <= least + kChiSquare95 * sigma2) lo = std::min(lo, a), hi = std::max(hi, a);
-        chosen.term.exponent_low = lo;
-        chosen.term.exponent_high = hi;
+        }
+        t.exponent_low = lo;
+        t.exponent_high = hi;
     }
 }
 
@@ -380,13 +389,15 @@ Proposal propose(const std::vector<double>& residual, const std::vector<double>&
         out.cv_rmse_after = rms0;
         return out;
     }
-    const std::vector<Eigen::Index>& sel = path[chosen];
+    std::vector<Eigen::Index> sel = path[chosen];
+    // Each power's exponent at the least squares of all points (the selection chose it on folds).
+    exponent_intervals(lib, sel, y, w);
+    if (sel != path[chosen])  // the reported cross-validated error is the formula's as reported
+        out.cv_rmse_after = std::sqrt(mean(cv.point_errors(sel)) * static_cast<double>(n) / w.sum());
 
     Eigen::MatrixXd Xs(N, static_cast<Eigen::Index>(sel.size()));
     for (std::size_t j = 0; j < sel.size(); ++j) Xs.col(static_cast<Eigen::Index>(j)) = lib[static_cast<std::size_t>(sel[j])].x;
     const Fit fit = refit(Xs, y, w);
-
-    exponent_intervals(lib, sel, y, w, fit_sse(Xs, y, w));
 
     out.formula = "dP = ";
     for (std::size_t t = 0; t < sel.size(); ++t) {
