@@ -209,6 +209,9 @@ TEST_CASE("rexs: a pilot bearing between two coaxial shafts runs at their relati
     const auto r = import_text(slurp(data("handmade_coaxial_pilot_1-4.rexs")), "pilot.rexs");
     INFO(r.case_yaml);
     CHECK(r.case_yaml.find("outer_shaft: shaft_13") != std::string::npos);
+    // Its place along the output shaft, in that shaft's own u (u_coordinate_on_shaft_outer_side
+    // = 15 mm), where its reaction loads the output shaft; 115 mm is its place on the input shaft.
+    CHECK(r.case_yaml.find("outer_position: 15 mm") != std::string::npos);
     CHECK_FALSE(warned_about(r, "117", "against the housing"));
     const auto c = imported(r, "pilot");
     CHECK(speed_of(c, "shaft_13") == Approx(0.25).epsilon(1e-12));

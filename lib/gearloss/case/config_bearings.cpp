@@ -58,7 +58,7 @@ void Loader::load_bearings() {
     std::optional<BearingCatalogue> own_catalogue;
     for (const auto& n : root.at("bearings").items()) {
         n.allow_keys({"name", "type", "series", "designation", "d", "D", "B", "C0", "Y", "shaft", "position",
-                      "under_gear", "outer_shaft", "locating", "lubrication", "seals", "seal_counterface", "constants", "oil_bath",
+                      "under_gear", "outer_shaft", "outer_position", "locating", "lubrication", "seals", "seal_counterface", "constants", "oil_bath",
                       "note", "count"});
         gearbox::Bearing b;
         b.name = n.at("name").as_name();
@@ -276,6 +276,14 @@ void Loader::load_bearings() {
             if (b.outer_shaft == b.shaft)
                 os->fail("outer_shaft names the bearing's own shaft '" + n.at("shaft").as_string() +
                          "': a bearing in the housing has no 'outer_shaft'");
+            // Each shaft's positions are along that shaft (REXS writes every shaft's own u coordinate),
+            // so the pilot's place on the outer shaft is given in the outer shaft's frame.
+            if (!n.has("outer_position"))
+                os->fail("a pilot bearing needs 'outer_position' (its axial position along the outer shaft '" +
+                         os->as_string() + "', in that shaft's frame) to carry its reaction to that shaft's bearings");
+            b.outer_position = n.quantity("outer_position", dim::length, "60 mm");
+        } else if (auto op = n.get("outer_position")) {
+            op->fail("'outer_position' is the position of a pilot bearing along its 'outer_shaft', which is not given");
         }
         if (auto lc = n.get("locating")) b.locating = lc->as_bool();
         int count = 1;

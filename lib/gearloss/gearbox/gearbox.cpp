@@ -276,6 +276,17 @@ void detail::shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std
         if (gear.shaft == shaft)
             for (const auto& gl : loads[g]) on_shaft.push_back(gl);
     }
+    // Pilot bearings whose outer ring is in this shaft: the reaction a pilot puts on its inner
+    // shaft (already solved, shafts_inner_first) acts on this one with the opposite sign
+    // (Newton's third law), on the common axis at the pilot's place along this shaft.
+    for (size_t i = 0; i < gb.bearings.size(); ++i) {
+        const Bearing& br = gb.bearings[i];
+        if (br.outer_shaft != shaft) continue;
+        GearLoad pilot;
+        pilot.F = Vec3(-out.R[i].x(), -out.R[i].y(), -out.Z[i]);
+        pilot.r.z() = br.outer_position;
+        on_shaft.push_back(pilot);
+    }
     // Bearings between a free or planet gear and its shaft/carrier carry that gear's
     // transverse load (per planet for a planet set).
     for (size_t i = 0; i < gb.bearings.size(); ++i) {
@@ -349,6 +360,36 @@ void detail::shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std
                 "bearings", first, "locating");
         for (int i : loc) out.Z[i] = -Fsum.z() / static_cast<double>(loc.size());
     }
+}
+
+// The shafts in an order where every pilot bearing's inner shaft comes before its outer shaft
+// (the outer shaft takes the pilot's reaction); a cycle of pilot bearings has no such order.
+std::vector<int> detail::shafts_inner_first(const Gearbox& gb) {
+    const size_t ns = gb.shafts.size();
+    std::vector<int> pending(ns, 0), order;  // pending: pilots in this shaft whose inner shaft is not yet placed
+    for (const Bearing& br : gb.bearings)
+        if (br.outer_shaft >= 0) ++pending[br.outer_shaft];
+    std::vector<bool> placed(ns, false);
+    for (bool progress = true; progress;) {
+        progress = false;
+        for (size_t s = 0; s < ns; ++s) {
+            if (placed[s] || pending[s] > 0) continue;
+            placed[s] = true;
+            order.push_back(static_cast<int>(s));
+            for (const Bearing& br : gb.bearings)
+                if (br.outer_shaft >= 0 && br.shaft == static_cast<int>(s)) --pending[br.outer_shaft];
+            progress = true;
+        }
+    }
+    if (order.size() < ns)
+        for (const Bearing& br : gb.bearings)
+            if (br.outer_shaft >= 0 && !placed[br.shaft] && !placed[br.outer_shaft])
+                throw TopologyError(fmt::format("bearing '{}': pilot bearings form a cycle (shaft '{}' runs in shaft '{}', "
+                                                "which runs, through other pilots, in '{}'); one of them must be in the housing",
+                                                br.name, gb.shafts[br.shaft].name, gb.shafts[br.outer_shaft].name,
+                                                gb.shafts[br.shaft].name),
+                                    "bearings", br.name, "outer_shaft");
+    return order;
 }
 
 Layout analyse(const Gearbox& gb) {
@@ -482,7 +523,7 @@ Layout analyse(const Gearbox& gb) {
     for (double sign : {+1.0, -1.0}) {
         const auto loads = gear_forces(gb, L, sign);
         Reactions R{std::vector<Eigen::Vector2d>(nbr, Eigen::Vector2d::Zero()), std::vector<double>(nbr, 0.0)};
-        for (size_t s = 0; s < gb.shafts.size(); ++s) detail::shaft_reactions(gb, static_cast<int>(s), loads, {}, false, R);
+        for (int s : detail::shafts_inner_first(gb)) detail::shaft_reactions(gb, s, loads, {}, false, R);
         std::vector<double> Fr(nbr), Fa(nbr);
         for (size_t i = 0; i < nbr; ++i) {
             Fr[i] = R.R[i].norm();

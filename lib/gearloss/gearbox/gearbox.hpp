@@ -56,9 +56,11 @@ struct Bearing {
     int under_gear = -1;        // >= 0: between this free (or planet) gear and its shaft (or carrier)
     // >= 0: a pilot bearing between two shafts, its outer ring in this shaft (the input shaft's end
     // in the output shaft's hub of a coaxial gearbox): it turns at the difference of the two shafts'
-    // speeds. It supports `shaft` in the statics; its reaction on this shaft is not carried on to
-    // this shaft's bearings. -1: the outer ring is in the housing.
+    // speeds. It supports `shaft` in the statics, and its reaction acts with the opposite sign on
+    // this shaft at `outer_position`, carried on to this shaft's bearings. -1: the outer ring is in
+    // the housing.
     int outer_shaft = -1;
+    double outer_position = 0;  // axial position along the outer shaft (each shaft has its own axial frame) [m]
     bool locating = false;      // takes the shaft's axial load
     int multiplicity = 1;       // identical copies running alike (one per planet)
 };

@@ -21,9 +21,14 @@ struct Reactions {
 };
 
 // Reactions on one shaft with at most two support positions (statically determinate); `loads`
-// per gear, `shaft_loads` on the shaft itself, `weights` for weights rather than mesh forces.
+// per gear, `shaft_loads` on the shaft itself, `weights` for weights rather than mesh forces;
+// the reactions of pilot bearings in this shaft are taken from `out` (their inner shafts solved first).
 void shaft_reactions(const Gearbox& gb, int shaft, const std::vector<std::vector<GearLoad>>& loads,
                      const std::vector<GearLoad>& shaft_loads, bool weights, Reactions& out);
+
+// The shafts, every pilot bearing's inner shaft before its outer shaft (solve them in this
+// order: the outer shaft takes the pilot's reaction from `out`); a cycle of pilots is an error.
+std::vector<int> shafts_inner_first(const Gearbox& gb);
 
 // Mass of one gear and of one shaft (0 without support bearings) [kg] (weights.cpp).
 double gear_mass(const Gearbox& gb, const Layout& L, int g);

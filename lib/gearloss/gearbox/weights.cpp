@@ -124,12 +124,13 @@ void weight_reactions(const Gearbox& gb, Layout& L) {
         loads[g].push_back(gl);
     }
     Reactions W{std::vector<Eigen::Vector2d>(nbr, Eigen::Vector2d::Zero()), std::vector<double>(nbr, 0.0)};
-    for (size_t s = 0; s < gb.shafts.size(); ++s) {
-        const auto [mass, centre] = shaft_mass_at(gb, static_cast<int>(s));
+    // Inner shafts first: a pilot bearing's reaction on its inner shaft loads its outer shaft.
+    for (int s : shafts_inner_first(gb)) {
+        const auto [mass, centre] = shaft_mass_at(gb, s);
         GearLoad own;
         own.F = mass * g_n * down;
         own.r.z() = centre;
-        shaft_reactions(gb, static_cast<int>(s), loads, {own}, true, W);
+        shaft_reactions(gb, s, loads, {own}, true, W);
     }
     L.bearing_R_weight = W.R;
     L.bearing_Z_weight = W.Z;

@@ -81,6 +81,16 @@ void Mapper::write_bearings(YamlOut& y) {
                 y.line(4, "outer_shaft: " + shafts[static_cast<size_t>(outer_shaft)].name,
                        fmt::format("REXS side relation {}: outer ring in shaft {} (a pilot bearing, at the relative speed)",
                                    side.id, shafts[static_cast<size_t>(outer_shaft)].comp->id));
+            if (outer_shaft >= 0) {
+                // Its place along the outer shaft, in that shaft's own u coordinate (the pilot's reaction
+                // loads the outer shaft there); without the outer-side coordinate, the same gear-unit x.
+                const Shaft& os = shafts[static_cast<size_t>(outer_shaft)];
+                if (const auto uo = quantity(m, c, "u_coordinate_on_shaft_outer_side", Quantity::length))
+                    y.line(4, "outer_position: " + num(*uo * 1e3) + " mm", src(c, "u_coordinate_on_shaft_outer_side"));
+                else
+                    y.line(4, "outer_position: " + num((s.u_start + u - os.u_start) * 1e3) + " mm",
+                           src(c, u_attr) + fmt::format(" on shaft {}, from shaft {}'s u = 0", s.comp->id, os.comp->id));
+            }
         }
         if (locating) y.line(4, "locating: true", src(c, "axial_force_absorption") + " " + io::excerpt(*axial, 30));
         ++written;
