@@ -141,6 +141,8 @@ mut D6 diagnosis lib/gearloss/diagnosis/hypothesis.cpp "the exponent interval at
     'if (sse <= least + kChiSquare95 * sigma2)' 'if (sse <= least + sigma2)'
 mut D7 diagnosis lib/gearloss/diagnosis/hypothesis_basis.cpp "powers of speed searched up to 4 only" \
     'v.id == EmpiricalVariable::speed ? 5.0' 'v.id == EmpiricalVariable::speed ? 4.0'
+mut G9 gearbox lib/gearloss/gearbox/gearbox.cpp "a pilot bearing's reaction not carried to its outer shaft" \
+    'pilot.F = Vec3(-out.R[i].x(), -out.R[i].y(), -out.Z[i]);' 'pilot.F = Vec3::Zero();'
 mut D3 diagnosis lib/gearloss/diagnosis/adequacy.cpp "power from the critical value alone (median ignored)" \
     'return std::sqrt(std::max(0.0, critical / median - 1));' 'return std::sqrt(std::max(0.0, critical - 1));'
 mut V1 vehicle lib/gearloss/vehicle/vehicle.cpp "rotating-mass factor subtracted instead of added" \

@@ -224,7 +224,7 @@ bool plain_power(const Column& c) {
 // squares on all points (the selection chose it by its folds' error), and its 95 %
 // profile-likelihood interval is the exponents within Delta chi^2 = 3.84 sigma^2 of the least,
 // sigma^2 = least SSE / (n - p).
-void exponent_intervals(std::vector<Column>& lib, std::vector<Eigen::Index>& sel, const Eigen::VectorXd& y,
+void profile_exponents(std::vector<Column>& lib, std::vector<Eigen::Index>& sel, const Eigen::VectorXd& y,
                         const Eigen::VectorXd& w) {
     const auto N = y.size();
     const auto P = static_cast<Eigen::Index>(sel.size());
@@ -391,7 +391,7 @@ Proposal propose(const std::vector<double>& residual, const std::vector<double>&
     }
     std::vector<Eigen::Index> sel = path[chosen];
     // Each power's exponent at the least squares of all points (the selection chose it on folds).
-    exponent_intervals(lib, sel, y, w);
+    profile_exponents(lib, sel, y, w);
     if (sel != path[chosen])  // the reported cross-validated error is the formula's as reported
         out.cv_rmse_after = std::sqrt(mean(cv.point_errors(sel)) * static_cast<double>(n) / w.sum());
 
