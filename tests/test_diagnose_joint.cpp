@@ -58,6 +58,17 @@ void check_recovered(const diagnosis::Diagnosis& d, const std::string& id, doubl
     CHECK(std::abs((f->parameter.value - neutral) / (truth - neutral) - 1) < tol);
 }
 
+// A campaign of scripts/independent-campaigns.py diagnosed blind: the shipped case on the
+// campaign's rig resistance [K/W] (its derived case), the recordings' rows after the header
+// speed_in_rpm,torque_in_Nm,P_loss_W,oil_temp_C,ambient_temp_C.
+diagnosis::Diagnosis diagnose_independent(const std::string& config, double resistance, const std::string& rows) {
+    auto c = load(config);
+    c.model.thermal.rejection.model = thermal::ThermalResistance{resistance};
+    return diagnosis::diagnose(c.model, diagnosis::read_recordings_text(
+                                            "speed_in_rpm,torque_in_Nm,P_loss_W,oil_temp_C,ambient_temp_C\n" + rows,
+                                            "rec.csv"));
+}
+
 }  // namespace
 
 TEST_CASE("two effects at once: both named, both sizes recovered by the joint fit", "[diagnose_joint]") {
@@ -208,4 +219,76 @@ TEST_CASE("a fixed-temperature case is compared at its fixed oil temperature whe
     const auto d = diagnosis::diagnose(c.model, diagnosis::read_recordings_text(csv, "wind.csv"));
     CHECK(d.verdict == "no_significant_mismatch");
     CHECK(d.rmse_before < 1e-3 * 15000);
+}
+
+TEST_CASE("a pair that fits well but is not stable under resampling is said but not named", "[diagnose_joint]") {
+    // An independent campaign (scripts/independent-campaigns.py, fzg seed 0, pair0): the FZG box
+    // on a rig resistance of 0.104796 K/W, 12 points, with two concealed effects in forms the
+    // library does not have: a heat path 1.187 times the model's that changes by -10.6 % per 50 K,
+    // and mesh friction 1.25 times higher where the film is thinner than the campaign's median
+    // (Lambda < 1.92). With 12 points the mixed mesh friction with the heat path is the best pair
+    // (delta BIC 26 over the case) but wins only 11 of 24 resamples, against other pairs. It is
+    // not named (the stability rule), and the report says which pair it was and against what,
+    // instead of only "best: torque_sensor_gain with delta BIC 9.4".
+    const auto d = diagnose_independent(
+        "configs/fzg-c40-paor.yaml", 0.104796,
+        "300,98.8,46.970,28.851,24.990\n300,265,95.665,33.028,25.009\n300,378.3,135.360,36.226,25.022\n"
+        "1320,98.8,229.524,45.183,25.119\n1320,265,399.038,59.753,24.985\n1320,378.3,552.482,75.631,25.126\n"
+        "1660,98.8,303.313,50.294,25.041\n1660,265,498.024,70.073,24.962\n1660,378.3,692.270,89.376,25.047\n"
+        "2000,98.8,363.203,56.460,24.999\n2000,265,608.820,80.396,24.976\n2000,378.3,811.784,104.013,24.958\n");
+    CHECK(d.verdict == "unexplained_mismatch");
+    CHECK(d.findings.empty());
+    INFO(d.unsettled);
+    CHECK(d.unsettled.find("mesh_friction_mixed with thermal_resistance") == 0);
+    CHECK(d.unsettled.find("not named: they win 46 % of 24 resamples, against ") != std::string::npos);
+    CHECK(d.summary.find(d.unsettled) != std::string::npos);
+    CHECK(diagnosis::diagnosis_json(d).find("\"unsettled\"") != std::string::npos);
+}
+
+TEST_CASE("two forms of one mechanism splitting the resamples are a finding and not none", "[diagnose_joint]") {
+    // An independent campaign (scripts/independent-campaigns.py, spur seed 0, single mesh_low_film):
+    // the spur gearbox on a rig resistance of 0.0394098 K/W, 24 shuffled points, ambient drifting
+    // by -4 K, the mesh friction 1.227 times higher where the film is thinner than the campaign's
+    // median (Lambda < 1.71), a form the library does not have. The level of mesh friction leads
+    // (delta BIC 74) but wins 54 % of 24 resamples, its mixed-film form the other 46 %; more than
+    // 6 apart in BIC, the form was not counted as an alternative, and nothing was named
+    // (unexplained_mismatch). A rival that wins a quarter of the resamples is one the recordings
+    // cannot rule out: the mesh friction is named, not confidently.
+    const auto d = diagnose_independent(
+        "configs/spur-seed000.yaml", 0.0394098,
+        "1120,800,1920.516,103.726,26.971\n400,680,454.965,44.883,26.855\n880,440,532.409,47.625,26.681\n"
+        "400,560,362.067,40.930,26.338\n880,800,1208.879,72.736,26.157\n880,680,916.621,61.064,26.255\n"
+        "400,440,279.859,37.640,25.911\n880,320,401.041,41.276,25.718\n640,200,208.082,33.006,25.737\n"
+        "400,200,135.242,30.949,25.522\n640,560,515.774,45.501,25.430\n1120,320,492.568,44.244,25.078\n"
+        "640,800,799.789,56.454,24.959\n1120,440,659.882,50.027,24.687\n640,440,411.315,40.760,24.572\n"
+        "1120,560,816.985,56.747,24.307\n880,560,687.010,51.816,24.191\n1120,680,1054.193,65.474,23.914\n"
+        "880,200,278.399,34.958,23.874\n400,800,517.593,44.640,23.601\n640,320,304.493,35.726,23.646\n"
+        "400,320,202.942,31.533,23.427\n1120,200,338.945,36.604,23.103\n640,680,649.213,48.324,23.121\n");
+    REQUIRE_FALSE(d.findings.empty());
+    const std::string top = d.findings.front().effect;
+    CHECK((top == "mesh_friction" || top == "mesh_friction_mixed"));
+    CHECK(d.verdict == "partly_explained");
+    CHECK(d.main_finding.confidence == "tentative");
+}
+
+TEST_CASE("a further effect that does not hold over the resamples is said but not named", "[diagnose_joint]") {
+    // An independent campaign (scripts/independent-campaigns.py, spur seed 0, single visc_shift):
+    // the spur gearbox on a rig resistance of 0.0394098 K/W, 12 shuffled points, the oil behaving
+    // as the model's oil 8.4 K hotter (every loss taken at the shifted temperature, not a factor
+    // on the viscosity). The viscosity is named (the truth's factor at the median temperature,
+    // 0.743). On top of it windage fits better by a delta BIC of 10.7 but wins only 11 of 24
+    // resamples: it is not named, and the report says so, with the rival that took resamples.
+    const auto d = diagnose_independent(
+        "configs/spur-seed000.yaml", 0.0394098,
+        "640,560,476.331,42.431,23.964\n1360,560,884.344,58.740,24.040\n640,200,194.010,32.203,24.273\n"
+        "1360,800,1830.538,98.467,24.410\n640,680,578.708,47.273,24.759\n1600,200,450.189,42.845,24.940\n"
+        "1360,680,1117.047,70.808,25.050\n1600,560,1000.364,65.540,25.340\n640,800,720.562,54.553,25.503\n"
+        "1600,680,1470.092,83.393,25.723\n1600,800,2651.830,125.925,25.898\n1360,200,370.778,41.702,26.211\n");
+    REQUIRE(d.findings.size() == 1);
+    CHECK(d.findings.front().effect == "oil_viscosity");
+    INFO(d.unsettled);
+    CHECK(d.unsettled.find("windage fits better than the findings before it by a delta BIC of ") == 0);
+    CHECK(d.unsettled.find("but is not named: it wins 46 % of 24 resamples, against bearing_drag in ") !=
+          std::string::npos);
+    CHECK(diagnosis::diagnosis_text(d).find("\nnot named: " + d.unsettled) != std::string::npos);
 }

@@ -249,6 +249,7 @@ py::dict diagnosis_dict(const diagnosis::Diagnosis& d) {
         out["main_finding"] = m;
     }
     out["completeness"] = d.completeness;
+    out["unsettled"] = d.unsettled.empty() ? py::object(py::none()) : py::cast(d.unsettled);
     if (d.remaining_structure) {
         py::dict r;
         r["channel"] = d.remaining_structure->channel;

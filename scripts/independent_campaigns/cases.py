@@ -42,7 +42,8 @@ CASES = {
     "manual_housing": dict(config="configs/manual-6speed.yaml", heat="housing",
                            speeds=[1000, 1500, 2000, 2500, 3000, 3500], torques=[10, 25, 40, 55, 70, 85]),
     "fzg_fixed": dict(config="configs/fzg-c40-paor.yaml", heat="fixed", oil_temp=80.0, **FZG_GRID),
-    "wind": dict(config="configs/wind-turbine-2.5MW.yaml", heat="fixed",
+    # at the sump temperature the shipped case's cooler holds over the upper power curve (its comment)
+    "wind": dict(config="configs/wind-turbine-2.5MW.yaml", heat="fixed", oil_temp=60.0,
                  speeds=[9, 10.5, 12, 13.5, 15, 16.5],
                  torques=[159200, 400000, 650000, 900000, 1200000, 1492100]),
 }

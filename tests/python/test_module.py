@@ -260,6 +260,7 @@ class Diagnosis(Tmp):
         self.assertAlmostEqual(d.rmse_after_W, j["rmse_after"], delta=1e-9 * j["rmse_after"])
         self.assertEqual(d.text, stdout)
         self.assertEqual(d.main_finding, j.get("main_finding"))
+        self.assertEqual(d.unsettled, j.get("unsettled"))  # None here, and absent from the JSON
         self.assertEqual(d.run_order, j["run_order"])
         self.assertEqual(d.noise_used["source"], j["noise_used"]["source"])
 

@@ -262,6 +262,7 @@ JointFit fit_jointly(const solver::Model& model, Campaign& c, const DiagnoseOpti
     d.findings = std::move(S.findings);
     name_oil_findings(d.findings, d.candidates, lib);
     d.warnings.insert(d.warnings.end(), S.warnings.begin(), S.warnings.end());
+    d.unsettled = std::move(S.unsettled);
     j.base = S.h;
     j.fitted = S.fitted;
     d.calibrated = j.base;

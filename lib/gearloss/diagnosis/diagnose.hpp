@@ -139,6 +139,10 @@ struct Diagnosis {
     std::string summary;            // one paragraph in the expected voice
     std::string location;           // where the baseline mismatch lives
     std::string remaining;          // where an unexplained residual remains (if any)
+    // Effects that fit well but are not named because the resamples cannot tell them from
+    // others (a pair against other pairs, a single effect against other singles), with what
+    // they compete with; empty when there is none.
+    std::string unsettled;
     std::vector<Finding> findings;
     std::vector<Candidate> candidates;  // every effect, best first
     std::vector<Outlier> outliers;  // also the rows not used (recorded values the model cannot evaluate)

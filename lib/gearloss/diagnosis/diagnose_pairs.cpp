@@ -254,14 +254,32 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
             const Effect* pa = &lib[p.a];
             const Effect* pb = &lib[p.b];
             const Effect* other = pa == &partner ? pb : pb == &partner ? pa : nullptr;
-            if (!other || 2.0 * (p.nll - best.nll) > opt.ambiguity_bic) continue;
+            // As for a single effect: near-tied, or winning a quarter of the resamples.
+            const bool rival = stability < opt.stability_min && wins[c] >= 0.25 * opt.bootstrap;
+            if (!other || (2.0 * (p.nll - best.nll) > opt.ambiguity_bic && !rival)) continue;
             f.equivalent.push_back(other->id);
             shared += static_cast<double>(wins[c]) / opt.bootstrap;
             if (f.separating_measurement.empty())
                 f.separating_measurement = separating_measurement(E.signature(e, others), E.signature(*other, others));
         }
         f.stability = stability;
-        if (stability < opt.stability_min && (f.equivalent.empty() || stability + shared < 0.8)) return false;
+        if (stability < opt.stability_min && (f.equivalent.empty() || stability + shared < 0.8)) {
+            // Not named, but said: the pair fits far better than any single effect or the pair
+            // forward selection reaches, and only the resamples cannot tell it from another.
+            std::string rivals;
+            for (size_t c = 1; c < contenders.size(); ++c)
+                if (wins[c] > 0)
+                    rivals += fmt::format("{}{} with {} in {:.0f} %", rivals.empty() ? "" : ", ",
+                                          lib[screened[c].a].id, lib[screened[c].b].id,
+                                          100.0 * wins[c] / opt.bootstrap);
+            S.unsettled = fmt::format(
+                "{} with {} fitted together are better than {} by a delta BIC of {:.1f}, but not named: they win "
+                "{:.0f} % of {} resamples{}{}",
+                pair_terms[0].effect->id, pair_terms[1].effect->id,
+                forward_stops ? std::string("the case without an effect") : lib[lead].id + " with its best partner",
+                margin, 100.0 * stability, opt.bootstrap, rivals.empty() ? "" : ", against ", rivals);
+            return false;
+        }
         record_fit(f, E, po, others, fm.h, cv0, cvm);
         found.push_back(std::move(f));
     }

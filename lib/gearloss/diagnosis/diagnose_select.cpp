@@ -381,16 +381,35 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         for (size_t k : order) {
             if (static_cast<int>(k) == chosen || dbic[k] < opt.bic_threshold) continue;
             const Signature sk = E.signature(lib[k], base);
+            // A rival that wins a quarter of the resamples the leader does not hold is an
+            // alternative the recordings cannot rule out, however far behind on all of them
+            // (two forms of one mechanism splitting the resamples 54/46 are one finding, not none).
             const bool near_tie = dbic[chosen] - dbic[k] <= opt.ambiguity_bic ||
-                                  (stability < opt.stability_min && dbic[chosen] - dbic[k] <= 3 * opt.ambiguity_bic &&
-                                   wins[k] > 0);
+                                  (stability < opt.stability_min &&
+                                   ((dbic[chosen] - dbic[k] <= 3 * opt.ambiguity_bic && wins[k] > 0) ||
+                                    wins[k] >= 0.25 * opt.bootstrap));
             if (near_tie || unobservable_difference(sig, sk)) {
                 f.equivalent.push_back(lib[k].id);
                 shared += static_cast<double>(wins[k]) / opt.bootstrap;
                 if (f.separating_measurement.empty()) f.separating_measurement = separating_measurement(sig, sk);
             }
         }
-        if (stability < opt.stability_min && (f.equivalent.empty() || shared < 0.8)) break;
+        if (stability < opt.stability_min && (f.equivalent.empty() || shared < 0.8)) {
+            // Not named, but said: which effect, how strong, and what took the other resamples.
+            std::string rivals;
+            for (size_t k : contenders)
+                if (static_cast<int>(k) != chosen && wins[k] > 0)
+                    rivals += fmt::format("{}{} in {:.0f} %", rivals.empty() ? "" : ", ", lib[k].id,
+                                          100.0 * wins[k] / opt.bootstrap);
+            S.unsettled += fmt::format("{}{} fits better than {} by a delta BIC of {:.1f}, but is not named: it wins "
+                                       "{:.0f} % of {} resamples{}{}",
+                                       S.unsettled.empty() ? "" : "; ", e.id,
+                                       terms.empty() ? std::string("the case without an effect")
+                                                     : std::string("the findings before it"),
+                                       dbic[chosen], 100.0 * stability, opt.bootstrap, rivals.empty() ? "" : ", against ",
+                                       rivals);
+            break;
+        }
         f.effect = e.id;
         f.description = e.description;
         f.parameter = {e.parameter, e.unit, fits[chosen].value, fits[chosen].uncertainty, e.form, e.case_form};

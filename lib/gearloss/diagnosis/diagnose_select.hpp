@@ -12,6 +12,7 @@ struct Selection {
     std::vector<Finding> findings;       // in the order they were added
     std::vector<Candidate> candidates;   // the first round's screening, best first
     std::vector<std::string> warnings;
+    std::string unsettled;               // effects that fit well but were not named, and why
     double cv_rmse_after = 0;
     int fitted = 0;                      // parameters in h beyond the case
 };

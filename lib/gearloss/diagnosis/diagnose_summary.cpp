@@ -64,8 +64,9 @@ std::string summary_paragraph(const Diagnosis& d, const std::string& baseline_cl
         return fmt::format(
             "the recordings differ systematically from the model, but no candidate effect explains it ({}); the "
             "unexplained residual: {}; {}",
-            c.rejected.empty() ? fmt::format("best: {} with delta BIC {:.1f}", c.effect, c.delta_bic)
-                               : std::string("no candidate could be evaluated"),
+            !d.unsettled.empty() ? d.unsettled
+            : c.rejected.empty() ? fmt::format("best: {} with delta BIC {:.1f}", c.effect, c.delta_bic)
+                                 : std::string("no candidate could be evaluated"),
             baseline_clause, adequacy_text);
     } else if (!d.candidates.front().rejected.empty()) {
         return fmt::format("no significant missing physics: the residuals are consistent with measurement noise "

@@ -139,6 +139,7 @@ std::string diagnosis_text(const Diagnosis& d) {
     }
     if (!d.oils.empty()) s += oils_text(d);
     if (!d.remaining.empty() && d.verdict != "unexplained_mismatch") s += "\n" + d.remaining + "\n";
+    if (!d.unsettled.empty() && d.verdict != "unexplained_mismatch") s += "\nnot named: " + d.unsettled + "\n";
     if (d.remainder) s += remainder_text(*d.remainder);
     s += fmt::format("\nnoise: loss {:.3g} % ({}), test of what is left: fit {}, structure {}{}\n",
                      100 * d.adequacy_loss.noise, d.adequacy_loss.noise_source, p_value_text(d.adequacy_loss.fit_p),
@@ -184,6 +185,7 @@ std::string diagnosis_json(const Diagnosis& d) {
     j["summary"] = d.summary;
     j["location"] = d.location;
     j["remaining"] = d.remaining;
+    if (!d.unsettled.empty()) j["unsettled"] = d.unsettled;
     j["points"] = d.points;
     if (d.fit_points < d.points) j["fit_points"] = d.fit_points;  // a large campaign fitted on part of its points
     j["rmse_before"] = d.rmse_before;
