@@ -144,7 +144,7 @@ mut D7 diagnosis lib/gearloss/diagnosis/hypothesis_basis.cpp "powers of speed se
 mut D8 diagnosis lib/gearloss/diagnosis/diagnose.cpp "a pair not named for its resamples is not said" \
     'd.unsettled = std::move(S.unsettled);' 'd.unsettled.clear();'
 mut D9 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a rival winning a quarter of the resamples is no alternative" \
-    'wins[k] >= 0.25 * opt.bootstrap));' 'false));'
+    'return leader_stability < opt.stability_min && rival_wins >= 0.25 * opt.bootstrap;' 'return false;'
 mut G9 gearbox lib/gearloss/gearbox/gearbox.cpp "a pilot bearing's reaction not carried to its outer shaft" \
     'pilot.F = Vec3(-out.R[i].x(), -out.R[i].y(), -out.Z[i]);' 'pilot.F = Vec3::Zero();'
 mut D3 diagnosis lib/gearloss/diagnosis/adequacy.cpp "power from the critical value alone (median ignored)" \

@@ -255,8 +255,8 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
             const Effect* pb = &lib[p.b];
             const Effect* other = pa == &partner ? pb : pb == &partner ? pa : nullptr;
             // As for a single effect: near-tied, or winning a quarter of the resamples.
-            const bool rival = stability < opt.stability_min && wins[c] >= 0.25 * opt.bootstrap;
-            if (!other || (2.0 * (p.nll - best.nll) > opt.ambiguity_bic && !rival)) continue;
+            if (!other || (2.0 * (p.nll - best.nll) > opt.ambiguity_bic && !rival_in_resamples(stability, wins[c], opt)))
+                continue;
             f.equivalent.push_back(other->id);
             shared += static_cast<double>(wins[c]) / opt.bootstrap;
             if (f.separating_measurement.empty())
@@ -266,12 +266,10 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
         if (stability < opt.stability_min && (f.equivalent.empty() || stability + shared < 0.8)) {
             // Not named, but said: the pair fits far better than any single effect or the pair
             // forward selection reaches, and only the resamples cannot tell it from another.
-            std::string rivals;
+            std::vector<std::pair<std::string, int>> others;
             for (size_t c = 1; c < contenders.size(); ++c)
-                if (wins[c] > 0)
-                    rivals += fmt::format("{}{} with {} in {:.0f} %", rivals.empty() ? "" : ", ",
-                                          lib[screened[c].a].id, lib[screened[c].b].id,
-                                          100.0 * wins[c] / opt.bootstrap);
+                others.emplace_back(lib[screened[c].a].id + " with " + lib[screened[c].b].id, wins[c]);
+            const std::string rivals = resample_shares(others, opt);
             S.unsettled = fmt::format(
                 "{} with {} fitted together are better than {} by a delta BIC of {:.1f}, but not named: they win "
                 "{:.0f} % of {} resamples{}{}",

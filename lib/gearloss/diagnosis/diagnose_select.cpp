@@ -101,6 +101,17 @@ void record_fit(Finding& f, const Engine& E, const Pred& pb, const Hypothesis& w
     f.temp_rmse_after = sa.rmse_temp;
 }
 
+bool rival_in_resamples(double leader_stability, int rival_wins, const DiagnoseOptions& opt) {
+    return leader_stability < opt.stability_min && rival_wins >= 0.25 * opt.bootstrap;
+}
+
+std::string resample_shares(const std::vector<std::pair<std::string, int>>& rivals, const DiagnoseOptions& opt) {
+    std::string s;
+    for (const auto& [name, wins] : rivals)
+        if (wins > 0) s += fmt::format("{}{} in {:.0f} %", s.empty() ? "" : ", ", name, 100.0 * wins / opt.bootstrap);
+    return s;
+}
+
 namespace {
 
 int parameters_of(const std::vector<Term>& terms, const std::vector<char>& flags) {
@@ -381,13 +392,10 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         for (size_t k : order) {
             if (static_cast<int>(k) == chosen || dbic[k] < opt.bic_threshold) continue;
             const Signature sk = E.signature(lib[k], base);
-            // A rival that wins a quarter of the resamples the leader does not hold is an
-            // alternative the recordings cannot rule out, however far behind on all of them
-            // (two forms of one mechanism splitting the resamples 54/46 are one finding, not none).
-            const bool near_tie = dbic[chosen] - dbic[k] <= opt.ambiguity_bic ||
-                                  (stability < opt.stability_min &&
-                                   ((dbic[chosen] - dbic[k] <= 3 * opt.ambiguity_bic && wins[k] > 0) ||
-                                    wins[k] >= 0.25 * opt.bootstrap));
+            const bool near_tie =
+                dbic[chosen] - dbic[k] <= opt.ambiguity_bic ||
+                (stability < opt.stability_min && dbic[chosen] - dbic[k] <= 3 * opt.ambiguity_bic && wins[k] > 0) ||
+                rival_in_resamples(stability, wins[k], opt);
             if (near_tie || unobservable_difference(sig, sk)) {
                 f.equivalent.push_back(lib[k].id);
                 shared += static_cast<double>(wins[k]) / opt.bootstrap;
@@ -396,11 +404,10 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         }
         if (stability < opt.stability_min && (f.equivalent.empty() || shared < 0.8)) {
             // Not named, but said: which effect, how strong, and what took the other resamples.
-            std::string rivals;
+            std::vector<std::pair<std::string, int>> others;
             for (size_t k : contenders)
-                if (static_cast<int>(k) != chosen && wins[k] > 0)
-                    rivals += fmt::format("{}{} in {:.0f} %", rivals.empty() ? "" : ", ", lib[k].id,
-                                          100.0 * wins[k] / opt.bootstrap);
+                if (static_cast<int>(k) != chosen) others.emplace_back(lib[k].id, wins[k]);
+            const std::string rivals = resample_shares(others, opt);
             S.unsettled += fmt::format("{}{} fits better than {} by a delta BIC of {:.1f}, but is not named: it wins "
                                        "{:.0f} % of {} resamples{}{}",
                                        S.unsettled.empty() ? "" : "; ", e.id,

@@ -21,6 +21,12 @@ struct Selection {
 // `skip`: a term left out.
 Hypothesis with_terms(const Hypothesis& neutral, const std::vector<Term>& terms, const std::vector<char>& flags,
                       int skip = -1);
+// A rival the recordings cannot rule out: when the leader wins fewer resamples than the
+// stability rule asks, one that wins a quarter of them, however far behind on all points
+// (two forms of one mechanism splitting the resamples 54/46 are one finding, not none).
+bool rival_in_resamples(double leader_stability, int rival_wins, const DiagnoseOptions& opt);
+// "a in 33 %, b in 21 %": what won the resamples the leader did not (wins > 0 only).
+std::string resample_shares(const std::vector<std::pair<std::string, int>>& rivals, const DiagnoseOptions& opt);
 // Whether e is already among the terms or excluded by one of them (another form of its axis,
 // the same effect for every oil and for one); `skip`: a term being replaced.
 bool taken(const std::vector<Term>& terms, const Effect& e, int skip = -1);
