@@ -145,6 +145,18 @@ mut D8 diagnosis lib/gearloss/diagnosis/diagnose.cpp "a pair not named for its r
     'd.unsettled = std::move(S.unsettled);' 'd.unsettled.clear();'
 mut D9 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a rival winning a quarter of the resamples is no alternative" \
     'return leader_stability < opt.stability_min && rival_wins >= 0.25 * opt.bootstrap;' 'return false;'
+mut M13 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "mixed-film rise at Doleschel's onset whatever mixed_friction_onset" \
+    'mixed_rise * boundary_share_doleschel(lambda, mixed_onset)' 'mixed_rise * boundary_share_doleschel(lambda)'
+mut T9 thermal lib/gearloss/model/model.cpp "forced cooling linear in speed whatever cooling_speed_exponent" \
+    '(q == 1.0 ? n_k : std::pow(n_k, q))' 'n_k'
+mut D10 diagnosis lib/gearloss/diagnosis/diagnose_fit.cpp "a profiled shape keeps the case's value" \
+    'if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll, chosen = at(v);' 'if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll;'
+mut D11 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a joint refit holds the shape chosen alone" \
+    'if (!held->shape || !held->shape->variants) continue;' 'continue;'
+mut D12 diagnosis lib/gearloss/diagnosis/effects.hpp "a profiled shape costs no parameter" \
+    'return discrete() ? 0 : shape ? 2 : 1;' 'return discrete() ? 0 : 1;'
+mut D13 diagnosis lib/gearloss/diagnosis/diagnose_verdict.cpp "two forms of one mechanism sharing the resamples leave it tentative" \
+    'const bool stable = main.stability >= opt.stability_min || form_open;' 'const bool stable = main.stability >= opt.stability_min;'
 mut G9 gearbox lib/gearloss/gearbox/gearbox.cpp "a pilot bearing's reaction not carried to its outer shaft" \
     'pilot.F = Vec3(-out.R[i].x(), -out.R[i].y(), -out.Z[i]);' 'pilot.F = Vec3::Zero();'
 mut D3 diagnosis lib/gearloss/diagnosis/adequacy.cpp "power from the critical value alone (median ignored)" \

@@ -109,4 +109,9 @@ TEST_CASE("Doleschel boundary share", "[mesh]") {
     CHECK(mesh::boundary_share_doleschel(1.0) == Approx(0.25));
     CHECK(mesh::boundary_share_doleschel(2.0) == 0.0);
     CHECK(mesh::boundary_share_doleschel(5.0) == 0.0);
+    // With the onset moved to Lambda = 3: (1 - 1.5/3)^2 = 0.25, (1 - 0.6/3)^2 = 0.64, 0 from 3.
+    CHECK(mesh::boundary_share_doleschel(1.5, 3.0) == Approx(0.25));
+    CHECK(mesh::boundary_share_doleschel(0.6, 3.0) == Approx(0.64));
+    CHECK(mesh::boundary_share_doleschel(3.0, 3.0) == 0.0);
+    CHECK(mesh::boundary_share_doleschel(2.5, 3.0) > 0.0);  // beyond Doleschel's 2, still mixed
 }

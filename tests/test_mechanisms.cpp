@@ -1,6 +1,7 @@
 // Contract tests applied to every registered loss mechanism (Ceres-style: one interface,
 // every implementation held to it), and the YAML blocks that set their parameters and forms.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -342,7 +343,9 @@ TEST_CASE("mechanisms: mesh friction that follows the film rises by k (1 - Lambd
     // Doleschel's (2003) boundary share xi = (1 - Lambda/2)^2 (0 from Lambda = 2): with
     // mixed_friction_rise = k each mesh loses (1 + k xi(Lambda)) times its loss without it, at
     // the same film (fixed oil temperature). Hand check at Lambda = 0.8: xi = 0.36, k = 0.5 gives
-    // x 1.18; at Lambda >= 2 the loss is unchanged.
+    // x 1.18; at Lambda >= 2 the loss is unchanged. With the onset moved to Lambda = 3
+    // (mixed_friction_onset): k (1 - Lambda/3)^2 below 3; hand check at Lambda = 1.2:
+    // (1 - 0.4)^2 = 0.36, x 1.18.
     const std::string base = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
     auto solve = [&](const std::string& text, double rpm, double T_C) {
         test_support::TempConfig cfg(text);
@@ -352,29 +355,41 @@ TEST_CASE("mechanisms: mesh friction that follows the film rises by k (1 - Lambd
         const auto r = solver::solve_point(c.model, rpm * kRpm, 300, true);
         return std::make_pair(r, c.model);
     };
-    const std::string rise = base + "calibration:\n  mesh: {mixed_friction_rise: 0.5}\n";
-    int thin = 0, thick = 0;
-    for (const auto& [rpm, T] : {std::pair{300.0, 110.0}, {1500.0, 60.0}, {4000.0, 20.0}}) {
-        const auto [r0, m0] = solve(base, rpm, T);
-        const auto [r1, m1] = solve(rise, rpm, T);
-        const auto& d0 = r0.losses.detail_of(m0, "mesh");
-        const auto& d1 = r1.losses.detail_of(m1, "mesh");
-        for (size_t i = 0; i < m0.gearbox.meshes.size(); ++i) {
-            const double P0 = d0.at(i, 0), P1 = d1.at(i, 0), lambda = d0.at(i, 2);
-            if (!(P0 > 0)) continue;
-            INFO(rpm << " rpm, " << T << " degC, mesh " << i << ", Lambda " << lambda);
-            CHECK(d1.at(i, 2) == Approx(lambda).epsilon(1e-12));  // the film itself is unchanged
-            const double xi = lambda < 2 ? (1 - lambda / 2) * (1 - lambda / 2) : 0.0;
-            CHECK(P1 == Approx(P0 * (1 + 0.5 * xi)).epsilon(1e-12));
-            (lambda < 2 ? thin : thick)++;
+    // The Lambda of every loaded mesh at the points, each checked against (1 + 0.5 xi(Lambda)).
+    auto check_rise = [&](const std::string& calibration, double onset) {
+        std::vector<double> lambdas;
+        for (const auto& [rpm, T] :
+             {std::pair{300.0, 110.0}, {1500.0, 60.0}, {4000.0, 20.0}, {4000.0, 35.0}, {3000.0, 30.0}, {2000.0, 25.0}}) {
+            const auto [r0, m0] = solve(base, rpm, T);
+            const auto [r1, m1] = solve(base + "calibration:\n  mesh: " + calibration + "\n", rpm, T);
+            const auto& d0 = r0.losses.detail_of(m0, "mesh");
+            const auto& d1 = r1.losses.detail_of(m1, "mesh");
+            for (size_t i = 0; i < m0.gearbox.meshes.size(); ++i) {
+                const double P0 = d0.at(i, 0), P1 = d1.at(i, 0), lambda = d0.at(i, 2);
+                if (!(P0 > 0)) continue;
+                INFO(rpm << " rpm, " << T << " degC, mesh " << i << ", Lambda " << lambda);
+                CHECK(d1.at(i, 2) == Approx(lambda).epsilon(1e-12));  // the film itself is unchanged
+                const double xi = lambda < onset ? (1 - lambda / onset) * (1 - lambda / onset) : 0.0;
+                CHECK(P1 == Approx(P0 * (1 + 0.5 * xi)).epsilon(1e-12));
+                lambdas.push_back(lambda);
+            }
+            // Only the mesh column moves.
+            CHECK(r1.losses.total() - r1.losses.of(m1, "mesh") ==
+                  Approx(r0.losses.total() - r0.losses.of(m0, "mesh")).epsilon(1e-12));
         }
-        // Only the mesh column moves.
-        CHECK(r1.losses.total() - r1.losses.of(m1, "mesh") ==
-              Approx(r0.losses.total() - r0.losses.of(m0, "mesh")).epsilon(1e-12));
-    }
-    CHECK(thin > 0);   // both regimes were visited
-    CHECK(thick > 0);
-    // It is a calibration term with bounds: a rise beyond them is an error at its key.
+        return lambdas;
+    };
+    const auto lambdas = check_rise("{mixed_friction_rise: 0.5}", 2.0);
+    const auto count = [&](double lo, double hi) {
+        return std::count_if(lambdas.begin(), lambdas.end(), [&](double l) { return l >= lo && l < hi; });
+    };
+    CHECK(count(0, 2) > 0);  // both regimes were visited
+    CHECK(count(2, 1e9) > 0);
+    check_rise("{mixed_friction_rise: 0.5, mixed_friction_onset: 3}", 3.0);
+    CHECK(count(2, 3) > 0);  // a film Doleschel's onset leaves alone and this one does not
+    // Calibration terms with bounds: beyond them, an error at the key.
     CHECK_THAT(load_error(base + "calibration:\n  mesh: {mixed_friction_rise: 50}\n").message,
                Catch::Contains("must be in [-0.9, 20]"));
+    CHECK_THAT(load_error(base + "calibration:\n  mesh: {mixed_friction_onset: 20}\n").message,
+               Catch::Contains("must be in [0.5, 10]"));
 }

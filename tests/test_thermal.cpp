@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "gearloss/case/config.hpp"
+#include "gearloss/core/errors.hpp"
 #include "gearloss/solver/operating_point.hpp"
 #include "test_support.hpp"
 #include "gearloss/thermal/equilibrium.hpp"
@@ -73,4 +74,34 @@ TEST_CASE("stabilised points satisfy the heat balance, fixed mode skips the solv
     CHECK(r.oil_temperature == 343.15);
     CHECK(r.losses.total() ==
           Approx(solver::total_loss(c.model, solver::prepare_point(c.model, 83.7758, 250), 343.15)).epsilon(1e-12));
+}
+
+TEST_CASE("forced cooling grows as the fitted power of speed", "[thermal]") {
+    // calibration cooling_per_1000rpm a and cooling_speed_exponent q: the heat flow to ambient
+    // times (1 + a (n/1000 rpm)^q). Hand check at 4000 rpm, a = 0.2: q = 0.5 gives
+    // 1 + 0.2 x 2 = 1.4, q = 1 (the default) 1 + 0.2 x 4 = 1.8; at 1000 rpm both give 1.2.
+    auto c = test_support::load_shipped("configs/transfer-box.yaml");
+    auto& m = c.model;
+    const double Ta = 298.15, T = 348.15, w4000 = 4000 * M_PI / 30, w1000 = 1000 * M_PI / 30;
+    const double Q4000 = m.surface_heat_flow(T, Ta, w4000, 0), Q1000 = m.surface_heat_flow(T, Ta, w1000, 0);
+    REQUIRE(Q4000 > 0);
+    m.calibration.cooling_per_1000rpm = 0.2;
+    CHECK(m.surface_heat_flow(T, Ta, w4000, 0) == Approx(1.8 * Q4000).epsilon(1e-12));
+    m.calibration.cooling_speed_exponent = 0.5;
+    CHECK(m.surface_heat_flow(T, Ta, w4000, 0) == Approx(1.4 * Q4000).epsilon(1e-12));
+    CHECK(m.surface_heat_flow(T, Ta, w1000, 0) == Approx(1.2 * Q1000).epsilon(1e-12));
+    // A calibration key with bounds: out of them, an error at its key; in them, read.
+    const std::string base = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
+    {
+        test_support::TempConfig cfg(base + "calibration:\n  cooling_per_1000rpm: 0.1\n  cooling_speed_exponent: 0.65\n");
+        CHECK(io::load_case(cfg.path).model.calibration.cooling_speed_exponent == 0.65);
+    }
+    test_support::TempConfig bad(base + "calibration:\n  cooling_speed_exponent: 5\n");
+    try {
+        io::load_case(bad.path);
+        FAIL("no error for cooling_speed_exponent 5");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find("cooling_speed_exponent") != std::string::npos);
+        CHECK(std::string(e.what()).find("must be in [0.2, 2]") != std::string::npos);
+    }
 }

@@ -153,6 +153,16 @@ py::dict finding_dict(const diagnosis::Finding& f, bool temperature) {
     p["form"] = f.parameter.form.empty() ? py::none() : py::cast(f.parameter.form);
     p["case_form"] = f.parameter.case_form.empty() ? py::none() : py::cast(f.parameter.case_form);
     d["parameter"] = p;
+    // A shape setting fitted with the parameter on a grid (where mixed friction sets in), or None.
+    if (f.shape) {
+        py::dict s;
+        s["name"] = f.shape->name;
+        s["value"] = f.shape->value;
+        s["grid"] = f.shape->grid;
+        d["shape"] = s;
+    } else {
+        d["shape"] = py::none();
+    }
     d["rows"] = f.rows;
     d["rmse_before_W"] = f.rmse_before;
     d["rmse_after_W"] = f.rmse_after;
@@ -163,6 +173,7 @@ py::dict finding_dict(const diagnosis::Finding& f, bool temperature) {
     d["delta_bic"] = f.delta_bic;
     d["cv_loglik_gain"] = f.cv_gain;
     d["stability"] = f.stability;
+    d["mechanism_stability"] = f.mechanism_stability;
     d["equivalent"] = f.equivalent;
     d["separating_measurement"] = f.separating_measurement;
     return d;

@@ -246,6 +246,7 @@ class Diagnosis(Tmp):
         self.assertEqual(f.parameter["unit"], "W")
         self.assertLess(abs(f.parameter["value"] - 30.0), 4 * f.parameter["uncertainty"] + 1e-9)
         self.assertIn("speed", d.location)
+        self.assertIsNone(f.shape)  # windage has no shape setting fitted with it
         self.assertEqual(len(d.residuals), 12)
         # The CLI's diagnosis of the same recordings: the same verdict, effects and numbers.
         out = os.path.join(self.tmp, "d.json")

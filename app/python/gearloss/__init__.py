@@ -271,9 +271,11 @@ def _optional_floats(v):
 
 class Finding:
     """One named effect of a diagnosis: ``effect``, ``description``, ``parameter`` (dict: name,
-    value, uncertainty, unit, form, case_form), ``rmse_before_W``, ``rmse_after_W``,
+    value, uncertainty, unit, form, case_form), ``shape`` (dict: name, value, grid of a shape
+    setting fitted with the parameter, such as mesh.mixed_friction_onset; None without one),
+    ``rmse_before_W``, ``rmse_after_W``,
     ``cv_rmse_before_W``, ``cv_rmse_after_W``, ``temp_rmse_before_K``, ``temp_rmse_after_K``,
-    ``delta_bic``, ``cv_loglik_gain``, ``stability``, ``equivalent``,
+    ``delta_bic``, ``cv_loglik_gain``, ``stability``, ``mechanism_stability``, ``equivalent``,
     ``separating_measurement``, ``rows``, ``oil``."""
 
     def __init__(self, d):

@@ -76,6 +76,12 @@ std::string fmt_value(double v, const std::string& unit) {
     return unit.empty() ? fmt::format("{:.4g}", v) : fmt::format("{:.4g} {}", v, unit);
 }
 
+std::string shape_text(const ShapeEstimate& s) {
+    std::string grid;
+    for (double v : s.grid) grid += fmt::format("{}{:.3g}", grid.empty() ? "" : ", ", v);
+    return fmt::format("{} = {:.3g} (fitted with it: the best of {})", s.name, s.value, grid);
+}
+
 void DiagnoseOptions::validate() const {
     const auto bad = [](const char* key, const std::string& message) { throw InputError("", 0, 0, key, message); };
     if (bootstrap < 4 || bootstrap > 1000) bad("--bootstrap", fmt::format("{} resamples: give 4 to 1000", bootstrap));
@@ -256,6 +262,8 @@ JointFit fit_jointly(const solver::Model& model, Campaign& c, const DiagnoseOpti
 
     // Candidates from the model's mechanisms, calibration and the rig's artefacts.
     std::vector<Effect> lib = candidate_effects(model);
+    if (opt.progress) opt.progress("diagnose: shapes of the candidates (where mixed friction sets in)");
+    profile_shapes(E, lib, j.neutral);
     add_per_oil_candidates(lib, c.oils);
     Selection S = select_effects(E, lib, j.neutral, opt);
     d.candidates = std::move(S.candidates);

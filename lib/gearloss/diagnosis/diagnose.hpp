@@ -90,11 +90,24 @@ struct Estimate {
     std::string form, case_form;  // a model-form finding: the form named and the case's (value 1)
 };
 
+// A shape setting fitted with a finding's parameter by profiling over a grid (where mixed
+// friction sets in): the value chosen and the grid it was chosen from.
+struct ShapeEstimate {
+    std::string name;
+    double value = 0;
+    std::vector<double> grid;
+};
+
 struct Finding {
     std::string effect, description;
     Estimate parameter;
+    std::optional<ShapeEstimate> shape;
     std::vector<int> rows;          // unstabilised_test: the flagged rows
     double delta_bic = 0, stability = 0, cv_gain = 0;
+    // The resamples won by this effect or another of the same loss mechanism (its level, its
+    // mixed-film rise, its other published forms): whether the mechanism is settled when its
+    // form is not. Equal to `stability` where no other form of it took resamples.
+    double mechanism_stability = 0;
     double rmse_before = 0, rmse_after = 0, cv_rmse_before = 0, cv_rmse_after = 0;  // loss, W
     double temp_rmse_before = 0, temp_rmse_after = 0;                              // K (0 without temperatures)
     std::string oil;                // multi-oil campaigns: the oil it concerns alone (empty: every oil)
@@ -214,6 +227,8 @@ std::vector<std::string> ratio_findings(const solver::Model& model, const Record
 
 // A parameter value with its unit for reports: "1.234 W", "0.95".
 std::string fmt_value(double v, const std::string& unit);
+// "mesh.mixed_friction_onset = 2.8 (fitted with it: the best of 1, 1.4, 2, 2.8, 4, 5.6)".
+std::string shape_text(const ShapeEstimate& s);
 std::string diagnosis_text(const Diagnosis& d);
 std::string diagnosis_json(const Diagnosis& d);
 std::string residuals_csv(const Diagnosis& d);

@@ -341,11 +341,12 @@ Fit Engine::refit(const Effect& e, const Hypothesis& base, double near) const {
     if (knots.size() < 5 || knots.size() + 2 >= grid.size()) return fit(e, base);
     Response r;
     Fit f = fit(e, base, &r, std::move(knots));
+    // A local scan that failed has no knots: the whole scan.
+    if (!f.failed.empty() || r.knots().empty()) return fit(e, base);
     // An optimum at an inner end of the local knots may lie beyond them: the whole scan.
     const bool inner_lo = r.lo() > grid.front(), inner_hi = r.hi() < grid.back();
     const double tol = 1e-6 * (grid.back() - grid.front());
-    if (!f.failed.empty() || (inner_lo && f.value <= r.lo() + tol) || (inner_hi && f.value >= r.hi() - tol))
-        return fit(e, base);
+    if ((inner_lo && f.value <= r.lo() + tol) || (inner_hi && f.value >= r.hi() - tol)) return fit(e, base);
     return f;
 }
 
@@ -358,7 +359,7 @@ Fit Engine::fit(const Effect& e, const Hypothesis& base, Response* response, std
     Fit f;
     // A published form has no fitted parameter: which candidate it is, is the choice every
     // candidate pays for alike (BIC of a model with none).
-    f.k = e.discrete() ? 0 : 1;
+    f.k = e.fitted_parameters();
     Response local;
     Response& r = response ? *response : local;
     r = knots.empty() ? Response(*this, e, base) : Response(*this, e, base, knots);

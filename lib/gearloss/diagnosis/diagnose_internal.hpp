@@ -258,6 +258,10 @@ struct CvResult {
     double nll = 0, rmse_loss = 0, rmse_temp = 0;
 };
 CvResult cross_validate(const Engine& E, const Response* r, const Pred& base_pred, const Hypothesis& base);
+// Each effect with a shape setting (Effect::shape) fitted at every value of its grid on `base`
+// and replaced by the best (the case's own value on a tie): the campaign's shape, chosen once
+// before the selection; the effect then counts the setting as a parameter.
+void profile_shapes(const Engine& E, std::vector<Effect>& lib, const Hypothesis& base);
 
 // diagnose_residuals.cpp
 struct ChannelStats {

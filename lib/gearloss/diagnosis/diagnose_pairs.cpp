@@ -172,7 +172,11 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
     // Forward selection reaches a pair holding the leading single candidate: leave it to it.
     if (holds_lead && !forward_stops) return false;
     // The surrogate's pair must promise at least the threshold for each of its two parameters.
-    if (2.0 * (r.base_nll - best.nll) - 2.0 * lnN < 2.0 * opt.bic_threshold) return false;
+    // A pair pays a parameter per member (a form too: the choice of it), and one more for a
+    // member's profiled shape.
+    const auto cost = [&](size_t k) { return lib[k].shape ? 2 : 1; };
+    const int k_pair = cost(best.a) + cost(best.b);
+    if (2.0 * (r.base_nll - best.nll) - k_pair * lnN < 2.0 * opt.bic_threshold) return false;
 
     const auto refit = [&](const PairFit& p, std::vector<Term>& t) {
         t = {{&lib[p.a], p.xa}, {&lib[p.b], p.xb}};
@@ -199,10 +203,10 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
                                     [&](const PairFit& p) { return p.a == lead || p.b == lead; });
         std::vector<Term> q_terms;
         nll_forward = q == screened.end() ? r.fits[lead].nll : refit(*q, q_terms);
-        k_forward = q == screened.end() ? 1 : 2;
+        k_forward = q == screened.end() ? cost(lead) : cost(q->a) + cost(q->b);
         if (nll_forward >= kFailedNll) return false;
     }
-    const double margin = 2.0 * (nll_forward - nll_pair) - (2 - k_forward) * lnN;
+    const double margin = 2.0 * (nll_forward - nll_pair) - (k_pair - k_forward) * lnN;
     if (margin < opt.bic_threshold) return false;
 
     // Each member on top of the other: BIC, cross-validated gain, and the share of resamples
@@ -263,6 +267,7 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
                 f.separating_measurement = separating_measurement(E.signature(e, others), E.signature(*other, others));
         }
         f.stability = stability;
+        f.mechanism_stability = stability;
         if (stability < opt.stability_min && (f.equivalent.empty() || stability + shared < 0.8)) {
             // Not named, but said: the pair fits far better than any single effect or the pair
             // forward selection reaches, and only the resamples cannot tell it from another.

@@ -45,8 +45,10 @@ bool taken(const std::vector<Term>& terms, const Effect& e, int skip) {
 // The flagged points of an unstabilised-test term are chosen again only when `refit_flags`
 // (after an addition); trial fits keep them, so that no trial gains flags it does not pay for.
 // kFailedNll when the combination cannot be evaluated (a trial is then rejected, not fatal).
-double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
-                     const DiagnoseOptions& opt, bool refit_flags, int skip) {
+namespace {
+// refit_jointly with each term's shape setting held.
+double refit_shapes_held(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
+                         const DiagnoseOptions& opt, bool refit_flags, int skip) {
     size_t continuous = 0;
     bool pointwise = false;
     for (size_t j = 0; j < terms.size(); ++j) {
@@ -88,6 +90,39 @@ double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Ter
     }
     return last;
 }
+}  // namespace
+
+double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
+                     const DiagnoseOptions& opt, bool refit_flags, int skip) {
+    double best = refit_shapes_held(E, neutral, terms, flags, opt, refit_flags, skip);
+    // A profiled shape (where mixed friction sets in) was chosen for its effect alone; with
+    // others beside it, it moves too (an onset chosen alone absorbs part of a bearing drag that
+    // its partner then cannot win): from its value, a step along its grid while the joint
+    // likelihood improves, towards the better neighbour.
+    if (terms.size() - (skip >= 0 && skip < static_cast<int>(terms.size())) < 2) return best;
+    for (size_t j = 0; j < terms.size(); ++j) {
+        if (static_cast<int>(j) == skip) continue;
+        if (!terms[j].effect->shape || !terms[j].effect->shape->variants) continue;
+        const std::vector<Effect>& variants = *terms[j].effect->shape->variants;
+        auto at = static_cast<long>(std::find_if(variants.begin(), variants.end(), [&](const Effect& v) {
+                                        return v.shape->chosen == terms[j].effect->shape->chosen;
+                                    }) - variants.begin());
+        for (int dir : {-1, +1}) {
+            for (long k = at + dir; k >= 0 && k < static_cast<long>(variants.size()); k += dir) {
+                std::vector<Term> t = terms;
+                t[j].effect = &variants[static_cast<size_t>(k)];
+                std::vector<char> fl = flags;
+                const double nll = refit_shapes_held(E, neutral, t, fl, opt, refit_flags, skip);
+                if (!(nll < best - 1e-6)) break;
+                best = nll;
+                terms = std::move(t);
+                flags = std::move(fl);
+                at = k;
+            }
+        }
+    }
+    return best;
+}
 
 void record_fit(Finding& f, const Engine& E, const Pred& pb, const Hypothesis& without, const Hypothesis& h,
                 const CvResult& cv_without, const CvResult& cv_with) {
@@ -118,16 +153,17 @@ int parameters_of(const std::vector<Term>& terms, const std::vector<char>& flags
     int k = 0;
     for (const auto& t : terms)
         k += t.effect->kind == EffectKind::pointwise ? static_cast<int>(std::count(flags.begin(), flags.end(), 1))
-             : t.effect->discrete()                ? 0
-                                                   : 1;
+                                                   : t.effect->fitted_parameters();
     return k;
 }
 
 // Parameters of the laws (the flagged points excluded: they only remove their own temperature
 // evidence, which the adequacy test does not count; a published form has none).
 int law_parameters(const std::vector<Term>& terms) {
-    return static_cast<int>(
-        std::count_if(terms.begin(), terms.end(), [](const Term& t) { return t.effect->kind != EffectKind::pointwise && !t.effect->discrete(); }));
+    int k = 0;
+    for (const auto& t : terms)
+        if (t.effect->kind != EffectKind::pointwise) k += t.effect->fitted_parameters();
+    return k;
 }
 
 // Exchange: an earlier effect, chosen when it stood alone, may have been a substitute that
@@ -146,7 +182,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
         std::vector<char> best_flags;
         // The BIC of the swap: a replacement with a parameter more than the one it replaces (a
         // scale factor for a form) pays for it.
-        auto params = [](const Effect& e) { return e.discrete() ? 0 : 1; };
+        auto params = [](const Effect& e) { return e.fitted_parameters(); };
         double best_bic = 2.0 * (nll_full - 1.0);
         int tried = 0;
         for (const auto& c : S.candidates) {
@@ -204,6 +240,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
             f.delta_bic = delta_bic(nll_o, fc, N);
             f.cv_gain = cv0.nll - cvc.nll;
             f.stability = static_cast<double>(wins) / opt.bootstrap;
+            f.mechanism_stability = f.stability;
             record_fit(f, E, po, others, fc.h, cv0, cvc);
             f.equivalent.clear();
             f.separating_measurement.clear();
@@ -365,7 +402,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 Fit f;
                 if (lib[k].kind == EffectKind::pointwise) f = E.fit_unstabilised(base, idx, opt.loss_uncertainty);
                 else {
-                    f.k = lib[k].discrete() ? 0 : 1;
+                    f.k = lib[k].fitted_parameters();
                     f.nll = resp[k].minimise(idx).second;
                 }
                 if (!f.failed.empty()) continue;
@@ -422,6 +459,10 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         f.parameter = {e.parameter, e.unit, fits[chosen].value, fits[chosen].uncertainty, e.form, e.case_form};
         f.delta_bic = dbic[chosen];
         f.stability = stability;
+        f.mechanism_stability = stability;
+        for (size_t k : contenders)
+            if (static_cast<int>(k) != chosen && !e.mechanism.empty() && lib[k].mechanism == e.mechanism)
+                f.mechanism_stability += static_cast<double>(wins[k]) / opt.bootstrap;
         f.cv_gain = cv0.nll - cv_chosen.nll;
         record_fit(f, E, pb, base, fits[chosen].h, cv0, cv_chosen);
         S.findings.push_back(f);
@@ -500,6 +541,8 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 f.parameter.value = terms[j].value;
                 const Fit g = E.fit(*terms[j].effect, with_terms(neutral, terms, flags));
                 f.parameter.uncertainty = g.failed.empty() ? g.uncertainty : std::nan("");
+                if (const auto& sh = terms[j].effect->shape; sh && std::isfinite(sh->chosen))
+                    f.shape = ShapeEstimate{sh->parameter, sh->chosen, sh->grid};
             } else if (terms[j].effect->id == f.effect) {
                 f.rows.clear();
                 for (int i : all)

@@ -34,6 +34,7 @@ std::string summary_paragraph(const Diagnosis& d, const std::string& baseline_cl
                 s += fmt::format("; added {} = {}", f.parameter.name, fmt_value(f.parameter.value, f.parameter.unit));
                 if (std::isfinite(f.parameter.uncertainty))
                     s += fmt::format(" +/- {}", fmt_value(f.parameter.uncertainty, f.parameter.unit));
+                if (f.shape) s += " with " + shape_text(*f.shape);
             }
             s += fmt::format("; loss RMSE {:.3g} W -> {:.3g} W (cross-validated {:.3g} W)", f.rmse_before, f.rmse_after,
                              f.cv_rmse_after);

@@ -126,6 +126,7 @@ std::string diagnosis_text(const Diagnosis& d) {
                              std::isfinite(f.parameter.uncertainty)
                                  ? "+/- " + fmt_value(f.parameter.uncertainty, f.parameter.unit)
                                  : std::string("(uncertainty not determined: the recordings do not constrain it)"));
+            if (f.shape) s += fmt::format("  {}\n", shape_text(*f.shape));
         }
         s += fmt::format("  evidence: delta BIC {:.1f}, cross-validated log-likelihood gain {:.1f}, chosen in {:.0f} % of {} "
                          "bootstrap resamples\n",
@@ -257,6 +258,13 @@ std::string diagnosis_json(const Diagnosis& d) {
             p["form"] = f.parameter.form;
             p["case_form"] = f.parameter.case_form;
         }
+        if (f.shape) {  // a shape setting fitted with it on a grid: no uncertainty of its own
+            auto& q = o["parameters"][f.shape->name];
+            q["value"] = f.shape->value;
+            q["uncertainty"] = nullptr;
+            q["unit"] = "";
+            q["profiled_over"] = f.shape->grid;
+        }
         if (!f.rows.empty()) o["rows"] = f.rows;
         o["rmse_before"] = f.rmse_before;
         o["rmse_after"] = f.rmse_after;
@@ -269,6 +277,7 @@ std::string diagnosis_json(const Diagnosis& d) {
         o["delta_bic"] = f.delta_bic;
         o["cv_loglik_gain"] = f.cv_gain;
         o["stability"] = f.stability;
+        o["mechanism_stability"] = f.mechanism_stability;
         o["equivalent"] = f.equivalent;
         o["separating_measurement"] = f.separating_measurement;
         findings.push_back(std::move(o));
@@ -366,7 +375,8 @@ void write_calibrated_config(const std::string& config_in, const std::string& co
     // Every calibration term is written afresh: the hypothesis started from the case's own
     // calibration, so it holds the terms read from this block (in either spelling).
     for (const char* k : {"windage", "churning_factor", "bearing_drag_f0", "seal_factor", "mesh_friction_factor",
-                          "auxiliary", "viscosity_factor", "heat_rejection_factor", "cooling_per_1000rpm"})
+                          "auxiliary", "viscosity_factor", "heat_rejection_factor", "cooling_per_1000rpm",
+                          "cooling_speed_exponent"})
         cal.remove(k);
     const auto& mechs = d.calibrated.mechanisms;
     for (size_t i = 0; i < mechs.size(); ++i) cal.remove(std::string(mechs[i].name()));

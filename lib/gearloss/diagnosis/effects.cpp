@@ -57,6 +57,7 @@ Effect for_oil(const Effect& e, int oil, const std::string& oil_name) {
     x.id = e.id + "@" + oil_name;
     x.oil = oil;
     x.oil_name = oil_name;
+    if (x.shape) x.shape->variants = nullptr;  // the shape stays the common effect's (no variants of one oil)
     x.apply = [oil, id = e.id, f = e.apply](Hypothesis& h, double v) { h.set_oil_term(oil, id, f, v); };
     return x;
 }
@@ -85,6 +86,20 @@ Effect builtin(std::string id, std::string description, std::string parameter, s
     e.apply = std::move(apply);
     return e;
 }
+
+// Gives e a shape setting profiled with its parameter (the case's own value among the grid's).
+void give_shape(Effect& e, std::string parameter, std::vector<double> grid, double own,
+                std::function<void(Hypothesis&, double)> apply) {
+    ShapeProfile s;
+    s.parameter = std::move(parameter);
+    s.grid = std::move(grid);
+    s.own = own;
+    if (std::find(s.grid.begin(), s.grid.end(), own) == s.grid.end()) s.grid.push_back(own);
+    std::sort(s.grid.begin(), s.grid.end());
+    s.apply = std::move(apply);
+    s.effect_apply = e.apply;
+    e.shape = std::move(s);
+}
 }  // namespace
 
 std::vector<Effect> candidate_effects(const solver::Model& m) {
@@ -103,10 +118,23 @@ std::vector<Effect> candidate_effects(const solver::Model& m) {
             e.upper = p.upper;
             e.neutral = mech.parameter(p.name);
             e.kind = EffectKind::mechanism;
+            e.mechanism = std::string(mech.name());
             e.oil_dependent = p.oil_dependent;
             e.group = e.id;
             e.apply = [mname = std::string(mech.name()), pname = p.name](Hypothesis& h, double x) { h.set(mname, pname, x); };
             v.push_back(std::move(e));
+        }
+        // Shape settings profiled with one of this mechanism's effects (the case's own value
+        // among the grid's).
+        for (const auto& p : mech.parameters()) {
+            if (p.profiled_with.empty()) continue;
+            for (auto& e : v)
+                if (e.id == p.profiled_with && e.parameter.starts_with(std::string(mech.name()) + ".")) {
+                    give_shape(e, std::string(mech.name()) + "." + p.name, p.profile_grid, mech.parameter(p.name),
+                               [mname = std::string(mech.name()), pname = p.name](Hypothesis& h, double x) {
+                                   h.set(mname, pname, x);
+                               });
+                }
         }
     }
     const auto& c = m.calibration;
@@ -120,6 +148,10 @@ std::vector<Effect> candidate_effects(const solver::Model& m) {
     v.push_back(builtin("speed_dependent_cooling", "forced convection grows with speed (air stirred by rotating parts or rig fans)",
                  "cooling increase per 1000 rpm", "", -0.9, 10, c.cooling_per_1000rpm, EffectKind::heat_path, false,
                  [](Hypothesis& h, double x) { h.cal.cooling_per_1000rpm = x; }));
+    // Its power of speed fitted with it: forced convection grows as Re^0.5 to Re^0.8
+    // (Incropera et al. 2007, ch. 7), the case's linear law is the upper end.
+    give_shape(v.back(), "cooling_speed_exponent", {0.5, 0.65, 0.8, 1.0}, c.cooling_speed_exponent,
+               [](Hypothesis& h, double q) { h.cal.cooling_speed_exponent = q; });
     v.push_back(builtin("torque_sensor_gain",
                  "input torque sensor gain error: the recorded loss carries (g - 1) P_in, the oil is not heated", "gain", "",
                  0.5, 2, 1, EffectKind::artefact, false, [](Hypothesis& h, double x) { h.art.torque_gain = x; }));
@@ -151,6 +183,7 @@ std::vector<Effect> candidate_effects(const solver::Model& m) {
                 e.upper = 1;
                 e.neutral = 0;
                 e.kind = EffectKind::form;
+                e.mechanism = std::string(mech.name());
                 e.group = e.parameter;
                 e.form = form;
                 e.case_form = current;
@@ -162,6 +195,17 @@ std::vector<Effect> candidate_effects(const solver::Model& m) {
         }
     }
     return v;
+}
+
+Effect with_shape(const Effect& e, double value) {
+    Effect x = e;
+    if (!e.shape) return x;
+    x.shape->chosen = value;
+    x.apply = [inner = e.shape->effect_apply, set = e.shape->apply, value](Hypothesis& h, double v) {
+        set(h, value);
+        inner(h, v);
+    };
+    return x;
 }
 
 std::optional<Effect> find_effect(const solver::Model& m, const std::string& id) {
@@ -179,7 +223,8 @@ std::string effect_names(const solver::Model& m) {
 std::pair<double, double> valid_range(const Effect& e, double max_speed_rpm, bool cooling_may_fall) {
     double lo = e.lower;
     if (e.id != "speed_dependent_cooling") return {lo, e.upper};
-    if (max_speed_rpm > 0 && std::isfinite(max_speed_rpm)) lo = std::max(lo, -0.9 * 1000.0 / max_speed_rpm);
+    const double q = e.shape && std::isfinite(e.shape->chosen) ? e.shape->chosen : 1.0;  // its power of speed
+    if (max_speed_rpm > 0 && std::isfinite(max_speed_rpm)) lo = std::max(lo, -0.9 / std::pow(max_speed_rpm / 1000.0, q));
     if (!cooling_may_fall) lo = std::max(lo, std::min(0.0, e.neutral));
     return {lo, e.upper};
 }

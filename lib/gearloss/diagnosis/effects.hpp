@@ -6,6 +6,8 @@
 // Each has one parameter with physical bounds; the diagnosis narrows them per campaign to
 // sizes relative to the recorded losses (diagnose_internal.hpp, Engine::range).
 #include <functional>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -77,6 +79,25 @@ struct Signature {
 // its "parameter" is 0 for the case's form and 1 for the alternative).
 enum class EffectKind { mechanism, oil, heat_path, artefact, pointwise, form };
 
+struct Effect;
+
+// A setting of an effect's shape that is fitted with it by profiling: the effect is fitted at
+// each value of the grid and the best kept (mesh_friction_mixed: the film parameter below
+// which the friction rises). `chosen` is NaN until the campaign's value is chosen.
+struct ShapeProfile {
+    std::string parameter;            // "mesh.mixed_friction_onset"
+    std::vector<double> grid;         // ascending, with the case's own value
+    double own = 0;                   // the case's value
+    std::function<void(Hypothesis&, double)> apply;
+    double chosen = std::numeric_limits<double>::quiet_NaN();
+    // The effect's own parameter setter, before a value was chosen.
+    std::function<void(Hypothesis&, double)> effect_apply;
+    // The effect at every grid value (diagnose: profile_shapes), so that a joint refit can move
+    // the shape with the other effects: owned by the chosen effect, pointed to by each variant.
+    std::shared_ptr<const std::vector<Effect>> variants_owner;
+    const std::vector<Effect>* variants = nullptr;
+};
+
 struct Effect {
     std::string id;
     std::string description;
@@ -90,6 +111,9 @@ struct Effect {
     // Effects of one group exclude each other (the forms of one axis: "mesh.friction").
     std::string group;
     std::string form, case_form;  // a form effect: the alternative and the case's own form
+    // The loss mechanism whose physics it changes ("mesh": its friction level, its mixed-film
+    // rise and its friction law alike); empty for the oil, the heat path and the artefacts.
+    std::string mechanism;
     // Multi-oil campaigns: an effect of one oil's tests (-1: of every test), its oil as
     // written in the recordings, and the id of the effect it restricts ("oil_viscosity").
     int oil = -1;
@@ -97,8 +121,15 @@ struct Effect {
     // Whether the effect may differ from oil to oil (the oil's data, the lubricant's friction
     // level, its foaming): such effects are also offered per oil.
     bool oil_dependent = false;
+    std::optional<ShapeProfile> shape;  // a setting profiled with the parameter (none: one parameter)
     bool discrete() const { return kind == EffectKind::form; }
+    // What the effect costs in the information criteria: a form none, a profiled shape one more.
+    int fitted_parameters() const { return discrete() ? 0 : shape ? 2 : 1; }
 };
+
+// The effect with its shape setting held at `value` (applied with the parameter): the
+// profile's candidate at one grid value, and the campaign's choice.
+Effect with_shape(const Effect& e, double value);
 
 // The candidates of a model: its mechanisms' effect parameters (mechanisms switched off
 // excepted), then viscosity, heat path and artefacts, then every alternative form of every
@@ -112,7 +143,7 @@ std::string effect_names(const solver::Model& m);
 
 // The part of [lower, upper] in which the model stays physical at every input speed up to
 // `max_speed_rpm`: speed_dependent_cooling multiplies the heat flow to ambient by
-// (1 + a n/1000 rpm), so a >= -0.9 (1000 rpm / n_max) keeps at least a tenth of it (positive,
+// (1 + a (n/1000 rpm)^q), so a >= -0.9 (1000 rpm / n_max)^q keeps at least a tenth of it (positive,
 // the coupled solve well posed); the other parameters keep their bounds. With
 // `cooling_may_fall` false (a diagnosis of a case whose heat path has no speed dependence)
 // a >= 0, or the case's calibrated value: air stirred by rotating parts or a rig fan adds

@@ -102,6 +102,11 @@ struct Parameter {
     // The form that reads this setting ("fernandes_mixed"); empty: every form. A setting its
     // form reads and the case leaves at the nominal value is listed as assumed.
     std::string used_by = {};
+    // A setting of an effect's shape (where mixed friction sets in) that the diagnosis cannot
+    // scan as one more effect: it is profiled with that effect over these values and counts as
+    // one more fitted parameter of it.
+    std::string profiled_with = {};
+    std::vector<double> profile_grid = {};
 };
 
 // A choice between published forms of the same physics ("friction": schlenk, iso_6336_20, ...).

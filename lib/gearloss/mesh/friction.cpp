@@ -28,9 +28,9 @@ double mean_friction_iso_6336_20(double w, double v_sum, double rho_mm, double e
     return 0.060 * std::pow(w / (v_sum * rho_mm), 0.2) * X_L * std::pow(eta_mPas, -0.05) * std::pow(Ra_um, 0.25);
 }
 
-double boundary_share_doleschel(double lambda) {
-    if (!(lambda < 2.0)) return 0.0;
-    const double s = 1.0 - 0.5 * std::max(lambda, 0.0);
+double boundary_share_doleschel(double lambda, double onset) {
+    if (!(lambda < onset)) return 0.0;
+    const double s = 1.0 - std::max(lambda, 0.0) / onset;
     return s * s;
 }
 

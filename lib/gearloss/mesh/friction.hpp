@@ -17,8 +17,11 @@ double mean_friction_schlenk(double w_N_per_mm, double v_sum, double rho_mm, dou
 // v_t capped at 50 m/s (passed in v_sum already); load factors = 1 for efficiency work.
 double mean_friction_iso_6336_20(double w_N_per_mm, double v_sum, double rho_mm, double eta_mPas, double Ra_um,
                                  double X_L);
-// Doleschel share of boundary friction: xi = (1 - Lambda/2)^2 for Lambda < 2, else 0.
-double boundary_share_doleschel(double lambda);
+// Doleschel (2003) share of boundary friction: xi = (1 - Lambda/Lambda_on)^2 for Lambda < Lambda_on,
+// else 0, with Doleschel's onset Lambda_on = 2. Where asperity contact ends depends on the
+// surfaces' texture (Johnson, Greenwood & Poon 1972: the asperities carry load up to Lambda
+// of about 3 to 4), so the onset is a setting of the surface pair, not a constant.
+double boundary_share_doleschel(double lambda, double onset = 2.0);
 
 // Pitch-point line contact.
 struct LineContact {

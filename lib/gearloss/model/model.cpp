@@ -38,8 +38,11 @@ lubricant::OilState Model::oil_state(double T) const {
 
 double Model::surface_heat_flow(double T_surface, double T_amb, double omega_in, double air_speed) const {
     const double n_k = std::abs(omega_in) * 30.0 / 3.14159265358979323846 / 1000.0;
+    const double q = calibration.cooling_speed_exponent;
+    const double forced = calibration.cooling_per_1000rpm == 0.0 ? 0.0
+                          : calibration.cooling_per_1000rpm * (q == 1.0 ? n_k : std::pow(n_k, q));
     return thermal.rejection.heat_flow(T_surface, T_amb, omega_in, air_speed) * calibration.heat_rejection_factor *
-           (1.0 + calibration.cooling_per_1000rpm * n_k);
+           (1.0 + forced);
 }
 
 double Model::cooler_heat_flow(double T_oil) const {

@@ -24,7 +24,11 @@ namespace gearloss::solver {
 struct Calibration {
     double viscosity_factor = 1;      // scales the kinematic viscosity at every temperature
     double heat_rejection_factor = 1; // scales the heat flow to ambient
-    double cooling_per_1000rpm = 0;   // heat flow x (1 + a n_in/1000 rpm): forced convection from rotation
+    double cooling_per_1000rpm = 0;   // heat flow x (1 + a (n_in/1000 rpm)^q): forced convection from rotation
+    // q: the power of speed in that forced convection. Nusselt numbers of forced convection
+    // grow as Re^0.5 (laminar boundary layer) to Re^0.8 (turbulent) (Incropera et al. 2007,
+    // ch. 7); 1 keeps the cooling linear in speed.
+    double cooling_speed_exponent = 1;
     bool neutral() const;
 };
 

@@ -156,6 +156,7 @@ void validate_calibration(const Calibration& k, std::vector<Issue>& out) {
     c.range("viscosity_factor", k.viscosity_factor, 0.05, 20.0, "viscosity factor");
     c.range("heat_rejection_factor", k.heat_rejection_factor, 0.05, 20.0, "heat rejection factor");
     c.range("cooling_per_1000rpm", k.cooling_per_1000rpm, -0.95, 50.0, "cooling per 1000 rpm");
+    c.range("cooling_speed_exponent", k.cooling_speed_exponent, 0.2, 2.0, "power of speed in the forced cooling");
 }
 
 void validate_gearbox(const Model& m, std::vector<Issue>& out) {
