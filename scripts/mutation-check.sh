@@ -152,7 +152,7 @@ mut T9 thermal lib/gearloss/model/model.cpp "forced cooling linear in speed what
 mut D10 diagnosis lib/gearloss/diagnosis/diagnose_fit.cpp "a profiled shape keeps the case's value" \
     'if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll, chosen = at(v);' 'if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll;'
 mut D11 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a joint refit holds the shape chosen alone" \
-    'if (!held->shape || !held->shape->variants) continue;' 'continue;'
+    'if (!terms[j].effect->shape || !terms[j].effect->shape->variants) continue;' 'continue;'
 mut D12 diagnosis lib/gearloss/diagnosis/effects.hpp "a profiled shape costs no parameter" \
     'return discrete() ? 0 : shape ? 2 : 1;' 'return discrete() ? 0 : 1;'
 mut D13 diagnosis lib/gearloss/diagnosis/diagnose_verdict.cpp "two forms of one mechanism sharing the resamples leave it tentative" \
