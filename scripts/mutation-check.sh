@@ -150,7 +150,7 @@ mut M13 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "mixed-film ris
 mut T9 thermal lib/gearloss/model/model.cpp "forced cooling linear in speed whatever cooling_speed_exponent" \
     '(q == 1.0 ? n_k : std::pow(n_k, q))' 'n_k'
 mut D10 diagnosis lib/gearloss/diagnosis/diagnose_fit.cpp "a profiled shape keeps the case's value" \
-    'if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll, chosen = at(v);' 'if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll;'
+    'if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll, chosen = k;' 'if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll;'
 mut D11 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a joint refit holds the shape chosen alone" \
     'if (!terms[j].effect->shape || !terms[j].effect->shape->variants) continue;' 'continue;'
 mut D12 diagnosis lib/gearloss/diagnosis/effects.hpp "a profiled shape costs no parameter" \

@@ -144,22 +144,19 @@ void Response::refine(double x) {
 void profile_shapes(const Engine& E, std::vector<Effect>& lib, const Hypothesis& base) {
     for (auto& e : lib) {
         if (!e.shape || e.shape->grid.empty() || std::isfinite(e.shape->chosen)) continue;
-        // The case's own value first: it is kept unless another fits better.
-        std::vector<double> order{e.shape->own};
-        for (double v : e.shape->grid)
-            if (v != e.shape->own) order.push_back(v);
         auto variants = std::make_shared<std::vector<Effect>>();
         for (double v : e.shape->grid) variants->push_back(with_shape(e, v));
         for (auto& x : *variants) x.shape->variants = variants.get();
-        const auto at = [&](double v) {
-            return static_cast<size_t>(std::find(e.shape->grid.begin(), e.shape->grid.end(), v) - e.shape->grid.begin());
-        };
-        size_t chosen = at(e.shape->own);
+        // The case's own value first: it is kept unless another fits better.
+        const auto& grid = e.shape->grid;
+        const size_t own = static_cast<size_t>(std::find(grid.begin(), grid.end(), e.shape->own) - grid.begin());
+        size_t chosen = own;
         double best = kFailedNll;
-        for (double v : order) {
+        for (size_t n = 0; n < grid.size(); ++n) {
+            const size_t k = n == 0 ? own : n <= own ? n - 1 : n;  // own, then the others in order
             io::throw_if_interrupted();
-            const Fit f = E.fit((*variants)[at(v)], base, nullptr);
-            if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll, chosen = at(v);
+            const Fit f = E.fit((*variants)[k], base, nullptr);
+            if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll, chosen = k;
         }
         e = (*variants)[chosen];
         e.shape->variants_owner = std::move(variants);
