@@ -150,11 +150,17 @@ mut M13 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "mixed-film ris
 mut T9 thermal lib/gearloss/model/model.cpp "forced cooling linear in speed whatever cooling_speed_exponent" \
     '(q == 1.0 ? n_k : std::pow(n_k, q))' 'n_k'
 mut D10 diagnosis lib/gearloss/diagnosis/diagnose_fit.cpp "a profiled shape keeps the case's value" \
-    'if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll, chosen = k;' 'if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll;'
+    'if (f.failed.empty() && penalised < best - 1e-9) best = penalised, chosen = k;' 'if (f.failed.empty() && penalised < best - 1e-9) best = penalised;'
 mut D11 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a joint refit holds the shape chosen alone" \
     'if (!terms[j].effect->shape || !terms[j].effect->shape->variants) continue;' 'continue;'
-mut D12 diagnosis lib/gearloss/diagnosis/effects.hpp "a profiled shape costs no parameter" \
-    'return discrete() ? 0 : shape ? 2 : 1;' 'return discrete() ? 0 : 1;'
+mut D12 diagnosis lib/gearloss/diagnosis/effects.hpp "a profiled shape costs nothing in the BIC" \
+    'return chosen == own ? 2.0 * std::log(2.0) : 2.0 * std::log(2.0 * others);' 'return 0.0;'
+mut D14 diagnosis lib/gearloss/diagnosis/effects.hpp "keeping the case's shape costs as much as moving it" \
+    'return chosen == own ? 2.0 * std::log(2.0)' 'return false ? 2.0 * std::log(2.0)'
+mut D15 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a candidate judged on top of the others with the shape it had alone" \
+    'Fit fk = E.fit(*joint.back().effect, others, &rk);' 'Fit fk = E.fit(lib[k], others, &rk);'
+mut M14 bearings lib/gearloss/mechanisms/bearing_mechanism.cpp "the added bearing drag at Palmgren's 2/3 whatever drag_exponent" \
+    'palmgren_drag_coef(gb.bearings[i].spec, f0, w, param(kDragExponent))' 'palmgren_drag_coef(gb.bearings[i].spec, f0, w)'
 mut D13 diagnosis lib/gearloss/diagnosis/diagnose_verdict.cpp "two forms of one mechanism sharing the resamples leave it tentative" \
     'const bool stable = main.stability >= opt.stability_min || form_open;' 'const bool stable = main.stability >= opt.stability_min;'
 mut G9 gearbox lib/gearloss/gearbox/gearbox.cpp "a pilot bearing's reaction not carried to its outer shaft" \

@@ -1,6 +1,7 @@
 // Contract tests applied to every registered loss mechanism (Ceres-style: one interface,
 // every implementation held to it), and the YAML blocks that set their parameters and forms.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -392,4 +393,38 @@ TEST_CASE("mechanisms: mesh friction that follows the film rises by k (1 - Lambd
                Catch::Contains("must be in [-0.9, 20]"));
     CHECK_THAT(load_error(base + "calibration:\n  mesh: {mixed_friction_onset: 20}\n").message,
                Catch::Contains("must be in [0.5, 10]"));
+}
+
+TEST_CASE("mechanisms: the added bearing drag with another power of nu n, anchored at nu n = 2000", "[mechanisms]") {
+    // Palmgren (1959): M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm] (nu in cSt, n in rpm, d_m in mm);
+    // with drag_exponent b: M0 = 1e-7 f0 2000^(2/3) (nu n/2000)^b d_m^3, the same at nu n = 2000.
+    // Each bearing's added power M0 omega (x planets) is computed here from its d_m, its speed and
+    // the oil's nu at 60 degC, and compared with the mechanism's detail with and without the drag.
+    const std::string base = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
+    auto solve = [&](const std::string& text) {
+        test_support::TempConfig cfg(text);
+        auto c = io::load_case(cfg.path);
+        c.model.thermal.mode = solver::ThermalMode::fixed;
+        c.model.thermal.oil_temperature = 60 + 273.15;
+        const auto r = solver::solve_point(c.model, 1500 * kRpm, 300, true);
+        return std::make_pair(r, c.model);
+    };
+    const auto [r0, m0] = solve(base);
+    const double nu = m0.oil_state(60 + 273.15).nu_cSt;
+    for (const double b : {2.0 / 3.0, 0.45, 0.85}) {
+        const auto [r1, m1] =
+            solve(base + fmt::format("calibration:\n  bearings: {{drag_f0: 2, drag_exponent: {}}}\n", b));
+        const auto& d0 = r0.losses.detail_of(m0, "bearings");
+        const auto& d1 = r1.losses.detail_of(m1, "bearings");
+        for (size_t i = 0; i < m0.gearbox.bearings.size(); ++i) {
+            const auto& brg = m0.gearbox.bearings[i];
+            const double omega = std::abs(m0.layout.bearing_speed_ratio[i]) * 1500 * kRpm;
+            const double n = omega / kRpm, dm = brg.spec.dm() * 1e3;
+            const double M0 = 1e-7 * 2 * std::pow(2000.0, 2.0 / 3.0) * std::pow(nu * n / 2000, b) * dm * dm * dm * 1e-3;
+            INFO("b " << b << ", bearing " << brg.name << ", nu n " << nu * n);
+            CHECK(d1.at(i, 0) - d0.at(i, 0) == Approx(M0 * omega * brg.multiplicity).epsilon(1e-9));
+        }
+    }
+    CHECK_THAT(load_error(base + "calibration:\n  bearings: {drag_exponent: 2}\n").message,
+               Catch::Contains("must be in [0.3, 1]"));
 }

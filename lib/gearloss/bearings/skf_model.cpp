@@ -228,10 +228,12 @@ double skf_drag_moment(const BearingSpec& b, double omega, double nu_m2s) {
     return (first + coef * std::pow(nu_m2s * kCStPerM2s, 1.379)) * kNmPerNmm;
 }
 
-double palmgren_drag_coef(const BearingSpec& b, double f0, double omega) {
+double palmgren_drag_coef(const BearingSpec& b, double f0, double omega, double exponent) {
     const Catalogue c = Catalogue::of(b, omega);
     const double nr = c.n, dm = c.dm;
-    return 1e-7 * f0 * std::cbrt(nr * nr) * dm * dm * dm * kNmPerNmm * std::abs(omega);
+    const double speed = exponent == 2.0 / 3.0 ? std::cbrt(nr * nr)
+                                                : std::cbrt(2000.0 * 2000.0) * std::pow(nr / 2000.0, exponent);
+    return 1e-7 * f0 * speed * dm * dm * dm * kNmPerNmm * std::abs(omega);
 }
 
 SkfGeometry SkfGeometry::of(const BearingSpec& b) {

@@ -104,7 +104,9 @@ double skf_drag_moment(const BearingSpec& b, double omega, double nu_m2s);
 
 // Palmgren (1959) no-load moment M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N*mm; nu in mm^2/s, n in r/min,
 // d_m in mm] as a power P = M0 omega = c nu_cSt^(2/3): returns c [W per cSt^(2/3)] at omega [rad/s].
-double palmgren_drag_coef(const BearingSpec& b, double f0, double omega);
+// With another power b of nu n, anchored where Palmgren's law begins (nu n = 2000, below which
+// he gives M0 = 160e-7 f0 d_m^3): M0 = 1e-7 f0 2000^(2/3) (nu n/2000)^b d_m^3, P = c nu_cSt^b.
+double palmgren_drag_coef(const BearingSpec& b, double f0, double omega, double exponent = 2.0 / 3.0);
 
 // Terms folded once per operating point so that each temperature costs a few
 // exponentials; the caller supplies the shared powers of nu. The folded terms are in the

@@ -359,7 +359,8 @@ Fit Engine::fit(const Effect& e, const Hypothesis& base, Response* response, std
     Fit f;
     // A published form has no fitted parameter: which candidate it is, is the choice every
     // candidate pays for alike (BIC of a model with none).
-    f.k = e.fitted_parameters();
+    f.k = e.bic_parameters();
+    f.extra_penalty = e.shape ? e.shape->bic_penalty() : 0.0;
     Response local;
     Response& r = response ? *response : local;
     r = knots.empty() ? Response(*this, e, base) : Response(*this, e, base, knots);

@@ -156,7 +156,9 @@ void profile_shapes(const Engine& E, std::vector<Effect>& lib, const Hypothesis&
             const size_t k = n == 0 ? own : n <= own ? n - 1 : n;  // own, then the others in order
             io::throw_if_interrupted();
             const Fit f = E.fit((*variants)[k], base, nullptr);
-            if (f.failed.empty() && f.nll < best - 1e-9) best = f.nll, chosen = k;
+            // The likelihood with the prior of the shape (its own value weighs half).
+            const double penalised = f.nll + 0.5 * (*variants)[k].shape->bic_penalty();
+            if (f.failed.empty() && penalised < best - 1e-9) best = penalised, chosen = k;
         }
         e = (*variants)[chosen];
         e.shape->variants_owner = std::move(variants);

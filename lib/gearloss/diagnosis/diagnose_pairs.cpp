@@ -172,11 +172,11 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
     // Forward selection reaches a pair holding the leading single candidate: leave it to it.
     if (holds_lead && !forward_stops) return false;
     // The surrogate's pair must promise at least the threshold for each of its two parameters.
-    // A pair pays a parameter per member (a form too: the choice of it), and one more for a
-    // member's profiled shape.
-    const auto cost = [&](size_t k) { return lib[k].shape ? 2 : 1; };
-    const int k_pair = cost(best.a) + cost(best.b);
-    if (2.0 * (r.base_nll - best.nll) - k_pair * lnN < 2.0 * opt.bic_threshold) return false;
+    // A pair pays a parameter per member (a form too: the choice of it), and a member's
+    // profiled shape its prior over the grid (Effect::bic_penalty).
+    const auto cost = [&](const Effect& e) { return std::max(lnN, e.bic_penalty(N)); };
+    const auto terms_cost = [&](const std::vector<Term>& t) { return cost(*t[0].effect) + cost(*t[1].effect); };
+    if (2.0 * (r.base_nll - best.nll) - cost(lib[best.a]) - cost(lib[best.b]) < 2.0 * opt.bic_threshold) return false;
 
     const auto refit = [&](const PairFit& p, std::vector<Term>& t) {
         t = {{&lib[p.a], p.xa}, {&lib[p.b], p.xb}};
@@ -196,17 +196,17 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
         if (at_range_end(*t.effect, t.value, lo, hi)) return false;
     }
     double nll_forward = r.base_nll;  // forward selection stops: it reaches the case alone (no parameter)
-    int k_forward = 0;
+    double cost_forward = 0;
     if (!forward_stops) {
         // The best pair forward selection can reach: the leading candidate with its best partner.
         const auto q = std::find_if(screened.begin(), screened.end(),
                                     [&](const PairFit& p) { return p.a == lead || p.b == lead; });
         std::vector<Term> q_terms;
         nll_forward = q == screened.end() ? r.fits[lead].nll : refit(*q, q_terms);
-        k_forward = q == screened.end() ? cost(lead) : cost(q->a) + cost(q->b);
+        cost_forward = q == screened.end() ? cost(lib[lead]) : terms_cost(q_terms);
         if (nll_forward >= kFailedNll) return false;
     }
-    const double margin = 2.0 * (nll_forward - nll_pair) - (k_pair - k_forward) * lnN;
+    const double margin = 2.0 * (nll_forward - nll_pair) - (terms_cost(pair_terms) - cost_forward);
     if (margin < opt.bic_threshold) return false;
 
     // Each member on top of the other: BIC, cross-validated gain, and the share of resamples

@@ -100,24 +100,34 @@ double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Ter
     // its partner then cannot win): from its value, a step along its grid while the joint
     // likelihood improves, towards the better neighbour.
     if (terms.size() - (skip >= 0 && skip < static_cast<int>(terms.size())) < 2) return best;
-    for (size_t j = 0; j < terms.size(); ++j) {
-        if (static_cast<int>(j) == skip) continue;
-        if (!terms[j].effect->shape || !terms[j].effect->shape->variants) continue;
-        const std::vector<Effect>& variants = *terms[j].effect->shape->variants;
-        auto at = static_cast<long>(std::find_if(variants.begin(), variants.end(), [&](const Effect& v) {
-                                        return v.shape->chosen == terms[j].effect->shape->chosen;
-                                    }) - variants.begin());
-        for (int dir : {-1, +1}) {
-            for (long k = at + dir; k >= 0 && k < static_cast<long>(variants.size()); k += dir) {
-                std::vector<Term> t = terms;
-                t[j].effect = &variants[static_cast<size_t>(k)];
-                std::vector<char> fl = flags;
-                const double nll = refit_shapes_held(E, neutral, t, fl, opt, refit_flags, skip);
-                if (!(nll < best - 1e-6)) break;
-                best = nll;
-                terms = std::move(t);
-                flags = std::move(fl);
-                at = k;
+    // Two shapes move in turn until neither does (a few passes: each step is a joint refit).
+    const auto shaped = std::count_if(terms.begin(), terms.end(), [](const Term& t) {
+        return t.effect->shape && t.effect->shape->variants;
+    });
+    for (int pass = 0, moved = 1; pass < (shaped >= 2 ? 3 : 1) && moved; ++pass) {
+        moved = 0;
+        for (size_t j = 0; j < terms.size(); ++j) {
+            if (static_cast<int>(j) == skip) continue;
+            if (!terms[j].effect->shape || !terms[j].effect->shape->variants) continue;
+            const std::vector<Effect>& variants = *terms[j].effect->shape->variants;
+            auto at = static_cast<long>(std::find_if(variants.begin(), variants.end(), [&](const Effect& v) {
+                                            return v.shape->chosen == terms[j].effect->shape->chosen;
+                                        }) - variants.begin());
+            for (int dir : {-1, +1}) {
+                for (long k = at + dir; k >= 0 && k < static_cast<long>(variants.size()); k += dir) {
+                    std::vector<Term> t = terms;
+                    t[j].effect = &variants[static_cast<size_t>(k)];
+                    std::vector<char> fl = flags;
+                    const double nll = refit_shapes_held(E, neutral, t, fl, opt, refit_flags, skip);
+                    // Leaving or reaching the case's own value changes what the shape costs.
+                    const double prior = 0.5 * (t[j].effect->shape->bic_penalty() - terms[j].effect->shape->bic_penalty());
+                    if (!(nll + prior < best - 1e-6)) break;
+                    best = nll;
+                    terms = std::move(t);
+                    flags = std::move(fl);
+                    at = k;
+                    moved = 1;
+                }
             }
         }
     }
@@ -182,7 +192,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
         std::vector<char> best_flags;
         // The BIC of the swap: a replacement with a parameter more than the one it replaces (a
         // scale factor for a form) pays for it.
-        auto params = [](const Effect& e) { return e.fitted_parameters(); };
+        auto penalty = [&](const Effect& e) { return e.bic_penalty(N); };
         double best_bic = 2.0 * (nll_full - 1.0);
         int tried = 0;
         for (const auto& c : S.candidates) {
@@ -195,7 +205,8 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
             swapped[j] = {&*it, c.value};
             std::vector<char> fl = flags;
             const double nll = refit_jointly(E, neutral, swapped, fl, opt, false);
-            const double bic = 2.0 * nll + (params(*it) - params(*terms[j].effect)) * std::log(static_cast<double>(N));
+            // The candidate as the refit left its shape.
+            const double bic = 2.0 * nll + penalty(*swapped[j].effect) - penalty(*terms[j].effect);
             if (bic < best_bic) {
                 best_bic = bic;
                 best_nll = nll;
@@ -341,7 +352,8 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 if (refit_jointly(E, neutral, joint, fl, opt, false) >= kFailedNll) continue;
                 const Hypothesis others = with_terms(neutral, joint, fl, static_cast<int>(joint.size() - 1));
                 Response rk;
-                Fit fk = E.fit(lib[k], others, &rk);
+                // With the shape the joint refit gave it (it moves with the others).
+                Fit fk = E.fit(*joint.back().effect, others, &rk);
                 if (!fk.failed.empty()) continue;
                 const double dk = delta_bic(nll_base, fk, N);
                 if (dk > dbic[k]) {
@@ -402,7 +414,10 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 Fit f;
                 if (lib[k].kind == EffectKind::pointwise) f = E.fit_unstabilised(base, idx, opt.loss_uncertainty);
                 else {
-                    f.k = lib[k].fitted_parameters();
+                    // The effect whose response this is (its shape as the joint refit left it).
+                    const Effect& ek = refitted[k].empty() ? lib[k] : *refitted[k].back().effect;
+                    f.k = ek.bic_parameters();
+                    f.extra_penalty = ek.shape ? ek.shape->bic_penalty() : 0.0;
                     f.nll = resp[k].minimise(idx).second;
                 }
                 if (!f.failed.empty()) continue;
@@ -505,10 +520,11 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 std::vector<char> fl = flags;
                 const double nll_wo = refit_jointly(E, neutral, without, fl, opt, false, static_cast<int>(j));
                 if (nll_wo >= kFailedNll) continue;  // needed: without it the model cannot be evaluated
-                const int kj = parameters_of({terms[j]}, flags);
-                const double penalty = terms[j].effect->kind == EffectKind::pointwise
-                                           ? kj * (std::log(static_cast<double>(N)) + std::log(static_cast<double>(all.size())))
-                                           : kj * std::log(static_cast<double>(N));
+                const double penalty =
+                    terms[j].effect->kind == EffectKind::pointwise
+                        ? parameters_of({terms[j]}, flags) *
+                              (std::log(static_cast<double>(N)) + std::log(static_cast<double>(all.size())))
+                        : terms[j].effect->bic_penalty(N);
                 const double need = 2.0 * (nll_wo - nll_full) - penalty;
                 if (need < opt.bic_threshold) {
                     S.warnings.push_back(fmt::format("{} is no longer needed once {} is fitted with it (delta BIC {:.1f}); "

@@ -5,6 +5,8 @@
 // and the measurement artefacts of a rig (torque-sensor gain and offset, unstabilised tests).
 // Each has one parameter with physical bounds; the diagnosis narrows them per campaign to
 // sizes relative to the recorded losses (diagnose_internal.hpp, Engine::range).
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -96,6 +98,14 @@ struct ShapeProfile {
     // the shape with the other effects: owned by the chosen effect, pointed to by each variant.
     std::shared_ptr<const std::vector<Effect>> variants_owner;
     const std::vector<Effect>* variants = nullptr;
+    // What the choice costs in the information criteria (units of ln-likelihood x 2): half the
+    // prior weight on the case's own value, the other half shared by the other grid values, so
+    // that keeping the case's value costs 2 ln 2 and moving costs 2 ln(2 (G - 1)) (about a
+    // parameter's ln N when G = 5 and N = 50); a choice that is not made yet costs the move.
+    double bic_penalty() const {
+        const double others = static_cast<double>(std::max<size_t>(grid.size(), 2) - 1);
+        return chosen == own ? 2.0 * std::log(2.0) : 2.0 * std::log(2.0 * others);
+    }
 };
 
 struct Effect {
@@ -123,8 +133,16 @@ struct Effect {
     bool oil_dependent = false;
     std::optional<ShapeProfile> shape;  // a setting profiled with the parameter (none: one parameter)
     bool discrete() const { return kind == EffectKind::form; }
-    // What the effect costs in the information criteria: a form none, a profiled shape one more.
+    // Its fitted parameters (the degrees of freedom the adequacy tests take off): a form none,
+    // a profiled shape one more.
     int fitted_parameters() const { return discrete() ? 0 : shape ? 2 : 1; }
+    // Its parameters whose cost is ln N each in the BIC: a form none, a law one (its shape is
+    // paid for by shape->bic_penalty(), by its prior over the grid).
+    int bic_parameters() const { return discrete() ? 0 : 1; }
+    // What the effect costs in the BIC with n_obs observations.
+    double bic_penalty(size_t n_obs) const {
+        return bic_parameters() * std::log(static_cast<double>(n_obs)) + (shape ? shape->bic_penalty() : 0.0);
+    }
 };
 
 // The effect with its shape setting held at `value` (applied with the parameter): the
