@@ -360,7 +360,7 @@ Fit Engine::fit(const Effect& e, const Hypothesis& base, Response* response, std
     // A published form has no fitted parameter: which candidate it is, is the choice every
     // candidate pays for alike (BIC of a model with none).
     f.k = e.bic_parameters();
-    f.extra_penalty = e.shape ? e.shape->bic_penalty() : 0.0;
+    f.extra_penalty = e.shape_penalty();
     Response local;
     Response& r = response ? *response : local;
     r = knots.empty() ? Response(*this, e, base) : Response(*this, e, base, knots);

@@ -417,7 +417,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                     // The effect whose response this is (its shape as the joint refit left it).
                     const Effect& ek = refitted[k].empty() ? lib[k] : *refitted[k].back().effect;
                     f.k = ek.bic_parameters();
-                    f.extra_penalty = ek.shape ? ek.shape->bic_penalty() : 0.0;
+                    f.extra_penalty = ek.shape_penalty();
                     f.nll = resp[k].minimise(idx).second;
                 }
                 if (!f.failed.empty()) continue;

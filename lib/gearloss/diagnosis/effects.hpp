@@ -139,9 +139,11 @@ struct Effect {
     // Its parameters whose cost is ln N each in the BIC: a form none, a law one (its shape is
     // paid for by shape->bic_penalty(), by its prior over the grid).
     int bic_parameters() const { return discrete() ? 0 : 1; }
+    // What its shape's choice costs in the BIC (none without a shape).
+    double shape_penalty() const { return shape ? shape->bic_penalty() : 0.0; }
     // What the effect costs in the BIC with n_obs observations.
     double bic_penalty(size_t n_obs) const {
-        return bic_parameters() * std::log(static_cast<double>(n_obs)) + (shape ? shape->bic_penalty() : 0.0);
+        return bic_parameters() * std::log(static_cast<double>(n_obs)) + shape_penalty();
     }
 };
 
