@@ -126,13 +126,6 @@ check "concurrent writers: no temporary" no_temporary
 # 5. A temporary left by a dead run (kill -9, or SIGUSR1 that nothing handles) is removed by
 #    the next run on that target at once, whatever its age: unlocked means its writer is gone.
 mkfifo nobody-reads
-wait_for_temporary() {
-    for _ in $(seq 100); do
-        ls kept.csv.tmp.gearloss-* > /dev/null 2>&1 && return 0
-        sleep 0.1
-    done
-    return 1
-}
 for sig in KILL USR1; do
     "$bin" map tb.yaml "${small[@]}" -o kept.csv --json nobody-reads 2> /dev/null &
     pid=$!
@@ -164,6 +157,7 @@ for s in HUP:1 QUIT:3 PIPE:13 TERM:15; do
     rm -rf out && mkdir out
     "$bin" map "$spur" --speed "$speeds" --torque "$spur_torques" -o out/map.csv --json out/map.json 2> sig.err &
     pid=$!
+    check "SIG$sig: catches it" await_handler $pid "$sig"
     sleep 0.5
     check "SIG$sig: still running after 0.5 s" kill -0 $pid
     kill -"$sig" $pid
@@ -183,6 +177,7 @@ done
 # A SIGHUP ignored from the start (nohup) stays ignored: the run goes on.
 nohup "$bin" map "$spur" --speed "$speeds" --torque "$spur_torques" -o nohup.csv > /dev/null 2>&1 &
 pid=$!
+check "nohup: catches SIGTERM" await_handler $pid TERM
 sleep 0.5
 kill -HUP $pid 2> /dev/null
 sleep 0.5

@@ -145,13 +145,6 @@ check "cycle | closed pipe: no JSON" test ! -e cyc.json
 "$bin" map "$case_file" -o kept.csv
 cp kept.csv kept-before.csv
 mkfifo nobody-reads
-wait_for_temporary() {
-    for _ in $(seq 100); do
-        ls kept.csv.tmp.gearloss-* > /dev/null 2>&1 && return 0
-        sleep 0.1
-    done
-    return 1
-}
 write_phase_signal() {  # write_phase_signal SIGNAL EXIT_CODE
     "$bin" map "$case_file" "${small[@]}" -o kept.csv --json nobody-reads 2> signal.err &
     local pid=$!

@@ -21,9 +21,10 @@ torques="$(list 100 4.5 150)Nm"
 tb="$src/configs/transfer-box.yaml"
 
 # stopped NAME SIGNAL CODE COMMAND...: the command, started with its outputs in out/, gets
-# SIGNAL after $after s (0.5 unless given; it must still be running) and must end with CODE
-# within $SIGNAL_DEADLINE_MS (1500 ms: the 1 s of the contract plus this script's polling and the
-# shared machine; tests/CMakeLists.txt widens it under the sanitizers), leaving out/ and stdout empty.
+# SIGNAL $after s (0.5 unless given; it must still be running) after it installed its handler
+# (await_handler, cli_common.sh), and must end with CODE within $SIGNAL_DEADLINE_MS (1500 ms:
+# the 1 s of the contract plus this script's polling and the shared machine; tests/CMakeLists.txt
+# widens it under the sanitizers), leaving out/ and stdout empty.
 deadline_ms=${SIGNAL_DEADLINE_MS:-1500}
 stopped() {
     local name=$1 sig=$2 code=$3
@@ -32,6 +33,7 @@ stopped() {
     mkdir out
     "$@" > stdout.txt 2> stderr.txt &
     local pid=$!
+    check "$name: catches SIG$sig" await_handler $pid "$sig"
     sleep "${after:-0.5}"
     check "$name: still running after ${after:-0.5} s (the workload is long enough)" kill -0 $pid 2> /dev/null
     kill -"$sig" $pid
@@ -74,6 +76,7 @@ for mode in new append; do
         "$bin" map "$tb" --speed "$big_speeds" --torque "$big_torques" >> out/redirected.csv 2> stderr.txt &
     fi
     pid=$!
+    check "map > file ($mode): catches SIGINT" await_handler $pid INT
     sleep 1.5
     kill -INT $pid
     wait $pid
@@ -88,6 +91,7 @@ cat out/rows.fifo > fifo-rows.csv &
 reader=$!
 "$bin" map "$tb" --speed "$big_speeds" --torque "$big_torques" -o out/rows.fifo 2> stderr.txt &
 pid=$!
+check "map -o FIFO: catches SIGTERM" await_handler $pid TERM
 sleep 1.5
 kill -TERM $pid
 wait $pid

@@ -57,6 +57,7 @@ big_torques="$(python3 -c "print(','.join(str(10+i) for i in range(400)))")Nm"
 interrupt() {
     "$bin" map "$src/configs/transfer-box.yaml" --speed "$big_speeds" --torque "$big_torques" -o "$tmp/$3" &
     local pid=$!
+    check "$1 caught" await_handler $pid "$1"
     sleep 1
     kill -"$1" $pid
     wait $pid
