@@ -2,7 +2,7 @@
 # Builds gearloss with its tests and runs them all through ctest; then builds
 # again with AddressSanitizer + UndefinedBehaviorSanitizer (any report fails)
 # and runs the suite once more, all but the envelope sweeps (label envelope: the same code
-# paths over many more points, 5 minutes under the sanitizers). `--quick` skips that pass.
+# paths over many more points, about 4 minutes under the sanitizers). `--quick` skips that pass.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh

@@ -22,15 +22,14 @@ expect() {  # expect NAME EXIT_CODE MESSAGE_REGEX COMMAND...
     check "$name: exit $code (got $rc)" test $rc -eq "$code"
     [ -n "$pattern" ] && check "$name: message /$pattern/" grep -qE -- "$pattern" "$tmp/err"
 }
-# await_handler PID SIGNAL: waits (up to 30 s) until the process catches SIGNAL (name or
-# number, read from SigCgt in /proc/PID/status). A background job of a script starts with
+# await_handler PID SIGNAL: waits (up to 30 s) until the process catches SIGNAL (a name: INT,
+# SIGTERM; read from SigCgt in /proc/PID/status). A background job of a script starts with
 # SIGINT and SIGQUIT ignored, and any signal sent before main() installs the handler is lost
 # or ends the process by the default action; on a loaded machine, an instrumented binary can
 # take longer than half a second to get there. The tests time the program's stop, not its start.
 await_handler() {
     local pid=$1 num mask end
-    num=$(kill -l "$2" 2> /dev/null || echo "$2")
-    [[ $num =~ ^[0-9]+$ ]] || num=$(kill -l "${2#SIG}")
+    num=$(kill -l "${2#SIG}") || return 1
     end=$((${EPOCHREALTIME/./} + 30000000))
     while [ "${EPOCHREALTIME/./}" -lt $end ]; do
         mask=$(awk '/^SigCgt:/ {print $2}' "/proc/$pid/status" 2> /dev/null) || return 1
