@@ -8,6 +8,7 @@ Independent blind campaigns for `gearloss diagnose`, one module per stage:
   effects      the concealed effects in perturbed forms, and the acceptance mapping
   forms        the model-form axes, a case's forms, derived cases with another form or oil
   campaigns    a case's shared setup, the plan, one campaign's recordings.csv + truth.json
+  identifiability whether a pair's two effects can be told from one of them refitted alone
   multi_oil    multi-oil campaigns: per-oil model tables, per-oil effects, the `oil` column
   synth_own    issue 38: campaigns from `gearloss synth` itself (confidence when it is earned)
   robustness   issue 38: row order (three orderings; a drift with a `run` column) and outliers

@@ -17,11 +17,15 @@ from .cases import CASES, OILS_DIR, ROOT, Oil, derive_case, oil_family, oil_path
 from .effects import ACCEPT, EFFECTS, LIBRARY, ORDERED, OUTSIDE, THERMAL_ONLY, Ctx
 from .forms import AXES, alternatives, case_forms, checked_forms, expected_id, rewrite_case
 from .heat_balance import T_MAX_NULL, Heat, heat_check, steady_temperature
+from .identifiability import hidden_effect
 from .model_table import ModelTable
 from .numerics import mean
 
 # An effect must show on its own at least this many noise standard deviations per point (below_noise).
 DETECTABLE = 1.0
+# A pair is a test of naming both only when neither effect hides behind the other refitted alone
+# (identifiability.py); --no-pair-gate scores every pair on naming both.
+PAIR_GATE = True
 CATEGORIES = ["single", "outside", "two", "three", "form", "form_effect", "multi_oil", "null",
               "synth_own", "order", "outliers"]  # the last three: issue 38 (synth_own.py, robustness.py)
 MULTI_OIL_KINDS = ["common", "per_oil", "both"]
@@ -368,6 +372,10 @@ def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
     why = below_noise(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, heat.kind == "fixed")
     if why:
         return None, why
+    # a pair where one effect hides behind the other refitted alone still tests the top finding,
+    # not the naming of both (scoring.py)
+    hidden = hidden_effect(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, heat.kind == "fixed") \
+        if spec["category"] == "two" and PAIR_GATE else None
     # effects along the run order are recorded with a `run` column (issue 38: row order is not run order);
     # `shuffle_file` writes the rows in another order than the run's, so only that column tells it
     ordered = any(e.name in ORDERED for e in effects)
@@ -386,5 +394,7 @@ def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
                                             for x in truth_rows if "dropped" not in x))}
     if form:
         truth["form"] = form
+    if hidden:
+        truth["pair_hidden"] = hidden
     (outdir / "truth.json").write_text(json.dumps(truth, indent=1))
     return truth, None

@@ -46,6 +46,8 @@ OUTSIDE = ["speed_step", "hot_loss", "torque2_band", "running_in", "speed_power"
 # effects acting along the row (test) order: their campaigns carry a `run` column giving that order
 ORDERED = {"running_in", "loss_drift"}
 THERMAL_ONLY = {"heat_factor", "forced_convection", "hot_loss", "visc_loss"}  # need a stabilised heat path
+# A refit of one effect alone (identifiability.py) may take up to this many times its drawn amplitude.
+AMPLITUDE_SPAN = 6.0
 
 
 # ----------------------------------------------------------------------------------------
@@ -88,6 +90,12 @@ class Effect:
     def truth(self, ctx):  # (comparable library parameter value) or None
         return None
 
+    def fit_space(self):
+        """(attribute, low, high) of the family's parameters, for a refit of this effect alone
+        (identifiability.py): shape parameters over the ranges drawn here, the amplitude free up
+        to AMPLITUDE_SPAN x the drawn one."""
+        raise NotImplementedError(self.name)
+
     def size_to(self, ctx, shape, r):
         """Amplitude A such that mean_i A*shape(i)/P0_i = r."""
         s = mean(shape(i) / ctx.p0[i] for i in ctx.pts)
@@ -116,6 +124,9 @@ class AeroDrag(Effect):
         self.A = self.size_to(ctx, lambda i: (ctx.n[i] / 1000) ** self.a, r)
         self.params = {"exponent": self.a, "W_at_1000rpm": self.A}
 
+    def fit_space(self):
+        return [("A", 0.0, AMPLITUDE_SPAN * self.A), ("a", 2.5, 3.2)]
+
     def dloss(self, ctx, i, t, k):
         return self.A * (ctx.n[i] / 1000) ** self.a
 
@@ -137,6 +148,9 @@ class SpeedFactorOnColumn(Effect):
         self.c = self.rng.uniform(*self.c_range)
         self.k = self.size_to(ctx, lambda i: ctx.m.get(self.col, i, ctx.t0[i]) * self.speed(ctx, i), r)
         self.params = {"k": self.k, "speed_exponent": self.c}
+
+    def fit_space(self):
+        return [("k", 0.0, AMPLITUDE_SPAN * self.k), ("c", *self.c_range)]
 
     def applicable(self, ctx):
         share = self.null_share(ctx, self.col)
@@ -167,8 +181,16 @@ class BearingViscDrag(Effect):
 
     def setup(self, ctx, r):
         self.b = self.rng.uniform(0.45, 0.85)
+        self.nu_n = {i: ctx.oil.nu(ctx.t0[i]) * ctx.n[i] / 1e5 for i in ctx.pts}
         self.A = self.size_to(ctx, lambda i: self.shape(ctx, i, ctx.t0[i]), r)
         self.params = {"exponent_b": self.b}
+
+    def fit_space(self):  # the amplitude's span at the other end of the exponent's range
+        span = max(self.shape_scale(lo) / self.shape_scale(self.b) for lo in (0.45, 0.85))
+        return [("A", 0.0, AMPLITUDE_SPAN * span * self.A), ("b", 0.45, 0.85)]
+
+    def shape_scale(self, b):
+        return mean((self.nu_n[i]) ** b for i in self.nu_n) if self.nu_n else 1.0
 
     def shape(self, ctx, i, t):
         return (ctx.oil.nu(t) * ctx.n[i] / 1e5) ** self.b * ctx.n[i] / 1000
@@ -199,6 +221,9 @@ class MeshLowFilm(Effect):
         self.k = self.size_to(ctx, lambda i: ctx.m.get("P_mesh_W", i, ctx.t0[i]) * self.w(ctx, i, ctx.t0[i]), r)
         self.params = {"k": self.k, "lambda_threshold": self.lstar}
 
+    def fit_space(self):
+        return [("k", 0.0, AMPLITUDE_SPAN * self.k)]
+
     def dloss(self, ctx, i, t, k):
         return self.k * ctx.m.get("P_mesh_W", i, t) * self.w(ctx, i, t)
 
@@ -214,6 +239,9 @@ class ViscShift(Effect):
     def setup(self, ctx, r):
         self.d = self.rng.choice([-1, 1]) * self.rng.uniform(5, 12)
         self.params = {"shift_K": self.d}
+
+    def fit_space(self):
+        return [("d", -12.0, 12.0)]
 
     def dloss(self, ctx, i, t, k):
         ts = t - self.d
@@ -235,6 +263,9 @@ class HeatFactor(Effect):
         self.tmid = median(ctx.t0.values())
         self.params = {"factor": self.f, "temperature_slope": self.c}
 
+    def fit_space(self):
+        return [("f", 0.6, 1.5), ("c", -0.15, 0.15)]
+
     def qmult(self, ctx, i, t):
         return self.f * (1 + self.c * (t - self.tmid) / 50)
 
@@ -251,6 +282,9 @@ class ForcedConvection(Effect):
         gain = self.rng.uniform(0.15, 0.45)  # mean extra cooling over the campaign
         self.a = gain / mean((ctx.n[i] / 1000) ** self.p for i in ctx.pts)
         self.params = {"a": self.a, "exponent": self.p}
+
+    def fit_space(self):
+        return [("a", 0.0, AMPLITUDE_SPAN * self.a), ("p", 0.5, 0.8)]
 
     def qmult(self, ctx, i, t):
         return 1 + self.a * (ctx.n[i] / 1000) ** self.p
@@ -272,6 +306,10 @@ class SensorGain(Effect):
         self.tmax = max(ctx.tq.values())
         self.params = {"gain": self.g, "quadratic": self.q}
 
+    def fit_space(self):
+        d = AMPLITUDE_SPAN * abs(self.g - 1)
+        return [("g", 1 - d, 1 + d), ("q", -0.3 * d, 0.3 * d)]
+
     def torque_rec(self, ctx, i, tq, k, nrows):
         return tq * self.g + self.q * tq * tq / self.tmax
 
@@ -290,6 +328,10 @@ class SensorOffset(Effect):
         self.drift = self.rng.uniform(-0.3, 0.3)
         self.params = {"offset_Nm": self.t0_, "relative_drift": self.drift}
 
+    def fit_space(self):
+        d = AMPLITUDE_SPAN * abs(self.t0_)
+        return [("t0_", -d, d), ("drift", -0.3, 0.3)]
+
     def torque_rec(self, ctx, i, tq, k, nrows):
         return tq + self.t0_ * (1 + self.drift * (k / max(nrows - 1, 1) - 0.5))
 
@@ -305,6 +347,9 @@ class PumpLoss(Effect):
         self.beta = self.rng.uniform(-0.2, 0.3)
         self.A = self.size_to(ctx, lambda i: 1 + self.beta * (ctx.n[i] / ctx.n_med - 1), r)
         self.params = {"W": self.A, "beta": self.beta}
+
+    def fit_space(self):
+        return [("A", 0.0, AMPLITUDE_SPAN * self.A), ("beta", -0.2, 0.3)]
 
     def dloss(self, ctx, i, t, k):
         return self.A * (1 + self.beta * (ctx.n[i] / ctx.n_med - 1))

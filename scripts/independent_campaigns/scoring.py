@@ -149,6 +149,9 @@ def score(truth, diag):
         if tp is not None and fp is not None and tp != z:
             res["param_ratio"] = (fp - z) / (tp - z)
     res["correct"] = res["outcome"] in GOOD
+    if truth.get("pair_hidden"):  # the recordings cannot show the second effect: only the top finding is a test
+        res["pair_hidden"] = True
+        res["correct"] = res["top_ok"] and v != NULL_VERDICT
     return res
 
 

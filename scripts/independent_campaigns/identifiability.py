@@ -1,0 +1,180 @@
+"""Whether the two effects of a pair can be told apart from one of them alone.
+
+below_noise (campaigns.py) asks whether each effect shows on its own. A pair can pass that
+and still not be a test of naming both: one effect, its own parameters refitted, may imitate
+the pair to within the noise (a seal loss whose torque falls with speed beside a bearing drag
+whose exponent is free; a heat path whose factor changes with temperature beside a constant
+parasitic loss). Then no method can name the second effect: the recordings do not hold it.
+
+The check uses only this generator's forms, never the library's: for each effect X of the
+pair, the other effect Y alone, with the parameters of its family (the ranges the generator
+draws from, its amplitude free), is fitted to the pair's noiseless recordings (recorded loss
+and steady oil temperature of every row, by least squares weighted by the noise). The
+chi-square left is the noncentrality lambda of adding X back: on noisy recordings the fit with
+X (its k parameters free) improves chi-square by lambda + k on average, so the expected
+Bayesian information criterion gain of naming X is lambda + k - k ln(N), N the recorded values.
+X is hidden when that is below 10, the "very strong" evidence of Kass & Raftery (1995): even a
+method that knew both families exactly would not name X in most such campaigns. (The per-point
+rule of below_noise is too lenient for this: 20 rows each 0.7 sigma off give lambda ~ 20.)
+"""
+import copy
+import math
+
+from .heat_balance import steady_temperature
+from .numerics import mean
+
+MAX_EVALUATIONS = 160  # Nelder-Mead evaluations per fit (2-3 parameters)
+
+
+def predict(ctx, effects, rows, nrows):
+    """Noiseless (recorded loss, steady oil temperature) of each row (k, i, ambient), or None
+    where the point has no equilibrium."""
+    out = []
+    for k, i, ta in rows:
+        t = steady_temperature(ctx, i, ta, effects, k)
+        if t is None:
+            out.append(None)
+            continue
+        p = ctx.m.get("P_total_W", i, t) + sum(e.dloss(ctx, i, t, k) for e in effects if e.heats)
+        tq = ctx.tq[i]
+        for e in effects:
+            tq = e.torque_rec(ctx, i, tq, k, nrows)
+        out.append((p + (tq - ctx.tq[i]) * ctx.omega(i), t))
+    return out
+
+
+def mismatch(pred, target, p_model, s_loss, s_temp, fixed):
+    """(chi-square, mean |loss residual| / model loss, RMS temperature residual) of pred against target."""
+    chi2, dl, dt = 0.0, [], []
+    for a, b, pm in zip(pred, target, p_model):
+        if b is None:
+            continue
+        if a is None:
+            return math.inf, math.inf, math.inf
+        rl, rt = (a[0] - b[0]) / pm, (0.0 if fixed else a[1] - b[1])
+        chi2 += (rl / s_loss) ** 2 + (rt / s_temp) ** 2
+        dl.append(abs(rl))
+        dt.append(rt * rt)
+    return chi2, mean(dl), math.sqrt(mean(dt))
+
+
+def nelder_mead(f, x0, step=0.15, max_eval=MAX_EVALUATIONS):
+    """Minimise f over the unit box (points clipped into it) from x0."""
+    clip = lambda x: [min(1.0, max(0.0, v)) for v in x]
+    n = len(x0)
+    simplex = [clip(x0)] + [clip([v + (step if j == d else 0.0) for j, v in enumerate(x0)]) for d in range(n)]
+    vals = [f(x) for x in simplex]
+    evals = len(vals)
+    while evals < max_eval:
+        order = sorted(range(n + 1), key=lambda j: vals[j])
+        simplex, vals = [simplex[j] for j in order], [vals[j] for j in order]
+        if abs(vals[-1] - vals[0]) <= 1e-6 * (1 + abs(vals[0])):
+            break
+        c = [sum(x[d] for x in simplex[:-1]) / n for d in range(n)]
+        move = lambda a: clip([c[d] + a * (simplex[-1][d] - c[d]) for d in range(n)])
+        xr = move(-1.0)
+        fr = f(xr)
+        evals += 1
+        if fr < vals[0]:
+            xe = move(-2.0)
+            fe = f(xe)
+            evals += 1
+            simplex[-1], vals[-1] = (xe, fe) if fe < fr else (xr, fr)
+        elif fr < vals[-2]:
+            simplex[-1], vals[-1] = xr, fr
+        else:
+            xc = move(0.5)
+            fc = f(xc)
+            evals += 1
+            if fc < vals[-1]:
+                simplex[-1], vals[-1] = xc, fc
+            else:  # shrink towards the best
+                simplex = [simplex[0]] + [clip([simplex[0][d] + 0.5 * (x[d] - simplex[0][d]) for d in range(n)])
+                                          for x in simplex[1:]]
+                vals = [vals[0]] + [f(x) for x in simplex[1:]]
+                evals += n
+    j = min(range(n + 1), key=lambda j: vals[j])
+    return simplex[j], vals[j]
+
+
+def scan_then_golden(f, n_scan=9, iters=24):
+    """Minimise f over [0, 1]: the best of n_scan even points, then golden section around it."""
+    xs = [j / (n_scan - 1) for j in range(n_scan)]
+    vals = [f(x) for x in xs]
+    j = min(range(n_scan), key=lambda j: vals[j])
+    a, b = xs[max(j - 1, 0)], xs[min(j + 1, n_scan - 1)]
+    g = (math.sqrt(5) - 1) / 2
+    c, d = b - g * (b - a), a + g * (b - a)
+    fc, fd = f(c), f(d)
+    for _ in range(iters):
+        if fc < fd:
+            b, d, fd = d, c, fc
+            c = b - g * (b - a)
+            fc = f(c)
+        else:
+            a, c, fc = c, d, fd
+            d = a + g * (b - a)
+            fd = f(d)
+    best = min([(vals[j], xs[j]), (fc, c), (fd, d)])
+    return best[1], best[0]
+
+
+def fit_alone(ctx, effect, rows, nrows, target, p_model, s_loss, s_temp, fixed):
+    """The effect alone, its family's parameters fitted to target: (chi2, loss, temp, params).
+    The first parameter of fit_space is the amplitude: for each of 5 values of the shape
+    parameter (if any) the amplitude is scanned and refined by golden section, then Nelder-Mead
+    refines both from the best (a start at amplitude 0 would leave the shape undetermined)."""
+    e = copy.copy(effect)
+    space = effect.fit_space()
+
+    def apply(u):
+        for (attr, lo, hi), v in zip(space, u):
+            setattr(e, attr, lo + v * (hi - lo))
+
+    def cost(u):
+        apply(u)
+        return mismatch(predict(ctx, [e], rows, nrows), target, p_model, s_loss, s_temp, fixed)[0]
+
+    shapes = [[]] if len(space) == 1 else [[j / 4] for j in range(5)]
+    best = None
+    for sh in shapes:
+        a, v = scan_then_golden(lambda x: cost([x] + sh))
+        if best is None or v < best[1]:
+            best = ([a] + sh, v)
+    u = best[0]
+    if len(space) > 1:
+        u, _ = nelder_mead(cost, u, step=0.1)
+        u, _ = nelder_mead(cost, u, step=0.03)  # restart: a collapsed simplex stops early
+    apply(u)
+    chi2, v_loss, v_temp = mismatch(predict(ctx, [e], rows, nrows), target, p_model, s_loss, s_temp, fixed)
+    return chi2, v_loss, v_temp, {a: getattr(e, a) for a, _, _ in space}
+
+
+STRONG_EVIDENCE = 10.0  # a BIC difference (Kass & Raftery 1995)
+
+
+def hidden_effect(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, fixed):
+    """Why the pair is not a test of naming both (one effect hidden behind the other refitted
+    alone), or None. Records on each effect what the other, refitted alone, leaves of the pair (beside_other_*)."""
+    if len(effects) != 2:
+        return None
+    nrows = len(order)
+    rows, p_model = [], []
+    for k, (i, x) in enumerate(zip(order, truth_rows)):
+        if "dropped" in x:
+            continue
+        rows.append((k, i, ambient + drift * (k / max(nrows - 1, 1) - 0.5)))
+        p_model.append(x["P_model_W"])
+    target = predict(ctx, effects, rows, nrows)
+    why = None
+    for x, y in ((effects[0], effects[1]), (effects[1], effects[0])):
+        chi2, v_loss, v_temp, _ = fit_alone(ctx, y, rows, nrows, target, p_model, s_loss, s_temp, fixed)
+        k = len(x.fit_space())
+        gain = chi2 + k - k * math.log(len(rows) * (1 if fixed else 2))
+        x.params.update({"beside_other_loss_rel": v_loss, "beside_other_temp_rms_K": v_temp,
+                         "beside_other_lambda": chi2, "beside_other_expected_dbic": gain})
+        if why is None and gain < STRONG_EVIDENCE:
+            why = (f"{x.name} hidden behind {y.name} refitted alone: lambda {chi2:.1f}, expected BIC gain "
+                   f"{gain:.1f} < {STRONG_EVIDENCE:g} (loss {100 * v_loss:.2f} % vs {100 * s_loss:.2f} %, "
+                   f"oil temperature {v_temp:.2f} K vs {s_temp:.2f} K RMS)")
+    return why
