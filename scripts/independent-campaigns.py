@@ -49,7 +49,8 @@ are written to OUT/cases/ and are exactly what `diagnose` receives.
 Usage:
   scripts/independent-campaigns.py [--binary build/app/gearloss] [--cases transfer,fzg]
         [--seeds N] [--quick] [--categories single,two,...] [--out DIR] [--jobs N] [--reuse]
-        [--only CATEGORY|TAG|EFFECT[,..]] [--noise-scale F] [--no-pair-gate] [--housing-check] [--proof-doc FILE]
+        [--only CATEGORY|TAG|EFFECT[,..]] [--noise-scale F] [--no-pair-gate] [--check-pair-fit]
+        [--housing-check] [--proof-doc FILE]
 Outputs in OUT: scores.md (the tables), failures.md (every campaign not scored correct),
 results.json, and per campaign recordings.csv (+ oils/ for multi-oil), truth.json,
 diagnose.json, diagnose.txt. --proof-doc writes docs/diagnosis-proof.md's tables (proof_doc.py).
@@ -113,6 +114,9 @@ def main():
     ap.add_argument("--no-pair-gate", action="store_true",
                     help="build every pair that passes the single-effect noise gate, also those where one effect "
                          "hides behind the other refitted alone (independent_campaigns/identifiability.py)")
+    ap.add_argument("--check-pair-fit", action="store_true",
+                    help="check that fit on itself: each effect of a pair fitted alone to its own noise-free "
+                         "recordings (truth.json: fit_check_chi2, near 0)")
     ap.add_argument("--housing-check", action="store_true",
                     help="compare the textbook housing model written here with the binary's stabilised map")
     args = ap.parse_args()
@@ -137,6 +141,7 @@ def main():
         sys.exit("--proof-doc reports the proof's own noise levels: not with --noise-scale")
     campaigns.NOISE_SCALE = args.noise_scale
     campaigns.PAIR_GATE = not args.no_pair_gate
+    campaigns.CHECK_PAIR_FIT = args.check_pair_fit
     out = Path(args.out) if args.out else Path(tempfile.mkdtemp(prefix="indep-camp-"))
     out.mkdir(parents=True, exist_ok=True)
     log = lambda s: print(s, file=sys.stderr, flush=True)

@@ -26,6 +26,7 @@ DETECTABLE = 1.0
 # A pair is a test of naming both only when neither effect hides behind the other refitted alone
 # (identifiability.py); --no-pair-gate scores every pair on naming both.
 PAIR_GATE = True
+CHECK_PAIR_FIT = False  # --check-pair-fit: also fit each effect to its own recordings (fit_check_chi2)
 CATEGORIES = ["single", "outside", "two", "three", "form", "form_effect", "multi_oil", "null",
               "synth_own", "order", "outliers"]  # the last three: issue 38 (synth_own.py, robustness.py)
 MULTI_OIL_KINDS = ["common", "per_oil", "both"]
@@ -374,8 +375,8 @@ def build_campaign(spec, model, oil, heat, ambient, outdir, case_model=None):
         return None, why
     # a pair where one effect hides behind the other refitted alone still tests the top finding,
     # not the naming of both (scoring.py)
-    hidden = hidden_effect(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, heat.kind == "fixed") \
-        if spec["category"] == "two" and PAIR_GATE else None
+    hidden = hidden_effect(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, heat.kind == "fixed",
+                           check=CHECK_PAIR_FIT) if spec["category"] == "two" and PAIR_GATE else None
     # effects along the run order are recorded with a `run` column (issue 38: row order is not run order);
     # `shuffle_file` writes the rows in another order than the run's, so only that column tells it
     ordered = any(e.name in ORDERED for e in effects)

@@ -96,6 +96,12 @@ class Effect:
         to AMPLITUDE_SPAN x the drawn one."""
         raise NotImplementedError(self.name)
 
+    @staticmethod
+    def amplitude_span(shape_mean, now, ends):
+        """How much more amplitude the same size needs at the ends of a shape parameter's range
+        (shape_mean(x): the shape's mean over the campaign at parameter x; at least 1)."""
+        return max([1.0] + [shape_mean(now) / shape_mean(x) for x in ends if shape_mean(x) > 0])
+
     def size_to(self, ctx, shape, r):
         """Amplitude A such that mean_i A*shape(i)/P0_i = r."""
         s = mean(shape(i) / ctx.p0[i] for i in ctx.pts)
@@ -123,9 +129,11 @@ class AeroDrag(Effect):
         self.a = self.rng.uniform(2.5, 3.2)
         self.A = self.size_to(ctx, lambda i: (ctx.n[i] / 1000) ** self.a, r)
         self.params = {"exponent": self.a, "W_at_1000rpm": self.A}
+        self.n_k = [ctx.n[i] / 1000 for i in ctx.pts]
 
-    def fit_space(self):
-        return [("A", 0.0, AMPLITUDE_SPAN * self.A), ("a", 2.5, 3.2)]
+    def fit_space(self):  # the amplitude is that at 1000 rpm: far from it, the exponent moves the size
+        span = self.amplitude_span(lambda a: mean(v ** a for v in self.n_k), self.a, (2.5, 3.2))
+        return [("A", 0.0, AMPLITUDE_SPAN * span * self.A), ("a", 2.5, 3.2)]
 
     def dloss(self, ctx, i, t, k):
         return self.A * (ctx.n[i] / 1000) ** self.a
@@ -185,12 +193,9 @@ class BearingViscDrag(Effect):
         self.A = self.size_to(ctx, lambda i: self.shape(ctx, i, ctx.t0[i]), r)
         self.params = {"exponent_b": self.b}
 
-    def fit_space(self):  # the amplitude's span at the other end of the exponent's range
-        span = max(self.shape_scale(lo) / self.shape_scale(self.b) for lo in (0.45, 0.85))
+    def fit_space(self):  # the same size at the other ends of the exponent's range takes another amplitude
+        span = self.amplitude_span(lambda b: mean(v ** b for v in self.nu_n.values()), self.b, (0.45, 0.85))
         return [("A", 0.0, AMPLITUDE_SPAN * span * self.A), ("b", 0.45, 0.85)]
-
-    def shape_scale(self, b):
-        return mean((self.nu_n[i]) ** b for i in self.nu_n) if self.nu_n else 1.0
 
     def shape(self, ctx, i, t):
         return (ctx.oil.nu(t) * ctx.n[i] / 1e5) ** self.b * ctx.n[i] / 1000
@@ -282,9 +287,11 @@ class ForcedConvection(Effect):
         gain = self.rng.uniform(0.15, 0.45)  # mean extra cooling over the campaign
         self.a = gain / mean((ctx.n[i] / 1000) ** self.p for i in ctx.pts)
         self.params = {"a": self.a, "exponent": self.p}
+        self.n_k = [ctx.n[i] / 1000 for i in ctx.pts]
 
-    def fit_space(self):
-        return [("a", 0.0, AMPLITUDE_SPAN * self.a), ("p", 0.5, 0.8)]
+    def fit_space(self):  # as AeroDrag's: the amplitude is that at 1000 rpm
+        span = self.amplitude_span(lambda p: mean(v ** p for v in self.n_k), self.p, (0.5, 0.8))
+        return [("a", 0.0, AMPLITUDE_SPAN * span * self.a), ("p", 0.5, 0.8)]
 
     def qmult(self, ctx, i, t):
         return 1 + self.a * (ctx.n[i] / 1000) ** self.p
@@ -302,13 +309,17 @@ class SensorGain(Effect):
     def setup(self, ctx, r):
         pin = mean(ctx.tq[i] * ctx.omega(i) for i in ctx.pts)
         self.g = 1 + self.rng.choice([-1, 1]) * r * mean(ctx.p0.values()) / pin
-        self.q = self.rng.uniform(-0.3, 0.3) * (self.g - 1)
+        self.u = self.rng.uniform(-0.3, 0.3)  # the quadratic term relative to the gain error
         self.tmax = max(ctx.tq.values())
         self.params = {"gain": self.g, "quadratic": self.q}
 
+    @property
+    def q(self):
+        return self.u * (self.g - 1)
+
     def fit_space(self):
         d = AMPLITUDE_SPAN * abs(self.g - 1)
-        return [("g", 1 - d, 1 + d), ("q", -0.3 * d, 0.3 * d)]
+        return [("g", 1 - d, 1 + d), ("u", -0.3, 0.3)]
 
     def torque_rec(self, ctx, i, tq, k, nrows):
         return tq * self.g + self.q * tq * tq / self.tmax

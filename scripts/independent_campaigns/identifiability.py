@@ -43,15 +43,16 @@ def predict(ctx, effects, rows, nrows):
     return out
 
 
-def mismatch(pred, target, p_model, s_loss, s_temp, fixed):
-    """(chi-square, mean |loss residual| / model loss, RMS temperature residual) of pred against target."""
+def mismatch(pred, target, s_loss, s_temp, fixed):
+    """(chi-square, mean |relative loss residual|, RMS temperature residual) of pred against
+    target; the loss weighted as record_point draws its noise, relative to the recorded loss."""
     chi2, dl, dt = 0.0, [], []
-    for a, b, pm in zip(pred, target, p_model):
+    for a, b in zip(pred, target):
         if b is None:
             continue
         if a is None:
             return math.inf, math.inf, math.inf
-        rl, rt = (a[0] - b[0]) / pm, (0.0 if fixed else a[1] - b[1])
+        rl, rt = (a[0] - b[0]) / b[0], (0.0 if fixed else a[1] - b[1])
         chi2 += (rl / s_loss) ** 2 + (rt / s_temp) ** 2
         dl.append(abs(rl))
         dt.append(rt * rt)
@@ -62,7 +63,11 @@ def nelder_mead(f, x0, step=0.15, max_eval=MAX_EVALUATIONS):
     """Minimise f over the unit box (points clipped into it) from x0."""
     clip = lambda x: [min(1.0, max(0.0, v)) for v in x]
     n = len(x0)
-    simplex = [clip(x0)] + [clip([v + (step if j == d else 0.0) for j, v in enumerate(x0)]) for d in range(n)]
+    x0 = clip(x0)
+    # each vertex a step off the start along one axis, inwards (a start on the upper bound
+    # clipped back onto itself would freeze that axis)
+    simplex = [x0] + [[v + ((step if v + step <= 1.0 else -step) if j == d else 0.0) for j, v in enumerate(x0)]
+                      for d in range(n)]
     vals = [f(x) for x in simplex]
     evals = len(vals)
     while evals < max_eval:
@@ -119,7 +124,7 @@ def scan_then_golden(f, n_scan=9, iters=24):
     return best[1], best[0]
 
 
-def fit_alone(ctx, effect, rows, nrows, target, p_model, s_loss, s_temp, fixed):
+def fit_alone(ctx, effect, rows, nrows, target, s_loss, s_temp, fixed):
     """The effect alone, its family's parameters fitted to target: (chi2, loss, temp, params).
     The first parameter of fit_space is the amplitude: for each of 5 values of the shape
     parameter (if any) the amplitude is scanned and refined by golden section, then Nelder-Mead
@@ -133,7 +138,7 @@ def fit_alone(ctx, effect, rows, nrows, target, p_model, s_loss, s_temp, fixed):
 
     def cost(u):
         apply(u)
-        return mismatch(predict(ctx, [e], rows, nrows), target, p_model, s_loss, s_temp, fixed)[0]
+        return mismatch(predict(ctx, [e], rows, nrows), target, s_loss, s_temp, fixed)[0]
 
     shapes = [[]] if len(space) == 1 else [[j / 4] for j in range(5)]
     best = None
@@ -146,29 +151,41 @@ def fit_alone(ctx, effect, rows, nrows, target, p_model, s_loss, s_temp, fixed):
         u, _ = nelder_mead(cost, u, step=0.1)
         u, _ = nelder_mead(cost, u, step=0.03)  # restart: a collapsed simplex stops early
     apply(u)
-    chi2, v_loss, v_temp = mismatch(predict(ctx, [e], rows, nrows), target, p_model, s_loss, s_temp, fixed)
+    chi2, v_loss, v_temp = mismatch(predict(ctx, [e], rows, nrows), target, s_loss, s_temp, fixed)
     return chi2, v_loss, v_temp, {a: getattr(e, a) for a, _, _ in space}
 
 
 STRONG_EVIDENCE = 10.0  # a BIC difference (Kass & Raftery 1995)
 
 
-def hidden_effect(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, fixed):
+def check_fit(ctx, effects, rows, nrows, s_loss, s_temp, fixed):
+    """The fit on itself: each effect alone fitted to its own noise-free recordings, its
+    amplitude cap set from half and from twice the drawn amplitude; the largest chi-square
+    left (near 0 when the fit finds the known optimum)."""
+    worst = 0.0
+    for e in effects:
+        target = predict(ctx, [e], rows, nrows)
+        attr, lo, _ = e.fit_space()[0]
+        for scale in ((0.5, 2.0) if lo == 0.0 else (1.0,)):
+            z = copy.copy(e)
+            setattr(z, attr, getattr(e, attr) * scale)
+            worst = max(worst, fit_alone(ctx, z, rows, nrows, target, s_loss, s_temp, fixed)[0])
+    return worst
+
+
+def hidden_effect(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_temp, fixed, check=False):
     """Why the pair is not a test of naming both (one effect hidden behind the other refitted
-    alone), or None. Records on each effect what the other, refitted alone, leaves of the pair (beside_other_*)."""
+    alone), or None. Records on each effect what the other, refitted alone, leaves of the pair
+    (beside_other_*); check: also the fit on itself (check_fit), as fit_check_chi2."""
     if len(effects) != 2:
         return None
     nrows = len(order)
-    rows, p_model = [], []
-    for k, (i, x) in enumerate(zip(order, truth_rows)):
-        if "dropped" in x:
-            continue
-        rows.append((k, i, ambient + drift * (k / max(nrows - 1, 1) - 0.5)))
-        p_model.append(x["P_model_W"])
+    rows = [(k, i, ambient + drift * (k / max(nrows - 1, 1) - 0.5))
+            for k, (i, x) in enumerate(zip(order, truth_rows)) if "dropped" not in x]
     target = predict(ctx, effects, rows, nrows)
     why = None
     for x, y in ((effects[0], effects[1]), (effects[1], effects[0])):
-        chi2, v_loss, v_temp, _ = fit_alone(ctx, y, rows, nrows, target, p_model, s_loss, s_temp, fixed)
+        chi2, v_loss, v_temp, _ = fit_alone(ctx, y, rows, nrows, target, s_loss, s_temp, fixed)
         k = len(x.fit_space())
         gain = chi2 + k - k * math.log(len(rows) * (1 if fixed else 2))
         x.params.update({"beside_other_loss_rel": v_loss, "beside_other_temp_rms_K": v_temp,
@@ -177,4 +194,8 @@ def hidden_effect(ctx, effects, truth_rows, order, ambient, drift, s_loss, s_tem
             why = (f"{x.name} hidden behind {y.name} refitted alone: lambda {chi2:.1f}, expected BIC gain "
                    f"{gain:.1f} < {STRONG_EVIDENCE:g} (loss {100 * v_loss:.2f} % vs {100 * s_loss:.2f} %, "
                    f"oil temperature {v_temp:.2f} K vs {s_temp:.2f} K RMS)")
+    if check:
+        worst = check_fit(ctx, effects, rows, nrows, s_loss, s_temp, fixed)
+        for e in effects:
+            e.params["fit_check_chi2"] = worst
     return why

@@ -149,9 +149,8 @@ def score(truth, diag):
         if tp is not None and fp is not None and tp != z:
             res["param_ratio"] = (fp - z) / (tp - z)
     res["correct"] = res["outcome"] in GOOD
-    if truth.get("pair_hidden"):  # the recordings cannot show the second effect: only the top finding is a test
+    if truth.get("pair_hidden"):  # the recordings hardly show the second effect (tables.py counts it apart)
         res["pair_hidden"] = True
-        res["correct"] = res["top_ok"] and v != NULL_VERDICT
     return res
 
 

@@ -251,7 +251,7 @@ def tabulate(results, cases_info):
         hidden = [r for r in two if r["score"].get("pair_hidden")]
         if hidden:
             p(f"\n{len(hidden)} pair(s) where one effect hides behind the other refitted alone (its own family, "
-              "identifiability.py): the recordings do not show both, so only the top finding is scored there:\n")
+              "identifiability.py): the recordings hardly show both; the figure over the pairs with both shown leaves them out:\n")
             for r in hidden:
                 p(f"- {r['truth']['case']}/s{r['truth']['seed']}/{r['truth']['tag']}: {r['truth']['pair_hidden']}; "
                   f"findings {', '.join(str(x) for x in r['score']['names'][:2]) or 'none'}")
