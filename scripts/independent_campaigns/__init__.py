@@ -1,7 +1,7 @@
 """The code of scripts/independent-campaigns.py (the entry point: arguments and the run).
 
 Independent blind campaigns for `gearloss diagnose`, one module per stage:
-  numerics     interpolation, root finding, mean/median (standard library only)
+  numerics     interpolation, root finding, mean/median, small minimisers (standard library only)
   cases        the case variants, the keys read from case and oil files, the derived case
   model_table  the binary's fixed-temperature maps, interpolated in oil temperature
   heat_balance the heat path re-implemented here, the steady oil temperature, its checks

@@ -16,7 +16,7 @@ import random
 from .cases import CASES, OILS_DIR, ROOT, Oil, derive_case, oil_family, oil_path, read_thermal
 from .effects import ACCEPT, EFFECTS, LIBRARY, ORDERED, OUTSIDE, THERMAL_ONLY, Ctx
 from .forms import AXES, alternatives, case_forms, checked_forms, expected_id, rewrite_case
-from .heat_balance import T_MAX_NULL, Heat, heat_check, steady_temperature
+from .heat_balance import T_MAX_NULL, Heat, heat_check, noiseless_point, steady_temperature
 from .identifiability import hidden_effect
 from .model_table import ModelTable
 from .numerics import mean
@@ -219,16 +219,11 @@ def record_point(ctx, i, ta, effects, k, nrows, s_loss, s_temp, rng):
     true loss, the sensor artefacts on the input torque, noise. Returns (row, truth_row), row
     None when the point has no equilibrium."""
     m = ctx.m
-    t = steady_temperature(ctx, i, ta, effects, k)
-    if t is None:
+    point = noiseless_point(ctx, i, ta, effects, k, nrows)
+    if point is None:
         return None, {"speed_rpm": ctx.n[i], "torque_Nm": ctx.tq[i], "dropped": "no equilibrium"}
-    p_model = m.get("P_total_W", i, t)
-    p_true = p_model + sum(e.dloss(ctx, i, t, k) for e in effects if e.heats)
-    tq_rec = ctx.tq[i]
-    for e in effects:
-        tq_rec = e.torque_rec(ctx, i, tq_rec, k, nrows)
+    t, p_model, p_true, tq_rec, p_rec = point
     w_in = ctx.omega(i)
-    p_rec = p_true + (tq_rec - ctx.tq[i]) * w_in  # what in - out power gives with that torque
     p_rec *= 1 + rng.gauss(0, s_loss)
     t_rec = t + rng.gauss(0, s_temp)
     ta_rec = ta + rng.gauss(0, 0.1)

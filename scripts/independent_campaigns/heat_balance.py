@@ -98,6 +98,21 @@ def steady_temperature(ctx, i, ta, effects, k):
     return None  # no equilibrium inside the mapped range
 
 
+def noiseless_point(ctx, i, ta, effects, k, nrows):
+    """Point i in row k without noise: (oil temperature, model loss, true loss, recorded input
+    torque, recorded loss), or None without an equilibrium. The recorded loss is the true loss
+    plus what the torque artefacts add to in - out power."""
+    t = steady_temperature(ctx, i, ta, effects, k)
+    if t is None:
+        return None
+    p_model = ctx.m.get("P_total_W", i, t)
+    p_true = p_model + sum(e.dloss(ctx, i, t, k) for e in effects if e.heats)
+    tq_rec = ctx.tq[i]
+    for e in effects:
+        tq_rec = e.torque_rec(ctx, i, tq_rec, k, nrows)
+    return t, p_model, p_true, tq_rec, p_true + (tq_rec - ctx.tq[i]) * ctx.omega(i)
+
+
 def heat_check(binary, config, case, model, oil, heat, ambient, out_csv, log):
     """The binary's own stabilised map of the (derived) case against the null balance solved
     here; logs the comparison and returns max |T_here - T_binary| over the points <= T_MAX_NULL."""

@@ -2,7 +2,8 @@
 
 Monotone cubic interpolation (the model table's interpolation in oil temperature), a
 bisection root finder (oil viscosity fit, heat balances), a sigmoid, mean and median
-that tolerate empty input, and a forgiving float parser for the binary's CSV cells.
+that tolerate empty input, a forgiving float parser for the binary's CSV cells, and two small
+minimisers on the unit box (Nelder-Mead; scan + golden section) for identifiability.py.
 Kept apart because every other module uses them and they depend on nothing else.
 """
 import bisect
@@ -103,3 +104,68 @@ def num(s):
         return v if math.isfinite(v) else None
     except (TypeError, ValueError):
         return None
+
+
+def nelder_mead(f, x0, step=0.15, max_eval=160):
+    """Minimise f over the unit box (points clipped into it) from x0."""
+    clip = lambda x: [min(1.0, max(0.0, v)) for v in x]
+    n = len(x0)
+    x0 = clip(x0)
+    # each vertex a step off the start along one axis, inwards (a start on the upper bound
+    # clipped back onto itself would freeze that axis)
+    simplex = [x0] + [[v + ((step if v + step <= 1.0 else -step) if j == d else 0.0) for j, v in enumerate(x0)]
+                      for d in range(n)]
+    vals = [f(x) for x in simplex]
+    evals = len(vals)
+    while evals < max_eval:
+        order = sorted(range(n + 1), key=lambda j: vals[j])
+        simplex, vals = [simplex[j] for j in order], [vals[j] for j in order]
+        if abs(vals[-1] - vals[0]) <= 1e-6 * (1 + abs(vals[0])):
+            break
+        c = [sum(x[d] for x in simplex[:-1]) / n for d in range(n)]
+        move = lambda a: clip([c[d] + a * (simplex[-1][d] - c[d]) for d in range(n)])
+        xr = move(-1.0)
+        fr = f(xr)
+        evals += 1
+        if fr < vals[0]:
+            xe = move(-2.0)
+            fe = f(xe)
+            evals += 1
+            simplex[-1], vals[-1] = (xe, fe) if fe < fr else (xr, fr)
+        elif fr < vals[-2]:
+            simplex[-1], vals[-1] = xr, fr
+        else:
+            xc = move(0.5)
+            fc = f(xc)
+            evals += 1
+            if fc < vals[-1]:
+                simplex[-1], vals[-1] = xc, fc
+            else:  # shrink towards the best
+                simplex = [simplex[0]] + [clip([simplex[0][d] + 0.5 * (x[d] - simplex[0][d]) for d in range(n)])
+                                          for x in simplex[1:]]
+                vals = [vals[0]] + [f(x) for x in simplex[1:]]
+                evals += n
+    j = min(range(n + 1), key=lambda j: vals[j])
+    return simplex[j], vals[j]
+
+
+def scan_then_golden(f, n_scan=9, iters=24):
+    """Minimise f over [0, 1]: the best of n_scan even points, then golden section around it."""
+    xs = [j / (n_scan - 1) for j in range(n_scan)]
+    vals = [f(x) for x in xs]
+    j = min(range(n_scan), key=lambda j: vals[j])
+    a, b = xs[max(j - 1, 0)], xs[min(j + 1, n_scan - 1)]
+    g = (math.sqrt(5) - 1) / 2
+    c, d = b - g * (b - a), a + g * (b - a)
+    fc, fd = f(c), f(d)
+    for _ in range(iters):
+        if fc < fd:
+            b, d, fd = d, c, fc
+            c = b - g * (b - a)
+            fc = f(c)
+        else:
+            a, c, fc = c, d, fd
+            d = a + g * (b - a)
+            fd = f(d)
+    best = min([(vals[j], xs[j]), (fc, c), (fd, d)])
+    return best[1], best[0]
