@@ -161,6 +161,8 @@ mut D15 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a candidate judged
     'Fit fk = E.fit(*joint.back().effect, others, &rk);' 'Fit fk = E.fit(lib[k], others, &rk);'
 mut M14 bearings lib/gearloss/mechanisms/bearing_mechanism.cpp "the added bearing drag at Palmgren's 2/3 whatever drag_exponent" \
     'palmgren_drag_coef(gb.bearings[i].spec, f0, w, param(kDragExponent))' 'palmgren_drag_coef(gb.bearings[i].spec, f0, w)'
+mut D16 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "of candidates tied in BIC, the leader by a fraction of a unit named whatever the resamples" \
+    'if (static_cast<int>(k) != chosen && wins[k] >= opt.stability_min * opt.bootstrap &&' 'if (false && wins[k] >= opt.stability_min * opt.bootstrap &&'
 mut D13 diagnosis lib/gearloss/diagnosis/diagnose_verdict.cpp "two forms of one mechanism sharing the resamples leave it tentative" \
     'const bool stable = main.stability >= opt.stability_min || form_open;' 'const bool stable = main.stability >= opt.stability_min;'
 mut G9 gearbox lib/gearloss/gearbox/gearbox.cpp "a pilot bearing's reaction not carried to its outer shaft" \

@@ -429,6 +429,15 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
             }
             if (winner >= 0) ++wins[winner];
         }
+        // A lead within the ambiguity margin says nothing; the resamples may: a near-tied
+        // candidate chosen in as many of them as a confident name needs is named, the leader in
+        // BIC stays its equivalent (bootstrap selection frequencies, Buckland et al. 1997).
+        for (size_t k : contenders)
+            if (static_cast<int>(k) != chosen && wins[k] >= opt.stability_min * opt.bootstrap &&
+                dbic[k] >= opt.bic_threshold && dbic[chosen] - dbic[k] <= opt.ambiguity_bic &&
+                lib[k].kind != EffectKind::pointwise)
+                if (const CvResult cv = cross_validate(E, &resp[k], pb, base); cv0.nll - cv.nll >= opt.cv_margin)
+                    chosen = static_cast<int>(k), cv_chosen = cv;
         const double stability = static_cast<double>(wins[chosen]) / opt.bootstrap;
         const Effect& e = lib[chosen];
         Finding f;
