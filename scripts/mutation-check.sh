@@ -87,12 +87,12 @@ mut M8 mesh lib/gearloss/mesh/ehl_contact.cpp "Jaeger mean flash constant 1.064 
     'if (std::abs(in.u1) > 0) dT1 = 1.064 * q1' 'if (std::abs(in.u1) > 0) dT1 = 1.11 * q1'
 mut M9 mesh lib/gearloss/mesh/ehl_contact.cpp "3-pressure Hertz shortcut: outer Gauss weight not doubled" \
     '2 * Gauss5::weights()[2]' 'Gauss5::weights()[2]'
-mut M10 mesh lib/gearloss/mesh/friction.cpp "boundary share (1 - Lambda/2)^2 -> (1 - Lambda/2.2)^2 (mixed film ends at 2.2)" \
-    'const double s = 1.0 - 0.5 * std::max(lambda, 0.0);' 'const double s = 1.0 - std::max(lambda, 0.0) / 2.2;'
+mut M10 mesh lib/gearloss/mesh/friction.cpp "boundary share (1 - Lambda/L_on)^2 -> (1 - Lambda/(1.1 L_on))^2 (mixed film ends 10 % later)" \
+    'const double s = 1.0 - std::max(lambda, 0.0) / onset;' 'const double s = 1.0 - std::max(lambda, 0.0) / (1.1 * onset);'
 mut M11 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "the oil's mixed-film mu_ehl ignored (the mechanism's value used)" \
     'return given(kMuEhl) || !m.oil.gear_mu_ehl ? param(kMuEhl) : *m.oil.gear_mu_ehl;' 'return param(kMuEhl);'
 mut S6 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "mixed friction rise read at a 10 % larger Lambda" \
-    'mixed = 1.0 + mixed_rise * boundary_share_doleschel(lambda);' 'mixed = 1.0 + mixed_rise * boundary_share_doleschel(1.1 * lambda);'
+    'mixed = 1.0 + mixed_rise * boundary_share_doleschel(lambda, mixed_onset);' 'mixed = 1.0 + mixed_rise * boundary_share_doleschel(1.1 * lambda, mixed_onset);'
 mut S1 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "mean roughness (Ra1+Ra2)/2 -> sum Ra1+Ra2 (issue 12)" \
     'const double Ra_um = 0.5 * (g0.Ra + g1.Ra) * 1e6;' 'const double Ra_um = (g0.Ra + g1.Ra) * 1e6;'
 mut S2 churning lib/gearloss/mechanisms/churning_mechanism.cpp "nu^0.21 of the churning fast path -> nu^0.20" \
