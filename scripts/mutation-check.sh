@@ -151,8 +151,8 @@ mut T9 thermal lib/gearloss/model/model.cpp "forced cooling linear in speed what
     '(q == 1.0 ? n_k : std::pow(n_k, q))' 'n_k'
 mut D10 diagnosis lib/gearloss/diagnosis/diagnose_fit.cpp "a profiled shape keeps the case's value" \
     'if (f.failed.empty() && penalised < best - 1e-9) best = penalised, chosen = k;' 'if (f.failed.empty() && penalised < best - 1e-9) best = penalised;'
-mut D11 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a joint refit holds the shape chosen alone" \
-    'if (!terms[j].effect->shape || !terms[j].effect->shape->variants) continue;' 'continue;'
+mut D11 diagnosis lib/gearloss/diagnosis/diagnose_joint.cpp "a joint refit holds the shape chosen alone" \
+    'if (!movable(terms[j])) continue;' 'continue;'
 mut D12 diagnosis lib/gearloss/diagnosis/effects.hpp "a profiled shape costs nothing in the BIC" \
     'return chosen == own ? 2.0 * std::log(2.0) : 2.0 * std::log(2.0 * others);' 'return 0.0;'
 mut D14 diagnosis lib/gearloss/diagnosis/effects.hpp "keeping the case's shape costs as much as moving it" \
@@ -163,6 +163,16 @@ mut M14 bearings lib/gearloss/mechanisms/bearing_mechanism.cpp "the added bearin
     'palmgren_drag_coef(gb.bearings[i].spec, f0, w, param(kDragExponent))' 'palmgren_drag_coef(gb.bearings[i].spec, f0, w)'
 mut D16 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "of candidates tied in BIC, the leader by a fraction of a unit named whatever the resamples" \
     'if (static_cast<int>(k) != chosen && wins[k] >= opt.stability_min * opt.bootstrap &&' 'if (false && wins[k] >= opt.stability_min * opt.bootstrap &&'
+mut M15 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "the friction factor's fade around its film limit 0.15 -> 0.2 of the limit wide" \
+    '(lambda - film_limit) / (0.15 * film_limit)' '(lambda - film_limit) / (0.2 * film_limit)'
+mut M16 mesh lib/gearloss/mechanisms/mesh_friction_mechanism.cpp "friction_factor acts at every film whatever friction_factor_film_limit" \
+    'const bool limited = film_limit < kFilmLimitNone && set_factor != 1.0;' 'const bool limited = false;'
+mut D17 diagnosis lib/gearloss/diagnosis/diagnose_joint.cpp "a refinement that has not moved is only stepped from its case value, not scanned" \
+    'if (terms[j].effect->shape->deferred && terms[j].effect->shape->at_own()) {' 'if (false) {'
+mut D18 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a finding's refinement is not tried beside the laws outside the four leaders" \
+    'for (size_t r = 0, added = 0; refinable && r < order.size() && added < 6; ++r) {' 'for (size_t r = 0, added = 0; false && r < order.size() && added < 6; ++r) {'
+mut D19 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a refinement moved beside a candidate is not paid for by it" \
+    'fk.extra_penalty += joint[j].effect->shape_penalty() - terms[j].effect->shape_penalty();' 'fk.extra_penalty += 0.0;'
 mut D13 diagnosis lib/gearloss/diagnosis/diagnose_verdict.cpp "two forms of one mechanism sharing the resamples leave it tentative" \
     'const bool stable = main.stability >= opt.stability_min || form_open;' 'const bool stable = main.stability >= opt.stability_min;'
 mut G9 gearbox lib/gearloss/gearbox/gearbox.cpp "a pilot bearing's reaction not carried to its outer shaft" \

@@ -48,6 +48,15 @@ InputError load_error(const std::string& text) {
     FAIL("no error");
     return InputError("", 0, 0, "", "");
 }
+// The case written as `text` solved at a fixed oil temperature, 300 N m, with the loss detail.
+std::pair<solver::PointResult, solver::Model> solve_fixed(const std::string& text, double rpm, double T_C) {
+    test_support::TempConfig cfg(text);
+    auto c = io::load_case(cfg.path);
+    c.model.thermal.mode = solver::ThermalMode::fixed;
+    c.model.thermal.oil_temperature = T_C + 273.15;
+    const auto r = solver::solve_point(c.model, rpm * kRpm, 300, true);
+    return {r, c.model};
+}
 }  // namespace
 
 TEST_CASE("mechanisms: the registry creates each mechanism by its name, once", "[mechanisms]") {
@@ -348,21 +357,13 @@ TEST_CASE("mechanisms: mesh friction that follows the film rises by k (1 - Lambd
     // (mixed_friction_onset): k (1 - Lambda/3)^2 below 3; hand check at Lambda = 1.2:
     // (1 - 0.4)^2 = 0.36, x 1.18.
     const std::string base = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
-    auto solve = [&](const std::string& text, double rpm, double T_C) {
-        test_support::TempConfig cfg(text);
-        auto c = io::load_case(cfg.path);
-        c.model.thermal.mode = solver::ThermalMode::fixed;
-        c.model.thermal.oil_temperature = T_C + 273.15;
-        const auto r = solver::solve_point(c.model, rpm * kRpm, 300, true);
-        return std::make_pair(r, c.model);
-    };
     // The Lambda of every loaded mesh at the points, each checked against (1 + 0.5 xi(Lambda)).
     auto check_rise = [&](const std::string& calibration, double onset) {
         std::vector<double> lambdas;
         for (const auto& [rpm, T] :
              {std::pair{300.0, 110.0}, {1500.0, 60.0}, {4000.0, 20.0}, {4000.0, 35.0}, {3000.0, 30.0}, {2000.0, 25.0}}) {
-            const auto [r0, m0] = solve(base, rpm, T);
-            const auto [r1, m1] = solve(base + "calibration:\n  mesh: " + calibration + "\n", rpm, T);
+            const auto [r0, m0] = solve_fixed(base, rpm, T);
+            const auto [r1, m1] = solve_fixed(base + "calibration:\n  mesh: " + calibration + "\n", rpm, T);
             const auto& d0 = r0.losses.detail_of(m0, "mesh");
             const auto& d1 = r1.losses.detail_of(m1, "mesh");
             for (size_t i = 0; i < m0.gearbox.meshes.size(); ++i) {
@@ -395,25 +396,53 @@ TEST_CASE("mechanisms: mesh friction that follows the film rises by k (1 - Lambd
                Catch::Contains("must be in [0.5, 10]"));
 }
 
+TEST_CASE("mechanisms: a friction factor confined to thin films fades out around its film limit", "[mechanisms]") {
+    // friction_factor f with friction_factor_film_limit L: mu x (1 + (f - 1) / (1 + exp((Lambda - L)
+    // / (0.15 L)))) instead of mu x f. Hand check with f = 1.3, L = 1: at Lambda = L the loss is
+    // (1 + 0.15) / 1.3 = 0.88462 of the uniform factor's; at Lambda = 1.3 L, exp(2) = 7.389 and
+    // 1 + 0.3 / 8.389 = 1.03576; at Lambda = 0.7 L, 1 + 0.3 / (1 + exp(-2)) = 1.26424. The limit's
+    // nominal (1000) leaves the uniform factor; the film itself is unchanged.
+    const std::string base = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
+    int thin = 0, thick = 0;
+    for (const auto& [rpm, T] : {std::pair{300.0, 110.0}, {1500.0, 60.0}, {4000.0, 20.0}, {2000.0, 40.0}}) {
+        const auto [r0, m0] = solve_fixed(base + "calibration:\n  mesh: {friction_factor: 1.3}\n", rpm, T);
+        const auto [r1, m1] = solve_fixed(base + "calibration:\n  mesh: {friction_factor: 1.3, friction_factor_film_limit: 1}\n",
+                                    rpm, T);
+        const auto [r2, m2] =
+            solve_fixed(base + "calibration:\n  mesh: {friction_factor: 1.3, friction_factor_film_limit: 1000}\n", rpm, T);
+        const auto& d0 = r0.losses.detail_of(m0, "mesh");
+        const auto& d1 = r1.losses.detail_of(m1, "mesh");
+        CHECK(r2.losses.total() == Approx(r0.losses.total()).epsilon(1e-12));
+        for (size_t i = 0; i < m0.gearbox.meshes.size(); ++i) {
+            const double P0 = d0.at(i, 0), P1 = d1.at(i, 0), lambda = d0.at(i, 2);
+            if (!(P0 > 0)) continue;
+            INFO(rpm << " rpm, " << T << " degC, mesh " << i << ", Lambda " << lambda);
+            CHECK(d1.at(i, 2) == Approx(lambda).epsilon(1e-12));
+            const double share = 1 + 0.3 / (1 + std::exp((lambda - 1.0) / 0.15));
+            CHECK(P1 == Approx(P0 * share / 1.3).epsilon(1e-12));
+            (lambda < 1 ? thin : thick) += 1;
+        }
+    }
+    CHECK(thin > 0);  // both sides of the limit were visited
+    CHECK(thick > 0);
+    // The hand values of the fade (the formula above at three films).
+    for (const auto& [x, want] : {std::pair{1.0, 1.15}, {1.3, 1.03576}, {0.7, 1.26424}})
+        CHECK(1 + 0.3 / (1 + std::exp((x - 1.0) / 0.15)) == Approx(want).epsilon(1e-5));
+    CHECK_THAT(load_error(base + "calibration:\n  mesh: {friction_factor_film_limit: 0.01}\n").message,
+               Catch::Contains("must be in [0.1, 1000]"));
+}
+
 TEST_CASE("mechanisms: the added bearing drag with another power of nu n, anchored at nu n = 2000", "[mechanisms]") {
     // Palmgren (1959): M0 = 1e-7 f0 (nu n)^(2/3) d_m^3 [N mm] (nu in cSt, n in rpm, d_m in mm);
     // with drag_exponent b: M0 = 1e-7 f0 2000^(2/3) (nu n/2000)^b d_m^3, the same at nu n = 2000.
     // Each bearing's added power M0 omega (x planets) is computed here from its d_m, its speed and
     // the oil's nu at 60 degC, and compared with the mechanism's detail with and without the drag.
     const std::string base = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
-    auto solve = [&](const std::string& text) {
-        test_support::TempConfig cfg(text);
-        auto c = io::load_case(cfg.path);
-        c.model.thermal.mode = solver::ThermalMode::fixed;
-        c.model.thermal.oil_temperature = 60 + 273.15;
-        const auto r = solver::solve_point(c.model, 1500 * kRpm, 300, true);
-        return std::make_pair(r, c.model);
-    };
-    const auto [r0, m0] = solve(base);
+    const auto [r0, m0] = solve_fixed(base, 1500, 60);
     const double nu = m0.oil_state(60 + 273.15).nu_cSt;
     for (const double b : {2.0 / 3.0, 0.45, 0.85}) {
         const auto [r1, m1] =
-            solve(base + fmt::format("calibration:\n  bearings: {{drag_f0: 2, drag_exponent: {}}}\n", b));
+            solve_fixed(base + fmt::format("calibration:\n  bearings: {{drag_f0: 2, drag_exponent: {}}}\n", b), 1500, 60);
         const auto& d0 = r0.losses.detail_of(m0, "bearings");
         const auto& d1 = r1.losses.detail_of(m1, "bearings");
         for (size_t i = 0; i < m0.gearbox.bearings.size(); ++i) {

@@ -147,10 +147,16 @@ void profile_shapes(const Engine& E, std::vector<Effect>& lib, const Hypothesis&
         auto variants = std::make_shared<std::vector<Effect>>();
         for (double v : e.shape->grid) variants->push_back(with_shape(e, v));
         for (auto& x : *variants) x.shape->variants = variants.get();
-        // The case's own value first: it is kept unless another fits better.
+        // The case's own value first: it is kept unless another fits better (a deferred shape
+        // keeps it until the effect is named).
         const auto& grid = e.shape->grid;
         const size_t own = static_cast<size_t>(std::find(grid.begin(), grid.end(), e.shape->own) - grid.begin());
         size_t chosen = own;
+        if (e.shape->deferred) {
+            e = (*variants)[own];
+            e.shape->variants_owner = std::move(variants);
+            continue;
+        }
         double best = kFailedNll;
         for (size_t n = 0; n < grid.size(); ++n) {
             const size_t k = n == 0 ? own : n <= own ? n - 1 : n;  // own, then the others in order

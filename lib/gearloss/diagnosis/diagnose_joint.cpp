@@ -4,7 +4,8 @@
 // whole one-parameter fit per parameter per sweep. Gauss-Newton on the profiled likelihood
 // (Levenberg 1944, Marquardt 1963 damping) moves them together: each step needs one model
 // evaluation per parameter for the Jacobian (finite differences, evaluated in parallel) and
-// one for the trial.
+// one for the trial. Then refit_jointly: that refit with the findings' shapes moved along
+// their grids (a profiled shape stepwise, a refinement scanned over its whole grid).
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -150,6 +151,138 @@ double joint_gauss_newton(const Engine& E, const Hypothesis& neutral, std::vecto
     }
     for (size_t q = 0; q < k; ++q) terms[J[q]].value = value(q, u(q));
     return f;
+}
+
+// Two or more continuous parameters: Gauss-Newton over all of them at once (above).
+// Otherwise coordinate descent: each refitted with the others held (forms, flagged points),
+// until the likelihood stops improving (a few sweeps; every step a one-parameter fit near
+// the value it had).
+// The flagged points of an unstabilised-test term are chosen again only when `refit_flags`
+// (after an addition); trial fits keep them, so that no trial gains flags it does not pay for.
+// kFailedNll when the combination cannot be evaluated (a trial is then rejected, not fatal).
+namespace {
+// refit_jointly with each term's shape setting held.
+double refit_shapes_held(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
+                         const DiagnoseOptions& opt, bool refit_flags, int skip) {
+    size_t continuous = 0;
+    bool pointwise = false;
+    for (size_t j = 0; j < terms.size(); ++j) {
+        if (static_cast<int>(j) == skip) continue;
+        pointwise |= terms[j].effect->kind == EffectKind::pointwise;
+        continuous += terms[j].effect->kind != EffectKind::pointwise && !terms[j].effect->discrete();
+    }
+    if (continuous >= 2) {
+        const double f = joint_gauss_newton(E, neutral, terms, flags, skip);
+        if (f >= kFailedNll || !pointwise || !refit_flags) return f;
+        // The flagged points chosen again on top of the refitted laws, then the laws once more.
+        Hypothesis clean = with_terms(neutral, terms, flags, skip);
+        clean.unstabilised.clear();
+        const Fit fl = E.fit_unstabilised(clean, E.all(), opt.loss_uncertainty);
+        if (fl.failed.empty()) flags = fl.h.unstabilised;
+        return joint_gauss_newton(E, neutral, terms, flags, skip);
+    }
+    double last = kFailedNll;
+    for (int sweep = 0; sweep < 4; ++sweep) {
+        for (size_t j = 0; j < terms.size(); ++j) {
+            if (static_cast<int>(j) == skip) continue;
+            const Hypothesis h = with_terms(neutral, terms, flags, skip);
+            if (terms[j].effect->kind == EffectKind::pointwise) {
+                if (!refit_flags) continue;
+                Hypothesis clean = h;
+                clean.unstabilised.clear();
+                const Fit f = E.fit_unstabilised(clean, E.all(), opt.loss_uncertainty);
+                if (f.failed.empty()) flags = f.h.unstabilised;
+                continue;
+            }
+            const Fit f = E.refit(*terms[j].effect, h, terms[j].value);
+            if (f.failed.empty()) terms[j].value = f.value;
+        }
+        const Hypothesis h = with_terms(neutral, terms, flags, skip);
+        const double now = E.nll(h, E.all(), 0);
+        if (now >= kFailedNll) return kFailedNll;
+        if (terms.size() - (skip >= 0) <= 1 || last - now < 0.01) return now;
+        last = now;
+    }
+    return last;
+}
+}  // namespace
+
+double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
+                     const DiagnoseOptions& opt, bool refit_flags, int skip, bool hold_deferred) {
+    double best = refit_shapes_held(E, neutral, terms, flags, opt, refit_flags, skip);
+    // A profiled shape (where mixed friction sets in) was chosen for its effect alone; with
+    // others beside it, it moves too (an onset chosen alone absorbs part of a bearing drag that
+    // its partner then cannot win): from its value, a step along its grid while the joint
+    // likelihood improves, towards the better neighbour. A deferred shape (a refinement of a
+    // named effect) moves also when its effect stands alone, and is held while a candidate is
+    // judged beside the findings (`hold_deferred`: the candidate would be credited with its move).
+    auto movable = [&](const Term& t) {
+        return t.effect->shape && t.effect->shape->variants && !(hold_deferred && t.effect->shape->deferred);
+    };
+    const bool refinement = !hold_deferred && std::any_of(terms.begin(), terms.end(), [&](const Term& t) {
+        return movable(t) && t.effect->shape->deferred && (skip < 0 || &t != &terms[static_cast<size_t>(skip)]);
+    });
+    if (terms.size() - (skip >= 0 && skip < static_cast<int>(terms.size())) < 2 && !refinement) return best;
+    // Two shapes move in turn until neither does (a few passes: each step is a joint refit).
+    const auto shaped = std::count_if(terms.begin(), terms.end(), movable);
+    for (int pass = 0, moved = 1; pass < (shaped >= 2 ? 3 : 1) && moved; ++pass) {
+        moved = 0;
+        for (size_t j = 0; j < terms.size(); ++j) {
+            if (static_cast<int>(j) == skip) continue;
+            if (!movable(terms[j])) continue;
+            const std::vector<Effect>& variants = *terms[j].effect->shape->variants;
+            auto at = static_cast<long>(std::find_if(variants.begin(), variants.end(), [&](const Effect& v) {
+                                            return v.shape->chosen == terms[j].effect->shape->chosen;
+                                        }) - variants.begin());
+            if (terms[j].effect->shape->deferred && terms[j].effect->shape->at_own()) {
+                // A refinement that has not moved is first scanned over every other value of its
+                // grid: its case value (the factor acting at every film) may lie at the end of a
+                // flat stretch the steps would not leave. The steps below then refine the best.
+                std::vector<Term> best_terms;
+                std::vector<char> best_flags;
+                double best_penalised = best;
+                long best_k = at;
+                for (size_t k = 0; k < variants.size(); k += 2) {
+                    if (static_cast<long>(k) == at) continue;
+                    std::vector<Term> t = terms;
+                    t[j].effect = &variants[k];
+                    std::vector<char> fl = flags;
+                    const double nll = refit_shapes_held(E, neutral, t, fl, opt, refit_flags, skip);
+                    const double prior = 0.5 * (t[j].effect->shape->bic_penalty() - terms[j].effect->shape->bic_penalty());
+                    if (nll + prior < best_penalised - 1e-6) {
+                        best_penalised = nll + prior;
+                        best_terms = std::move(t);
+                        best_flags = std::move(fl);
+                        best_k = static_cast<long>(k);
+                    }
+                }
+                if (best_terms.empty()) continue;
+                best = best_penalised - 0.5 * (best_terms[j].effect->shape->bic_penalty() -
+                                               terms[j].effect->shape->bic_penalty());
+                terms = std::move(best_terms);
+                flags = std::move(best_flags);
+                at = best_k;
+                moved = 1;
+            }
+            for (int dir : {-1, +1}) {
+                for (long k = at + dir; k >= 0 && k < static_cast<long>(variants.size()); k += dir) {
+                    std::vector<Term> t = terms;
+                    t[j].effect = &variants[static_cast<size_t>(k)];
+                    std::vector<char> fl = flags;
+                    const double nll = refit_shapes_held(E, neutral, t, fl, opt, refit_flags, skip);
+                    // Leaving or reaching the case's own value changes what the shape costs.
+                    const double prior = 0.5 * (t[j].effect->shape->bic_penalty() - terms[j].effect->shape->bic_penalty());
+                    if (!(nll + prior < best - 1e-6)) break;
+                    best = nll;
+                    terms = std::move(t);
+                    flags = std::move(fl);
+                    at = k;
+                    moved = 1;
+                }
+            }
+        }
+    }
+    return best;
 }
 
 }  // namespace gearloss::diagnosis::detail

@@ -181,7 +181,7 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
     const auto refit = [&](const PairFit& p, std::vector<Term>& t) {
         t = {{&lib[p.a], p.xa}, {&lib[p.b], p.xb}};
         std::vector<char> none;
-        return refit_jointly(E, neutral, t, none, opt, false);
+        return refit_jointly(E, neutral, t, none, opt, false, -1, true);
     };
     std::vector<Term> pair_terms;
     const double nll_pair = refit(best, pair_terms);

@@ -38,102 +38,6 @@ bool taken(const std::vector<Term>& terms, const Effect& e, int skip) {
     return false;
 }
 
-// Two or more continuous parameters: Gauss-Newton over all of them at once (diagnose_joint.cpp).
-// Otherwise coordinate descent: each refitted with the others held (forms, flagged points),
-// until the likelihood stops improving (a few sweeps; every step a one-parameter fit near
-// the value it had).
-// The flagged points of an unstabilised-test term are chosen again only when `refit_flags`
-// (after an addition); trial fits keep them, so that no trial gains flags it does not pay for.
-// kFailedNll when the combination cannot be evaluated (a trial is then rejected, not fatal).
-namespace {
-// refit_jointly with each term's shape setting held.
-double refit_shapes_held(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
-                         const DiagnoseOptions& opt, bool refit_flags, int skip) {
-    size_t continuous = 0;
-    bool pointwise = false;
-    for (size_t j = 0; j < terms.size(); ++j) {
-        if (static_cast<int>(j) == skip) continue;
-        pointwise |= terms[j].effect->kind == EffectKind::pointwise;
-        continuous += terms[j].effect->kind != EffectKind::pointwise && !terms[j].effect->discrete();
-    }
-    if (continuous >= 2) {
-        const double f = joint_gauss_newton(E, neutral, terms, flags, skip);
-        if (f >= kFailedNll || !pointwise || !refit_flags) return f;
-        // The flagged points chosen again on top of the refitted laws, then the laws once more.
-        Hypothesis clean = with_terms(neutral, terms, flags, skip);
-        clean.unstabilised.clear();
-        const Fit fl = E.fit_unstabilised(clean, E.all(), opt.loss_uncertainty);
-        if (fl.failed.empty()) flags = fl.h.unstabilised;
-        return joint_gauss_newton(E, neutral, terms, flags, skip);
-    }
-    double last = kFailedNll;
-    for (int sweep = 0; sweep < 4; ++sweep) {
-        for (size_t j = 0; j < terms.size(); ++j) {
-            if (static_cast<int>(j) == skip) continue;
-            const Hypothesis h = with_terms(neutral, terms, flags, skip);
-            if (terms[j].effect->kind == EffectKind::pointwise) {
-                if (!refit_flags) continue;
-                Hypothesis clean = h;
-                clean.unstabilised.clear();
-                const Fit f = E.fit_unstabilised(clean, E.all(), opt.loss_uncertainty);
-                if (f.failed.empty()) flags = f.h.unstabilised;
-                continue;
-            }
-            const Fit f = E.refit(*terms[j].effect, h, terms[j].value);
-            if (f.failed.empty()) terms[j].value = f.value;
-        }
-        const Hypothesis h = with_terms(neutral, terms, flags, skip);
-        const double now = E.nll(h, E.all(), 0);
-        if (now >= kFailedNll) return kFailedNll;
-        if (terms.size() - (skip >= 0) <= 1 || last - now < 0.01) return now;
-        last = now;
-    }
-    return last;
-}
-}  // namespace
-
-double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
-                     const DiagnoseOptions& opt, bool refit_flags, int skip) {
-    double best = refit_shapes_held(E, neutral, terms, flags, opt, refit_flags, skip);
-    // A profiled shape (where mixed friction sets in) was chosen for its effect alone; with
-    // others beside it, it moves too (an onset chosen alone absorbs part of a bearing drag that
-    // its partner then cannot win): from its value, a step along its grid while the joint
-    // likelihood improves, towards the better neighbour.
-    if (terms.size() - (skip >= 0 && skip < static_cast<int>(terms.size())) < 2) return best;
-    // Two shapes move in turn until neither does (a few passes: each step is a joint refit).
-    const auto shaped = std::count_if(terms.begin(), terms.end(), [](const Term& t) {
-        return t.effect->shape && t.effect->shape->variants;
-    });
-    for (int pass = 0, moved = 1; pass < (shaped >= 2 ? 3 : 1) && moved; ++pass) {
-        moved = 0;
-        for (size_t j = 0; j < terms.size(); ++j) {
-            if (static_cast<int>(j) == skip) continue;
-            if (!terms[j].effect->shape || !terms[j].effect->shape->variants) continue;
-            const std::vector<Effect>& variants = *terms[j].effect->shape->variants;
-            auto at = static_cast<long>(std::find_if(variants.begin(), variants.end(), [&](const Effect& v) {
-                                            return v.shape->chosen == terms[j].effect->shape->chosen;
-                                        }) - variants.begin());
-            for (int dir : {-1, +1}) {
-                for (long k = at + dir; k >= 0 && k < static_cast<long>(variants.size()); k += dir) {
-                    std::vector<Term> t = terms;
-                    t[j].effect = &variants[static_cast<size_t>(k)];
-                    std::vector<char> fl = flags;
-                    const double nll = refit_shapes_held(E, neutral, t, fl, opt, refit_flags, skip);
-                    // Leaving or reaching the case's own value changes what the shape costs.
-                    const double prior = 0.5 * (t[j].effect->shape->bic_penalty() - terms[j].effect->shape->bic_penalty());
-                    if (!(nll + prior < best - 1e-6)) break;
-                    best = nll;
-                    terms = std::move(t);
-                    flags = std::move(fl);
-                    at = k;
-                    moved = 1;
-                }
-            }
-        }
-    }
-    return best;
-}
-
 void record_fit(Finding& f, const Engine& E, const Pred& pb, const Hypothesis& without, const Hypothesis& h,
                 const CvResult& cv_without, const CvResult& cv_with) {
     const ChannelStats sb = channel_rmse(E, pb, without);
@@ -204,7 +108,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
             std::vector<Term> swapped = terms;
             swapped[j] = {&*it, c.value};
             std::vector<char> fl = flags;
-            const double nll = refit_jointly(E, neutral, swapped, fl, opt, false);
+            const double nll = refit_jointly(E, neutral, swapped, fl, opt, false, -1, true);
             // The candidate as the refit left its shape.
             const double bic = 2.0 * nll + penalty(*swapped[j].effect) - penalty(*terms[j].effect);
             if (bic < best_bic) {
@@ -336,13 +240,28 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
             // The leaders here, and in the second round the first leader's best partners on the
             // pair screening: an effect the first one partly cancels shows little on top of it.
             std::vector<size_t> joint_candidates(order.begin(), order.begin() + std::min<size_t>(order.size(), 4));
+            // A finding with a refinement (a friction factor that may act on thin films only) is
+            // refined beside each law of the library: the partner its refined form leaves room
+            // for shows little on top of its first form.
+            const bool refinable = std::any_of(terms.begin(), terms.end(), [](const Term& t) {
+                return t.effect->shape && t.effect->shape->deferred && t.effect->shape->variants;
+            });
+            // (The six leading laws beyond those already here: each such fit scans the refinement.)
+            for (size_t r = 0, added = 0; refinable && r < order.size() && added < 6; ++r) {
+                const size_t k = order[r];
+                if (std::find(joint_candidates.begin(), joint_candidates.end(), k) == joint_candidates.end() &&
+                    dbic[k] > -opt.bic_threshold && !lib[k].discrete() && lib[k].kind != EffectKind::pointwise &&
+                    !taken(terms, lib[k]))
+                    joint_candidates.push_back(k), ++added;
+            }
             if (round == 1)
                 for (size_t k : lead_partners)
                     if (std::find(joint_candidates.begin(), joint_candidates.end(), k) == joint_candidates.end() &&
                         !taken(terms, lib[k]))
                         joint_candidates.push_back(k);
             for (size_t k : joint_candidates) {
-                if ((dbic[k] <= 0 && round != 1) || dbic[k] <= kRejectedBic || lib[k].kind == EffectKind::pointwise)
+                if ((dbic[k] <= 0 && round != 1 && !refinable) || dbic[k] <= kRejectedBic ||
+                    lib[k].kind == EffectKind::pointwise)
                     continue;
                 report(fmt::format("diagnose: finding {}: {} fitted jointly with {} accepted", round + 1, lib[k].id,
                                    terms.size()));
@@ -355,6 +274,10 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 // With the shape the joint refit gave it (it moves with the others).
                 Fit fk = E.fit(*joint.back().effect, others, &rk);
                 if (!fk.failed.empty()) continue;
+                // A refinement of a finding moved beside the candidate is paid by the candidate.
+                for (size_t j = 0; j + 1 < joint.size(); ++j)
+                    if (joint[j].effect->shape && joint[j].effect->shape->deferred)
+                        fk.extra_penalty += joint[j].effect->shape_penalty() - terms[j].effect->shape_penalty();
                 const double dk = delta_bic(nll_base, fk, N);
                 if (dk > dbic[k]) {
                     dbic[k] = dk;
@@ -417,7 +340,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                     // The effect whose response this is (its shape as the joint refit left it).
                     const Effect& ek = refitted[k].empty() ? lib[k] : *refitted[k].back().effect;
                     f.k = ek.bic_parameters();
-                    f.extra_penalty = ek.shape_penalty();
+                    f.extra_penalty = refitted[k].empty() ? ek.shape_penalty() : fits[k].extra_penalty;
                     f.nll = resp[k].minimise(idx).second;
                 }
                 if (!f.failed.empty()) continue;
@@ -566,7 +489,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 f.parameter.value = terms[j].value;
                 const Fit g = E.fit(*terms[j].effect, with_terms(neutral, terms, flags));
                 f.parameter.uncertainty = g.failed.empty() ? g.uncertainty : std::nan("");
-                if (const auto& sh = terms[j].effect->shape; sh && std::isfinite(sh->chosen))
+                if (const auto& sh = terms[j].effect->shape; sh && std::isfinite(sh->chosen) && sh->fitted())
                     f.shape = ShapeEstimate{sh->parameter, sh->chosen, sh->grid};
             } else if (terms[j].effect->id == f.effect) {
                 f.rows.clear();

@@ -34,7 +34,7 @@ bool taken(const std::vector<Term>& terms, const Effect& e, int skip = -1);
 // evaluated): Gauss-Newton for two or more continuous parameters, else coordinate descent;
 // the flagged points are chosen again only when `refit_flags`.
 double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
-                     const DiagnoseOptions& opt, bool refit_flags, int skip = -1);
+                     const DiagnoseOptions& opt, bool refit_flags, int skip = -1, bool hold_deferred = false);
 // Gauss-Newton with Levenberg-Marquardt damping over the terms' continuous parameters at once
 // (forms and flagged points held), within their ranges; the likelihood reached, kFailedNll
 // when the start cannot be evaluated (diagnose_joint.cpp).

@@ -134,6 +134,7 @@ std::vector<Effect> candidate_effects(const solver::Model& m) {
                                [mname = std::string(mech.name()), pname = p.name](Hypothesis& h, double x) {
                                    h.set(mname, pname, x);
                                });
+                    e.shape->deferred = p.profile_deferred;
                 }
         }
     }

@@ -102,10 +102,20 @@ struct ShapeProfile {
     // prior weight on the case's own value, the other half shared by the other grid values, so
     // that keeping the case's value costs 2 ln 2 and moving costs 2 ln(2 (G - 1)) (about a
     // parameter's ln N when G = 5 and N = 50); a choice that is not made yet costs the move.
+    // A refinement (deferred): not profiled when the effect is screened, moved only once it is
+    // named, with the findings' joint refits; until it moves it is no parameter and costs
+    // nothing, a move costs what a move from the case's value costs a profiled shape,
+    // 2 ln(G - 1). (A friction factor confined to thin films would otherwise stand in for
+    // mixed friction, a viscosity error or a drag before either is tried.)
+    bool deferred = false;
+    bool at_own() const { return !std::isfinite(chosen) || chosen == own; }
     double bic_penalty() const {
         const double others = static_cast<double>(std::max<size_t>(grid.size(), 2) - 1);
+        if (deferred) return at_own() ? 0.0 : 2.0 * std::log(others);
         return chosen == own ? 2.0 * std::log(2.0) : 2.0 * std::log(2.0 * others);
     }
+    // Whether the shape is a parameter fitted with the effect (a deferred one once it moved).
+    bool fitted() const { return !deferred || !at_own(); }
 };
 
 struct Effect {
@@ -135,7 +145,7 @@ struct Effect {
     bool discrete() const { return kind == EffectKind::form; }
     // Its fitted parameters (the degrees of freedom the adequacy tests take off): a form none,
     // a profiled shape one more.
-    int fitted_parameters() const { return discrete() ? 0 : shape ? 2 : 1; }
+    int fitted_parameters() const { return discrete() ? 0 : shape && shape->fitted() ? 2 : 1; }
     // Its parameters whose cost is ln N each in the BIC: a form none, a law one (its shape is
     // paid for by shape->bic_penalty(), by its prior over the grid).
     int bic_parameters() const { return discrete() ? 0 : 1; }

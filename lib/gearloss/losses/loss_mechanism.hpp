@@ -107,6 +107,9 @@ struct Parameter {
     // one more fitted parameter of it.
     std::string profiled_with = {};
     std::vector<double> profile_grid = {};
+    // A refinement: not profiled when that effect is screened, moved over the grid only once it
+    // is named (diagnosis: ShapeProfile::deferred).
+    bool profile_deferred = false;
 };
 
 // A choice between published forms of the same physics ("friction": schlenk, iso_6336_20, ...).

@@ -17,6 +17,7 @@ namespace gearloss::mesh {
 namespace {
 
 constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
+constexpr double kFilmLimitNone = 1000.0;  // friction_factor_film_limit: the factor acts at every film
 
 struct NamedForm {
     const char* name;
@@ -55,7 +56,7 @@ int value_of(const NamedForm (&t)[N], std::string_view axis, std::string_view na
 
 class MeshFriction final : public losses::LossMechanism {
 public:
-    enum : size_t { kFrictionFactor, kMuBl, kMuEhl, kMixedRise, kMixedOnset };
+    enum : size_t { kFrictionFactor, kMuBl, kMuEhl, kMixedRise, kMixedOnset, kFactorFilmLimit };
     std::unique_ptr<LossMechanism> clone() const override { return std::make_unique<MeshFriction>(*this); }
     std::string_view name() const override { return "mesh"; }
     std::string_view label() const override { return "mesh"; }
@@ -89,7 +90,17 @@ public:
                 // 3 to 4 on some surfaces (Johnson, Greenwood & Poon 1972) and little above 1 on
                 // run-in ones; the diagnosis fits it with the rise (a log grid from 1 to 5.6).
                 {"mixed_friction_onset", "film parameter Lambda below which mixed_friction_rise acts", nullptr, "3",
-                 2.0, 0.5, 10.0, true, "", "", false, "", "mesh_friction_mixed", {1.0, 1.4, 2.0, 2.8, 4.0, 5.6}}};
+                 2.0, 0.5, 10.0, true, "", "", false, "", "mesh_friction_mixed", {1.0, 1.4, 2.0, 2.8, 4.0, 5.6}},
+                // Where friction_factor acts: everywhere (the nominal kFilmLimitNone), or only where
+                // the film is thin, fading out over 15 % of the limit around it. Schlenk's (1994)
+                // mu_mZ carries the lubricant in one factor X_L at every film; a lubricant whose
+                // friction differs through its boundary chemistry (additives, surface layers)
+                // differs only where asperities touch, not in a full film, whose friction is the
+                // oil's rheology. The diagnosis moves it once mesh_friction is named (a refinement).
+                {"friction_factor_film_limit", "film parameter Lambda above which friction_factor fades out "
+                 "(1000: none)", nullptr, "1.5", kFilmLimitNone, 0.1, kFilmLimitNone, true, "", "", false, "",
+                 "mesh_friction", {0.25, 0.3, 0.35, 0.42, 0.5, 0.6, 0.7, 0.84, 1.0, 1.19, 1.41, 1.68, 2.0, 2.38, 2.83, 3.36, 4.0},
+                 /*profile_deferred=*/true}};
     }
     // The pair is a property of the lubricant (Fernandes et al. 2015 measure it per oil):
     // an oil's `gear_friction` gives it where the case does not.
@@ -269,21 +280,31 @@ double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint&
     const auto& opt = forms_;
     const auto& s = e.oil;
     const auto& meshes = static_cast<const MeshFrictionPoint&>(pt).meshes;
-    const double factor = param(kFrictionFactor);
+    const double set_factor = param(kFrictionFactor);
+    const double film_limit = param(kFactorFilmLimit);
+    const bool limited = film_limit < kFilmLimitNone && set_factor != 1.0;
     const double mixed_rise = param(kMixedRise);
     const double mixed_onset = param(kMixedOnset);
     const double eta_factor = std::exp(-0.05 * std::log(s.eta * 1e3));  // eta [mPa s]^-0.05
-    const bool need_film = d || e.want_film || opt.friction == FrictionModel::fernandes_mixed || mixed_rise != 0.0;
+    const bool need_film =
+        d || e.want_film || opt.friction == FrictionModel::fernandes_mixed || mixed_rise != 0.0 || limited;
     if (d) d->reset(meshes.size(), kMeshQuantities);
     double total = 0.0;
     for (size_t i = 0; i < meshes.size(); ++i) {
         const auto& ms = meshes[i];
         if (ms.power == 0.0) continue;
-        double mu = ms.mu_prefactor * eta_factor * factor;
+        double factor = set_factor;
         double mixed = 1.0;  // the film's own rise of friction (mixed_friction_rise)
+        double lambda = kNoValue;
+        std::optional<Film> f;
         if (need_film) {
-            const Film f = line_contact_film(ms.contact, s.eta, s.alpha_p, s.beta_T, s.k, opt.film_correction);
-            const double lambda = f.h_c / ms.sigma;
+            f = line_contact_film(ms.contact, s.eta, s.alpha_p, s.beta_T, s.k, opt.film_correction);
+            lambda = f->h_c / ms.sigma;
+            // The factor's departure where the film is thin only: a logistic fade around the limit.
+            if (limited) factor = 1.0 + (set_factor - 1.0) / (1.0 + std::exp((lambda - film_limit) / (0.15 * film_limit)));
+        }
+        double mu = ms.mu_prefactor * eta_factor * factor;
+        if (need_film) {
             if (opt.friction == FrictionModel::fernandes_mixed) {
                 const double xi = boundary_share_doleschel(lambda);
                 mu = (xi * mixed_mu_bl(m) + (1.0 - xi) * mixed_mu_ehl(m)) * factor;
@@ -293,8 +314,8 @@ double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint&
             e.add_lambda(lambda);
             if (d) {
                 d->at(i, kMeshLambda) = lambda;
-                d->at(i, kMeshHmin) = f.h_min;
-                d->at(i, kMeshHc) = f.h_c;
+                d->at(i, kMeshHmin) = f->h_min;
+                d->at(i, kMeshHc) = f->h_c;
             }
         }
         double loss = ms.power * mu * ms.H_V;
