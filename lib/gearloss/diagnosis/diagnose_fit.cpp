@@ -152,13 +152,8 @@ void profile_shapes(const Engine& E, std::vector<Effect>& lib, const Hypothesis&
         const auto& grid = e.shape->grid;
         const size_t own = static_cast<size_t>(std::find(grid.begin(), grid.end(), e.shape->own) - grid.begin());
         size_t chosen = own;
-        if (e.shape->deferred) {
-            e = (*variants)[own];
-            e.shape->variants_owner = std::move(variants);
-            continue;
-        }
         double best = kFailedNll;
-        for (size_t n = 0; n < grid.size(); ++n) {
+        for (size_t n = 0; n < (e.shape->deferred ? 0 : grid.size()); ++n) {
             const size_t k = n == 0 ? own : n <= own ? n - 1 : n;  // own, then the others in order
             io::throw_if_interrupted();
             const Fit f = E.fit((*variants)[k], base, nullptr);
