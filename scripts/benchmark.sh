@@ -229,6 +229,10 @@ PY
 # < 5 s, a 10^5-row raw log < 10 s on 2 cores).
 build/app/gearloss synth configs/transfer-box.yaml --speed 400,550,700,850,1000,1150rpm --torque 100,160,220,280,340Nm \
     --effect windage=25W --seed 7 -o "$tmp/rec30.csv"
+# The same grid with a friction factor: once named, its refinement (the factor confined to thin
+# films) is scanned beside each candidate for a second finding, the costliest path of a selection.
+build/app/gearloss synth configs/transfer-box.yaml --speed 400,550,700,850,1000,1150rpm --torque 100,160,220,280,340Nm \
+    --effect mesh_friction=1.2 --seed 7 -o "$tmp/rec30mf.csv"
 build/app/gearloss synth configs/transfer-box.yaml --speed "$(python3 -c "print(','.join(str(400 + 80 * i) for i in range(20)))")rpm" \
     --torque "$(python3 -c "print(','.join(str(25 + 20 * i) for i in range(15)))")Nm" --effect windage=25W --seed 7 -o "$tmp/rec300.csv"
 build/app/gearloss synth configs/transfer-box.yaml --speed "$(python3 -c "print(','.join(str(400 + 40 * i) for i in range(40)))")rpm" \
@@ -241,7 +245,9 @@ build/app/gearloss synth configs/transfer-box.yaml --format log --speed 400,700,
 python3 - "$tmp" <<'PY'
 import statistics, subprocess, sys, time
 d = sys.argv[1]
-for name, what, runs, target in (("30", "30-point campaign", 5, 1.0), ("300", "300-point campaign", 3, None),
+for name, what, runs, target in (("30", "30-point campaign", 5, 1.0),
+                                  ("30mf", "30-point campaign, mesh friction x 1.2 (its refinement scanned)", 5, None),
+                                  ("300", "300-point campaign", 3, None),
                                   ("1000", "1000-point campaign", 3, 5.0),
                                   ("1000go", "1000-point campaign, gain + offset", 3, 5.0),
                                   ("log", "raw log of 115 200 rows", 3, 10.0)):

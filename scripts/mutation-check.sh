@@ -173,6 +173,8 @@ mut D18 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a finding's refine
     'for (size_t r = 0, added = 0; refinable && r < order.size() && added < 6; ++r) {' 'for (size_t r = 0, added = 0; false && r < order.size() && added < 6; ++r) {'
 mut D19 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a refinement moved beside a candidate is not paid for by it" \
     'fk.extra_penalty += joint[j].effect->shape_penalty() - terms[j].effect->shape_penalty();' 'fk.extra_penalty += 0.0;'
+mut D20 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "a finding dropped as no longer needed stays named in its pair partner's description" \
+    '                    forget_partner(S.findings, id, e.id);' '                    (void)id;'
 mut D13 diagnosis lib/gearloss/diagnosis/diagnose_verdict.cpp "two forms of one mechanism sharing the resamples leave it tentative" \
     'const bool stable = main.stability >= opt.stability_min || form_open;' 'const bool stable = main.stability >= opt.stability_min;'
 mut G9 gearbox lib/gearloss/gearbox/gearbox.cpp "a pilot bearing's reaction not carried to its outer shaft" \

@@ -482,6 +482,11 @@ TEST_CASE("a friction factor named first is confined to thin films when that lea
     REQUIRE(heat);
     CHECK(heat->parameter.value == Approx(0.768).epsilon(0.05));
     CHECK(find_finding(d, "torque_sensor_gain") == nullptr);
+    // Regression value, not an independent one: the heat path's delta BIC counts the move of the
+    // refinement it made room for (2 ln 17 = 5.67; 40.7 if the move were credited to it).
+    CHECK(heat->delta_bic == Approx(35.0).margin(2.0));
+    // The pair's clause of the first finding names who made the sensor gain unnecessary.
+    CHECK(d.findings[0].description.find("found together with torque_sensor_gain") == std::string::npos);
 }
 
 TEST_CASE("a uniform friction factor keeps acting at every film", "[diagnose_joint]") {

@@ -5,7 +5,7 @@
 // (Levenberg 1944, Marquardt 1963 damping) moves them together: each step needs one model
 // evaluation per parameter for the Jacobian (finite differences, evaluated in parallel) and
 // one for the trial. Then refit_jointly: that refit with the findings' shapes moved along
-// their grids (a profiled shape stepwise, a refinement scanned over its whole grid).
+// their grids (a profiled shape stepwise, a refinement scanned coarsely over its grid, then stepwise).
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -15,6 +15,11 @@
 
 namespace gearloss::diagnosis::detail {
 namespace {
+
+// A refinement's first scan visits every other grid value (on the film limit's, a factor 1.41
+// apart): the likelihood along it is peaked (a logistic step 15 % wide), and every fourth
+// value missed the peak of the planetary step + heat path campaign.
+constexpr size_t kRefinementScanStride = 2;
 
 // The weighted residuals of a prediction: loss relative to each point's scale, oil
 // temperature where it is equilibrium evidence (flagged points excluded), in one vector with
@@ -207,8 +212,32 @@ double refit_shapes_held(const Engine& E, const Hypothesis& neutral, std::vector
 }
 }  // namespace
 
+std::vector<size_t> refinement_leads(const Engine& E, const Hypothesis& neutral, const std::vector<Term>& terms,
+                                     const std::vector<char>& flags, const DiagnoseOptions& opt, size_t count) {
+    const auto j = static_cast<size_t>(std::find_if(terms.begin(), terms.end(), [](const Term& t) {
+                                           return t.effect->shape && t.effect->shape->deferred &&
+                                                  t.effect->shape->variants && t.effect->shape->at_own();
+                                       }) - terms.begin());
+    if (j == terms.size()) return {};
+    const std::vector<Effect>& variants = *terms[j].effect->shape->variants;
+    std::vector<std::pair<double, size_t>> scanned;
+    for (size_t k = 0; k < variants.size(); k += kRefinementScanStride) {
+        if (variants[k].shape->at_own()) continue;
+        std::vector<Term> t = terms;
+        t[j].effect = &variants[k];
+        std::vector<char> fl = flags;
+        const double nll = refit_shapes_held(E, neutral, t, fl, opt, false, -1);
+        if (nll < kFailedNll) scanned.emplace_back(nll, k);
+    }
+    std::sort(scanned.begin(), scanned.end());
+    std::vector<size_t> leads;
+    for (size_t r = 0; r < std::min(count, scanned.size()); ++r) leads.push_back(scanned[r].second);
+    return leads;
+}
+
 double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
-                     const DiagnoseOptions& opt, bool refit_flags, int skip, bool hold_deferred) {
+                     const DiagnoseOptions& opt, bool refit_flags, int skip, bool hold_deferred,
+                     const std::vector<size_t>* scan) {
     double best = refit_shapes_held(E, neutral, terms, flags, opt, refit_flags, skip);
     // A profiled shape (where mixed friction sets in) was chosen for its effect alone; with
     // others beside it, it moves too (an onset chosen alone absorbs part of a bearing drag that
@@ -236,14 +265,19 @@ double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Ter
                                         }) - variants.begin());
             if (terms[j].effect->shape->deferred && terms[j].effect->shape->at_own()) {
                 // A refinement that has not moved is first scanned over every other value of its
-                // grid: its case value (the factor acting at every film) may lie at the end of a
-                // flat stretch the steps would not leave. The steps below then refine the best.
+                // grid, or over the values given (`scan`: where it fits best alone): its case
+                // value (the factor acting at every film) may lie at the end of a flat stretch the
+                // steps would not leave. The steps below then refine the best.
                 std::vector<Term> best_terms;
                 std::vector<char> best_flags;
                 double best_penalised = best;
                 long best_k = at;
-                for (size_t k = 0; k < variants.size(); k += 2) {
-                    if (static_cast<long>(k) == at) continue;
+                std::vector<size_t> visit;
+                if (scan) visit = *scan;
+                else
+                    for (size_t k = 0; k < variants.size(); k += kRefinementScanStride) visit.push_back(k);
+                for (size_t k : visit) {
+                    if (static_cast<long>(k) == at || k >= variants.size()) continue;
                     std::vector<Term> t = terms;
                     t[j].effect = &variants[k];
                     std::vector<char> fl = flags;

@@ -63,6 +63,20 @@ std::string resample_shares(const std::vector<std::pair<std::string, int>>& riva
 
 namespace {
 
+// A finding named as a pair with `dropped` no longer says it was found with it: the pair's
+// clause (diagnose_pairs.cpp) names who took its place.
+void forget_partner(std::vector<Finding>& findings, const std::string& dropped, const std::string& by) {
+    const std::string clause =
+        "; found together with " + dropped + ": neither alone accounts for the mismatch, the two fitted jointly do";
+    for (auto& f : findings)
+        if (const auto at = f.description.find(clause); at != std::string::npos)
+            f.description.replace(at, clause.size(),
+                                  "; found first as a pair with " + dropped + ", which " + by + " made unnecessary");
+}
+
+// How many of a refinement's values, the best alone, are scanned beside each candidate.
+constexpr size_t kRefinementLeads = 3;
+
 int parameters_of(const std::vector<Term>& terms, const std::vector<char>& flags) {
     int k = 0;
     for (const auto& t : terms)
@@ -160,6 +174,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
             f.equivalent.clear();
             f.separating_measurement.clear();
         }
+        forget_partner(S.findings, old, best->id);
         S.warnings.push_back(
             fmt::format("{} replaced {} in the joint fit (log-likelihood better by {:.1f})", best->id, old, gain));
     }
@@ -180,6 +195,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
         if (opt.progress) opt.progress(what);
     };
     std::vector<size_t> lead_partners;  // the first round's leader's best partners (select_pair)
+    bool refinement_tried = false;      // a finding's refinement was scanned beside the candidates
     // The first round's responses and delta BIC of the model forms: a form far worse than the
     // case's there is screened in later rounds on an additive surrogate (what it changed at
     // each point added to the round's base prediction) instead of a model evaluation, which
@@ -242,10 +258,17 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
             std::vector<size_t> joint_candidates(order.begin(), order.begin() + std::min<size_t>(order.size(), 4));
             // A finding with a refinement (a friction factor that may act on thin films only) is
             // refined beside each law of the library: the partner its refined form leaves room
-            // for shows little on top of its first form.
-            const bool refinable = std::any_of(terms.begin(), terms.end(), [](const Term& t) {
+            // for shows little on top of its first form. In the first round after it is named
+            // only: later rounds hold the refinement beside a candidate (each scan is a series of
+            // joint refits; on the spur box the refinement named second tripled the time).
+            const bool refinable = !refinement_tried && std::any_of(terms.begin(), terms.end(), [](const Term& t) {
                 return t.effect->shape && t.effect->shape->deferred && t.effect->shape->variants;
             });
+            refinement_tried = refinement_tried || refinable;
+            // Beside each, the refinement is scanned where it fits best alone (three of the nine
+            // values of its full scan) and stepped from the best of those.
+            const std::vector<size_t> leads =
+                refinable ? refinement_leads(E, neutral, terms, flags, opt, kRefinementLeads) : std::vector<size_t>{};
             // (The six leading laws beyond those already here: each such fit scans the refinement.)
             for (size_t r = 0, added = 0; refinable && r < order.size() && added < 6; ++r) {
                 const size_t k = order[r];
@@ -268,7 +291,9 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 std::vector<Term> joint = terms;
                 joint.push_back({&lib[k], fits[k].value});
                 std::vector<char> fl = flags;
-                if (refit_jointly(E, neutral, joint, fl, opt, false) >= kFailedNll) continue;
+                if (refit_jointly(E, neutral, joint, fl, opt, false, -1, !refinable, leads.empty() ? nullptr : &leads) >=
+                    kFailedNll)
+                    continue;
                 const Hypothesis others = with_terms(neutral, joint, fl, static_cast<int>(joint.size() - 1));
                 Response rk;
                 // With the shape the joint refit gave it (it moves with the others).
@@ -467,6 +492,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                     S.findings.erase(std::remove_if(S.findings.begin(), S.findings.end(),
                                                     [&](const Finding& x) { return x.effect == id; }),
                                      S.findings.end());
+                    forget_partner(S.findings, id, e.id);
                     if (std::none_of(terms.begin(), terms.end(),
                                      [](const Term& t) { return t.effect->kind == EffectKind::pointwise; }))
                         flags.clear();

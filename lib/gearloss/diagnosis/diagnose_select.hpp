@@ -32,9 +32,18 @@ std::string resample_shares(const std::vector<std::pair<std::string, int>>& riva
 bool taken(const std::vector<Term>& terms, const Effect& e, int skip = -1);
 // The terms' parameters refitted jointly (kFailedNll when the combination cannot be
 // evaluated): Gauss-Newton for two or more continuous parameters, else coordinate descent;
-// the flagged points are chosen again only when `refit_flags`.
+// the flagged points are chosen again only when `refit_flags`. Shapes move along their grids;
+// a deferred one (a refinement) is held when `hold_deferred`, and where it has not moved yet it
+// is first scanned over every other grid value, or over the indices in `scan`.
 double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
-                     const DiagnoseOptions& opt, bool refit_flags, int skip = -1, bool hold_deferred = false);
+                     const DiagnoseOptions& opt, bool refit_flags, int skip = -1, bool hold_deferred = false,
+                     const std::vector<size_t>* scan = nullptr);
+// Where an unmoved refinement of the terms fits best with them alone: the `count` grid indices
+// of its every-other-value scan with the best joint likelihood (empty without one). A partner
+// fitted beside the terms moves the level, rarely the place of the peak, so its scan starts
+// there (diagnose_joint.cpp).
+std::vector<size_t> refinement_leads(const Engine& E, const Hypothesis& neutral, const std::vector<Term>& terms,
+                                     const std::vector<char>& flags, const DiagnoseOptions& opt, size_t count);
 // Gauss-Newton with Levenberg-Marquardt damping over the terms' continuous parameters at once
 // (forms and flagged points held), within their ranges; the likelihood reached, kFailedNll
 // when the start cannot be evaluated (diagnose_joint.cpp).
