@@ -20,6 +20,12 @@ namespace {
 // apart): the likelihood along it is peaked (a logistic step 15 % wide), and every fourth
 // value missed the peak of the planetary step + heat path campaign.
 constexpr size_t kRefinementScanStride = 2;
+// The grid indices of that scan.
+std::vector<size_t> refinement_scan(size_t grid_size) {
+    std::vector<size_t> visit;
+    for (size_t k = 0; k < grid_size; k += kRefinementScanStride) visit.push_back(k);
+    return visit;
+}
 
 // The weighted residuals of a prediction: loss relative to each point's scale, oil
 // temperature where it is equilibrium evidence (flagged points excluded), in one vector with
@@ -221,7 +227,7 @@ std::vector<size_t> refinement_leads(const Engine& E, const Hypothesis& neutral,
     if (j == terms.size()) return {};
     const std::vector<Effect>& variants = *terms[j].effect->shape->variants;
     std::vector<std::pair<double, size_t>> scanned;
-    for (size_t k = 0; k < variants.size(); k += kRefinementScanStride) {
+    for (size_t k : refinement_scan(variants.size())) {
         if (variants[k].shape->at_own()) continue;
         std::vector<Term> t = terms;
         t[j].effect = &variants[k];
@@ -272,11 +278,7 @@ double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Ter
                 std::vector<char> best_flags;
                 double best_penalised = best;
                 long best_k = at;
-                std::vector<size_t> visit;
-                if (scan) visit = *scan;
-                else
-                    for (size_t k = 0; k < variants.size(); k += kRefinementScanStride) visit.push_back(k);
-                for (size_t k : visit) {
+                for (size_t k : scan ? *scan : refinement_scan(variants.size())) {
                     if (static_cast<long>(k) == at || k >= variants.size()) continue;
                     std::vector<Term> t = terms;
                     t[j].effect = &variants[k];

@@ -246,8 +246,7 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
         Finding f;
         f.effect = e.id;
         const Effect& partner = *pair_terms[static_cast<size_t>(1 - m)].effect;
-        f.description = e.description + "; found together with " + partner.id +
-                        ": neither alone accounts for the mismatch, the two fitted jointly do";
+        f.description = e.description + pair_clause(partner.id);
         f.parameter = {e.parameter, e.unit, pair_terms[static_cast<size_t>(m)].value, fm.uncertainty, e.form, e.case_form};
         f.delta_bic = dbm;
         f.cv_gain = cv0.nll - cvm.nll;

@@ -61,13 +61,16 @@ std::string resample_shares(const std::vector<std::pair<std::string, int>>& riva
     return s;
 }
 
+std::string pair_clause(const std::string& partner) {
+    return "; found together with " + partner + ": neither alone accounts for the mismatch, the two fitted jointly do";
+}
+
 namespace {
 
 // A finding named as a pair with `dropped` no longer says it was found with it: the pair's
-// clause (diagnose_pairs.cpp) names who took its place.
+// clause names who took its place.
 void forget_partner(std::vector<Finding>& findings, const std::string& dropped, const std::string& by) {
-    const std::string clause =
-        "; found together with " + dropped + ": neither alone accounts for the mismatch, the two fitted jointly do";
+    const std::string clause = pair_clause(dropped);
     for (auto& f : findings)
         if (const auto at = f.description.find(clause); at != std::string::npos)
             f.description.replace(at, clause.size(),

@@ -27,6 +27,9 @@ Hypothesis with_terms(const Hypothesis& neutral, const std::vector<Term>& terms,
 bool rival_in_resamples(double leader_stability, int rival_wins, const DiagnoseOptions& opt);
 // "a in 33 %, b in 21 %": what won the resamples the leader did not (wins > 0 only).
 std::string resample_shares(const std::vector<std::pair<std::string, int>>& rivals, const DiagnoseOptions& opt);
+// What a finding named as a pair with `partner` adds to its description (diagnose_pairs.cpp),
+// and what replaces that once a later finding made the partner unnecessary.
+std::string pair_clause(const std::string& partner);
 // Whether e is already among the terms or excluded by one of them (another form of its axis,
 // the same effect for every oil and for one); `skip`: a term being replaced.
 bool taken(const std::vector<Term>& terms, const Effect& e, int skip = -1);
