@@ -349,24 +349,46 @@ TEST_CASE("a friction step where the film is thin is read as the mixed-film rise
     CHECK(d.verdict == "partly_explained");
 }
 
-TEST_CASE("a further effect that does not hold over the resamples is said but not named", "[diagnose_joint]") {
+TEST_CASE("an oil thinner than its data is named with its factor on a box whose mesh friction is local EHL",
+          "[diagnose_joint]") {
     // An independent campaign (scripts/independent-campaigns.py, spur seed 0, single visc_shift):
     // the spur gearbox on a rig resistance of 0.0394098 K/W, 12 shuffled points, the oil behaving
     // as the model's oil 8.4 K hotter (every loss taken at the shifted temperature, not a factor
-    // on the viscosity). The viscosity is named (the truth's factor at the median temperature,
-    // 0.743). On top of it windage fits better by a delta BIC of 10.7 but wins only 12 of 24
-    // resamples: it is not named, and the report says so, with the rival that took resamples.
+    // on the viscosity): the truth's factor at the median temperature is 0.743. The box's mesh
+    // friction is local thermal EHL (ehl_maxwell); until 2026-12-02 the viscosity calibration did
+    // not reach it, and the factor came out at 0.2, the end of its range, with windage said as a
+    // further effect (delta BIC 10.7, half of the resamples). The factor now acts on every loss:
+    // 0.801, chosen in every resample, and nothing further is said.
     const auto d = diagnose_independent(
         "configs/spur-seed000.yaml", 0.0394098,
         "640,560,476.331,42.431,23.964\n1360,560,884.344,58.740,24.040\n640,200,194.010,32.203,24.273\n"
         "1360,800,1830.538,98.467,24.410\n640,680,578.708,47.273,24.759\n1600,200,450.189,42.845,24.940\n"
         "1360,680,1117.047,70.808,25.050\n1600,560,1000.364,65.540,25.340\n640,800,720.562,54.553,25.503\n"
         "1600,680,1470.092,83.393,25.723\n1600,800,2651.830,125.925,25.898\n1360,200,370.778,41.702,26.211\n");
+    INFO(d.summary);
     REQUIRE(d.findings.size() == 1);
     CHECK(d.findings.front().effect == "oil_viscosity");
+    CHECK(d.findings.front().parameter.value == Approx(0.743).epsilon(0.10));
+    CHECK(d.findings.front().stability >= 0.9);
+    CHECK(d.unsettled.empty());
+}
+
+TEST_CASE("a further effect that does not hold over the resamples is said but not named", "[diagnose_joint]") {
+    // An independent campaign (scripts/independent-campaigns.py, manual seed 4, pair0; its derived
+    // case and recordings in tests/data/diagnosis): the six-speed manual box on a rig resistance
+    // falling with speed, 20 points recorded as output torque and speed, with a bearing drag
+    // (M ~ (nu n)^0.54) and a seal friction 2.1 times the model's. The drag is named; the seal
+    // hides behind it (the suite's own check: expected BIC gain 5.0). On top of the drag a
+    // constant loss fits better by a delta BIC of 10.1 but wins only 29 % of 24 resamples: it is
+    // not named, and the report says so, with the rival that took resamples.
+    const auto c = io::load_case(test_support::source_path("tests/data/diagnosis/manual-rig-resistance.yaml"));
+    const auto d = diagnosis::diagnose(c.model, diagnosis::read_recordings(test_support::source_path(
+                                                    "tests/data/diagnosis/manual-drag-seal-s4.csv")));
+    REQUIRE(d.findings.size() == 1);
+    CHECK(d.findings.front().effect == "bearing_drag");
     INFO(d.unsettled);
-    CHECK(d.unsettled.find("windage fits better than the findings before it by a delta BIC of ") == 0);
-    CHECK(d.unsettled.find("but is not named: it wins 50 % of 24 resamples, against bearing_drag in ") !=
+    CHECK(d.unsettled.find("constant_parasitic fits better than the findings before it by a delta BIC of ") == 0);
+    CHECK(d.unsettled.find("but is not named: it wins 29 % of 24 resamples, against mesh_friction in ") !=
           std::string::npos);
     CHECK(diagnosis::diagnosis_text(d).find("\nnot named: " + d.unsettled) != std::string::npos);
 }

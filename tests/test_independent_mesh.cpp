@@ -170,3 +170,42 @@ TEST_CASE("independent: helical pitch-point geometry by the base-circle route", 
     CHECK(g.db[0] * 1e3 == Approx(69.75228).epsilon(1e-6));
     CHECK(g.rho_redC * 1e3 == Approx(8.12909).epsilon(1e-5));
 }
+
+TEST_CASE("independent: a calibrated viscosity factor acts on the mesh friction as an oil that much thicker",
+          "[independent][mesh]") {
+    // Two routes to the same oil: the case's calibration viscosity_factor f on the datasheet
+    // oil, and an oil whose data are f times thicker (its Vogel constant k x f, nu = k
+    // exp(b/(T + c)), so nu x f at every temperature), no calibration. Every friction law must
+    // give the same mesh loss by both routes; the local thermal EHL laws (Fernandes et al. 2015
+    // path integral; Eyring and Maxwell-Eyring traction) read the oil state at the bulk and
+    // film temperatures along the path. Until 2026-12-02 they took it from the datasheet
+    // alone: the factor 1.3 left the spur box's mesh loss unchanged (735.27 W at 880 rpm,
+    // 800 N m, 60 degC), while a 1.3 times thicker oil gives 717.9 W.
+    auto c = test_support::load_shipped("configs/spur-seed000.yaml");
+    auto& m = c.model;
+    // The datasheet's law as a Vogel law through three of its own points (both routes share it).
+    const double T_C[3] = {40, 70, 100};
+    double nu[3];
+    for (int k = 0; k < 3; ++k) nu[k] = m.oil.nu_mm2s(T_C[k] + 273.15);
+    m.oil.viscosity = lubricant::VogelLaw::fit(T_C, nu);
+    m.thermal.mode = solver::ThermalMode::fixed;
+    m.thermal.oil_temperature = 333.15;
+    const double f = 1.3;
+    for (const auto law : {mesh::FrictionModel::schlenk, mesh::FrictionModel::ehl_local, mesh::FrictionModel::ehl_maxwell}) {
+        INFO("friction law " << static_cast<int>(law));
+        auto calibrated = m, thicker = m, datasheet = m;
+        for (auto* x : {&calibrated, &thicker, &datasheet}) mesh::mesh_forms(*x).friction = law;
+        calibrated.calibration.viscosity_factor = f;
+        std::get<lubricant::VogelLaw>(thicker.oil.viscosity).k_mm2s *= f;
+        REQUIRE(thicker.oil_state(333.15).nu == Approx(calibrated.oil_state(333.15).nu).epsilon(1e-12));
+        const auto a = solver::solve_point(calibrated, 880 * rpm, 800, true);
+        const auto b = solver::solve_point(thicker, 880 * rpm, 800, true);
+        const auto o = solver::solve_point(datasheet, 880 * rpm, 800, true);
+        REQUIRE(a.status == solver::PointStatus::ok);
+        REQUIRE(b.status == solver::PointStatus::ok);
+        CHECK(test::part(a.losses, "mesh") == Approx(test::part(b.losses, "mesh")).epsilon(1e-9));
+        CHECK(a.losses.total() == Approx(b.losses.total()).epsilon(1e-9));
+        // Not vacuous: the thicker oil moves the mesh loss (Schlenk's eta^-0.05 alone: 1.3^-0.05 = -1.3 %).
+        CHECK(std::abs(test::part(b.losses, "mesh") / test::part(o.losses, "mesh") - 1) > 0.005);
+    }
+}

@@ -111,10 +111,10 @@ double Oil::pressure_viscosity(double T_K, double nu_cSt) const {
     return std::exp(std::log(a.alpha) + f * (std::log(b.alpha) - std::log(a.alpha)));
 }
 
-OilState Oil::state(double T_K) const {
+OilState Oil::state(double T_K, double viscosity_factor) const {
     OilState s;
     s.T = T_K;
-    s.nu_cSt = nu_mm2s(T_K);
+    s.nu_cSt = nu_mm2s(T_K) * viscosity_factor;
     s.nu = s.nu_cSt * 1e-6;
     s.rho = density(T_K);
     s.eta = s.nu * s.rho;

@@ -76,7 +76,11 @@ public:
     std::optional<double> gear_mu_bl, gear_mu_ehl;
     TractionProperties traction;
 
-    OilState state(double T_K) const;
+    // The state at T_K; viscosity_factor scales the kinematic viscosity of the data (a
+    // calibration: the oil in the gearbox is thicker or thinner than its datasheet), and with
+    // it the dynamic viscosity and the pressure-viscosity coefficient taken from it; its
+    // temperature slope beta_T is unchanged (a factor does not move d ln nu / dT).
+    OilState state(double T_K, double viscosity_factor = 1.0) const;
     double nu_mm2s(double T_K) const;
     double density(double T_K) const;
     double pressure_viscosity(double T_K, double nu_mm2s) const;

@@ -54,7 +54,7 @@ ordered_json point_json(const io::Case& c, const solver::PointResult& r, ordered
         return j;
     }
     j["oil_temperature_C"] = number(r.oil_temperature - 273.15);
-    const auto os = m.oil.state(r.oil_temperature);
+    const auto os = m.oil_state(r.oil_temperature);  // with the case's viscosity calibration
     j["oil_state"] = {{"nu_cSt", number(os.nu_cSt)},  {"rho_kg_m3", number(os.rho)},
                       {"eta_mPa_s", number(os.eta * 1e3)}, {"alpha_p_1_GPa", number(os.alpha_p * 1e9)},
                       {"k_W_mK", number(os.k)},         {"cp_J_kgK", number(os.cp)}};

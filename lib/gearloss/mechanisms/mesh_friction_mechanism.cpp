@@ -323,7 +323,8 @@ double MeshFriction::power(const solver::Model& m, const losses::MechanismPoint&
             // Local thermal EHL along the path of contact at the oil temperature.
             const auto& md = m.layout.meshes[i];
             loss = ehl_mesh_loss(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime, ms.sigma,
-                                 s.T, m.oil, m.oil.traction, &ms.ehl_film_rise, traction_law(opt.friction)) *
+                                 s.T, m.oil, m.oil.traction, &ms.ehl_film_rise, traction_law(opt.friction),
+                                 m.calibration.viscosity_factor) *
                    factor * mixed;
             mu = ms.power * ms.H_V > 0 ? loss / (ms.power * ms.H_V) : 0.0;  // equivalent mean friction
         }

@@ -150,7 +150,7 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
     const double u_e = 0.5 * (std::abs(in.u1) + std::abs(in.u2));
     const double du = std::abs(in.u1 - in.u2);
     LineContact lc{in.w_line, u_e, in.R, in.E_prime, u_e > 0 ? du / u_e : 0.0};
-    const lubricant::OilState s0 = bulk ? *bulk : oil.state(in.T_bulk);
+    const lubricant::OilState s0 = bulk ? *bulk : oil.state(in.T_bulk, in.viscosity_factor);
     const Film film = line_contact_film(lc, s0.eta, s0.alpha_p, s0.beta_T, s0.k, ThermalFilmCorrection::gupta);
     r.h_c = film.h_c;
     r.h_min = film.h_min;
@@ -174,7 +174,7 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
     const double beta1 = std::sqrt(solid.density * solid.specific_heat * solid.conductivity * std::abs(in.u1));
     const double beta2 = std::sqrt(solid.density * solid.specific_heat * solid.conductivity * std::abs(in.u2));
     auto film_temperature = [&](double T, double* flash, double* shear) {
-        const lubricant::OilState sT = oil.state(T);  // one property evaluation per iteration
+        const lubricant::OilState sT = oil.state(T, in.viscosity_factor);  // one property evaluation per iteration
         const Traction t = mean_stress(sT, nullptr);
         const double q = t.tau_mean * du;  // heat flux into the contact [W/m^2]
         double dT1 = 0, dT2 = 0;
@@ -222,7 +222,7 @@ EhlContactResult ehl_contact(const EhlContactInput& in, const lubricant::Oil& oi
         r.residual = std::abs(g(T));
     }
     r.T_film = heating ? film_temperature(T, &r.dT_flash, &r.dT_shear) : in.T_bulk;
-    const Traction t = mean_stress(heating ? oil.state(T) : s0, &r.deborah);
+    const Traction t = mean_stress(heating ? oil.state(T, in.viscosity_factor) : s0, &r.deborah);
     r.mu_ehl = t.p_mean > 0 ? t.tau_mean / t.p_mean : 0.0;
     r.mu = r.f_c * rh.mu_boundary + (1.0 - r.f_c) * r.mu_ehl;
     return r;

@@ -30,6 +30,7 @@ struct EhlContactInput {
     double T_bulk = 0;     // oil / surface bulk temperature [K]
     double film_rise_guess = 0;  // start of the film-temperature loop above T_bulk [K] (warm start)
     TractionLaw law = TractionLaw::eyring;
+    double viscosity_factor = 1.0;  // the case's calibration of the oil's viscosity (Oil::state)
 };
 
 struct EhlContactResult {

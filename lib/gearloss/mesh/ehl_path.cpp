@@ -24,7 +24,7 @@ Kinematics kinematics_at(const geometry::PairGeometry& g, double xi, double w0) 
 // Local state at xi (shared by the profile and the loss integral).
 PathPoint path_point(const geometry::PairGeometry& g, double xi, double L_mean, double w0, double F_bn, double E_prime,
                      double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh, bool heating,
-                     const lubricant::OilState& bulk, double film_rise_guess, TractionLaw law) {
+                     const lubricant::OilState& bulk, double film_rise_guess, TractionLaw law, double viscosity_factor) {
     const double cb = std::cos(g.beta_b);
     const bool spur = g.eps_beta == 0.0;
     PathPoint pt;
@@ -47,7 +47,7 @@ PathPoint path_point(const geometry::PairGeometry& g, double xi, double L_mean, 
     pt.u_e = 0.5 * (pt.u1 + pt.u2);
     pt.v_slide = k.v_slide();
     pt.srr = pt.u_e > 0 ? pt.v_slide / pt.u_e : 0.0;
-    EhlContactInput in{w_line, k.R, pt.u1, pt.u2, E_prime, sigma, T_bulk, film_rise_guess, law};
+    EhlContactInput in{w_line, k.R, pt.u1, pt.u2, E_prime, sigma, T_bulk, film_rise_guess, law, viscosity_factor};
     pt.c = ehl_contact(in, oil, rh, {}, heating, &bulk);
     const double v_base = w0 * 0.5 * g.db[0];
     pt.local_efficiency = v_base > 0 ? 1.0 - pt.c.mu * pt.v_slide / v_base : 1.0;
@@ -60,15 +60,15 @@ PathPoint path_point(const geometry::PairGeometry& g, double xi, double L_mean, 
 // helical set the face integral is folded into load_share = (b / cos beta_b) / L_mean.
 PathProfile ehl_path(const geometry::PairGeometry& g, double L_mean, double omega_rel, double F_bn, int planets,
                      double E_prime, double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh,
-                     int positions, bool heating, TractionLaw law) {
+                     int positions, bool heating, TractionLaw law, double viscosity_factor) {
     PathProfile prof;
     const double w0 = std::abs(omega_rel);
     const double L = g.T1E - g.T1A;
-    const lubricant::OilState bulk = oil.state(T_bulk);
+    const lubricant::OilState bulk = oil.state(T_bulk, viscosity_factor);
     double integral = 0;
     for (int k = 0; k < positions; ++k) {
         const PathPoint pt = path_point(g, g.T1A + L * (k + 0.5) / positions, L_mean, w0, F_bn, E_prime, sigma, T_bulk,
-                                        oil, rh, heating, bulk, 0.0, law);
+                                        oil, rh, heating, bulk, 0.0, law, viscosity_factor);
         integral += pt.c.mu * F_bn * pt.load_share * pt.v_slide * (L / positions);
         prof.points.push_back(pt);
     }
@@ -91,7 +91,8 @@ const double kG4w[4] = {Gauss4::weights()[1], Gauss4::weights()[0], Gauss4::weig
 // 3-point Gauss-Legendre per segment (12 contact solutions).
 double spur_mesh_loss(const geometry::PairGeometry& g, double L_mean, double w0, double F_bn, double E_prime,
                       double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh,
-                      std::vector<double>* film_rise, const lubricant::OilState& bulk, TractionLaw law) {
+                      std::vector<double>* film_rise, const lubricant::OilState& bulk, TractionLaw law,
+                      double viscosity_factor) {
     std::vector<double> knots = {g.T1A};
     for (double x : {g.T1B, g.T1C, g.T1D})
         if (x > knots.back() && x < g.T1E) knots.push_back(x);
@@ -104,7 +105,7 @@ double spur_mesh_loss(const geometry::PairGeometry& g, double L_mean, double w0,
         for (int k = 0; k < 3; ++k) {
             double* rise = film_rise ? &(*film_rise)[3 * s + k] : nullptr;
             const PathPoint pt = path_point(g, c + h * kG3x[k], L_mean, w0, F_bn, E_prime, sigma, T_bulk, oil, rh, true,
-                                            bulk, rise ? *rise : 0.0, law);
+                                            bulk, rise ? *rise : 0.0, law, viscosity_factor);
             if (rise) *rise = pt.c.T_film - T_bulk;
             integral += kG3w[k] * h * pt.c.mu * F_bn * pt.load_share * pt.v_slide;
         }
@@ -123,7 +124,7 @@ double spur_mesh_loss(const geometry::PairGeometry& g, double L_mean, double w0,
 // the phase sweep costs no contact solution: 16 solutions per mesh evaluation.
 double helical_mesh_loss(const geometry::PairGeometry& g, double w0, double F_bn, double E_prime, double sigma,
                          double T_bulk, const lubricant::Oil& oil, const Rheology& rh, std::vector<double>* film_rise,
-                         const lubricant::OilState& bulk, TractionLaw law) {
+                         const lubricant::OilState& bulk, TractionLaw law, double viscosity_factor) {
     constexpr int kPhases = 24;
     const double A = g.T1A, E = g.T1E, C = g.T1C, pbt = g.p_bt, b = g.b_eff;
     const double t = std::tan(g.beta_b), cb = std::cos(g.beta_b);
@@ -168,7 +169,7 @@ double helical_mesh_loss(const geometry::PairGeometry& g, double w0, double F_bn
             for (int heavy = 0; heavy < (two_loads ? 2 : 1); ++heavy) {
                 double* rise = film_rise ? &(*film_rise)[2 * n + heavy] : nullptr;
                 const EhlContactInput in{F_bn / (heavy ? L_lo : L_hi), k.R, k.u1, k.u2, E_prime, sigma, T_bulk,
-                                         rise ? *rise : 0.0, law};
+                                         rise ? *rise : 0.0, law, viscosity_factor};
                 const EhlContactResult c = ehl_contact(in, oil, rh, {}, true, &bulk);
                 if (rise) *rise = c.T_film - T_bulk;
                 (heavy ? mu_heavy : mu_light)[n] = c.mu;
@@ -211,12 +212,13 @@ double helical_mesh_loss(const geometry::PairGeometry& g, double w0, double F_bn
 
 double ehl_mesh_loss(const geometry::PairGeometry& g, double L_mean, double omega_rel, double F_bn, int planets,
                      double E_prime, double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh,
-                     std::vector<double>* film_rise, TractionLaw law) {
+                     std::vector<double>* film_rise, TractionLaw law, double viscosity_factor) {
     const double w0 = std::abs(omega_rel);
-    const lubricant::OilState bulk = oil.state(T_bulk);
+    const lubricant::OilState bulk = oil.state(T_bulk, viscosity_factor);
     const double per_mesh = g.eps_beta == 0.0
-                                ? spur_mesh_loss(g, L_mean, w0, F_bn, E_prime, sigma, T_bulk, oil, rh, film_rise, bulk, law)
-                                : helical_mesh_loss(g, w0, F_bn, E_prime, sigma, T_bulk, oil, rh, film_rise, bulk, law);
+                                ? spur_mesh_loss(g, L_mean, w0, F_bn, E_prime, sigma, T_bulk, oil, rh, film_rise, bulk, law,
+                                                 viscosity_factor)
+                                : helical_mesh_loss(g, w0, F_bn, E_prime, sigma, T_bulk, oil, rh, film_rise, bulk, law, viscosity_factor);
     return planets * per_mesh;
 }
 

@@ -25,10 +25,13 @@ struct PathProfile {
 };
 
 // omega_rel: speed of gear 0 relative to the carrier (or housing) [rad/s];
-// F_bn: normal force per mesh [N]; planets: identical meshes; sigma: roughness.
+// F_bn: normal force per mesh [N]; planets: identical meshes; sigma: roughness;
+// viscosity_factor: the case's calibration of the oil's viscosity (Oil::state), as every
+// other mechanism sees it through Model::oil_state.
 PathProfile ehl_path(const geometry::PairGeometry& g, double L_mean, double omega_rel, double F_bn, int planets,
                      double E_prime, double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh,
-                     int positions = 21, bool heating = true, TractionLaw law = TractionLaw::eyring);
+                     int positions = 21, bool heating = true, TractionLaw law = TractionLaw::eyring,
+                     double viscosity_factor = 1.0);
 
 // Mesh friction power only. Spur pair: the path split at the load-share jumps B, D and the
 // sliding kink C, 3-point Gauss-Legendre per segment (12 contact solutions). Helical pair:
@@ -38,6 +41,7 @@ PathProfile ehl_path(const geometry::PairGeometry& g, double L_mean, double omeg
 // call, used to start its thermal loop (successive calls of a thermal solve differ little).
 double ehl_mesh_loss(const geometry::PairGeometry& g, double L_mean, double omega_rel, double F_bn, int planets,
                      double E_prime, double sigma, double T_bulk, const lubricant::Oil& oil, const Rheology& rh,
-                     std::vector<double>* film_rise = nullptr, TractionLaw law = TractionLaw::eyring);
+                     std::vector<double>* film_rise = nullptr, TractionLaw law = TractionLaw::eyring,
+                     double viscosity_factor = 1.0);
 
 }  // namespace gearloss::mesh

@@ -25,15 +25,7 @@ bool Model::calibration_neutral() const {
 }
 
 lubricant::OilState Model::oil_state(double T) const {
-    lubricant::OilState s = oil.state(T);
-    if (calibration.viscosity_factor != 1.0) {
-        const double f = calibration.viscosity_factor;
-        s.nu *= f;
-        s.nu_cSt *= f;
-        s.eta *= f;
-        s.alpha_p = oil.pressure_viscosity(T, s.nu_cSt);
-    }
-    return s;
+    return oil.state(T, calibration.viscosity_factor);
 }
 
 double Model::surface_heat_flow(double T_surface, double T_amb, double omega_in, double air_speed) const {

@@ -48,7 +48,7 @@ std::string point_report(const Case& c, const solver::PointResult& r) {
     s += fmt::format("output {:10.2f} rpm  {:10.2f} N*m  {:10.1f} W\n", r.omega_out * rpm, r.torque_out, r.power_out);
     s += fmt::format("oil temperature {:.2f} degC (ambient {:.2f} degC, {})\n", r.oil_temperature - 273.15,
                      r.ambient - 273.15, m.thermal.mode == solver::ThermalMode::fixed ? "fixed" : "stabilised");
-    const auto os = m.oil.state(r.oil_temperature);
+    const auto os = m.oil_state(r.oil_temperature);  // with the case's viscosity calibration
     s += fmt::format("oil at that temperature: nu {:.3f} cSt, rho {:.1f} kg/m^3, eta {:.3f} mPa*s, alpha {:.3f} 1/GPa\n\n",
                      os.nu_cSt, os.rho, os.eta * 1e3, os.alpha_p * 1e9);
     const auto& Lo = r.losses;
@@ -410,7 +410,7 @@ std::string mesh_profile_csv(const Case& c, const std::string& mesh_name, double
         throw InputError("", 0, 0, "--mesh", "mesh '" + excerpt(mesh_name) + "' carries no load or does not turn at this point");
     const auto prof = mesh::ehl_path(md.geom, md.L_mean, ms.omega_rel, ms.F_bn, md.planets, ms.contact.E_prime, ms.sigma,
                                      oil_temperature, m.oil, m.oil.traction, positions, true,
-                                     mesh::traction_law(mesh::mesh_forms(m).friction));
+                                     mesh::traction_law(mesh::mesh_forms(m).friction), m.calibration.viscosity_factor);
     std::string s =
         "position_from_pitch_mm,position_from_T1_mm,load_share,p0_GPa,hertz_halfwidth_um,u_entrainment_m_s,v_slide_m_s,"
         "slide_to_roll,h_c_um,h_min_um,lambda,film_temp_C,flash_rise_K,shear_rise_K,mu_ehl,mu,local_efficiency,deborah\n";
