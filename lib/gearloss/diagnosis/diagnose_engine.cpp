@@ -395,6 +395,7 @@ Fit Engine::fit(const Effect& e, const Hypothesis& base, Response* response, std
     f.nll = fx;
     f.h = base;
     e.apply(f.h, x);
+    f.extra_penalty += e.prior_penalty(x);  // at the maximum-likelihood value (Effect::prior_penalty)
     // Curvature of the profiled log-likelihood: sigma = 1/sqrt(d2 NLL / d theta2).
     const double step = std::max(1e-4 * (r.hi() - r.lo()), 2e-3 * std::abs(x));
     const double a = std::max(r.lo(), x - step), b = std::min(r.hi(), x + step);

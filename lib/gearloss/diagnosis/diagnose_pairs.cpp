@@ -156,7 +156,11 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
             screened.push_back(p);
         }
     if (screened.empty()) return false;
-    const auto by_nll = [](const PairFit& x, const PairFit& y) { return x.nll < y.nll; };
+    // Ranked by likelihood with the members' priors at their values (Effect::prior_penalty).
+    const auto penalised = [&](const PairFit& p) {
+        return p.nll + 0.5 * (lib[p.a].prior_penalty(p.xa) + lib[p.b].prior_penalty(p.xb));
+    };
+    const auto by_nll = [&](const PairFit& x, const PairFit& y) { return penalised(x) < penalised(y); };
     std::sort(screened.begin(), screened.end(), by_nll);
     // The leading knot pairs refined between the knots.
     for (size_t c = 0; c < std::min<size_t>(screened.size(), 8); ++c) {
@@ -174,9 +178,14 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
     // The surrogate's pair must promise at least the threshold for each of its two parameters.
     // A pair pays a parameter per member (a form too: the choice of it), and a member's
     // profiled shape its prior over the grid (Effect::bic_penalty).
-    const auto cost = [&](const Effect& e) { return std::max(lnN, e.bic_penalty(N)); };
-    const auto terms_cost = [&](const std::vector<Term>& t) { return cost(*t[0].effect) + cost(*t[1].effect); };
-    if (2.0 * (r.base_nll - best.nll) - cost(lib[best.a]) - cost(lib[best.b]) < 2.0 * opt.bic_threshold) return false;
+    const auto cost = [&](const Effect& e, double value) {
+        return std::max(lnN, e.bic_penalty(N)) + e.prior_penalty(value);
+    };
+    const auto terms_cost = [&](const std::vector<Term>& t) {
+        return cost(*t[0].effect, t[0].value) + cost(*t[1].effect, t[1].value);
+    };
+    if (2.0 * (r.base_nll - best.nll) - cost(lib[best.a], best.xa) - cost(lib[best.b], best.xb) < 2.0 * opt.bic_threshold)
+        return false;
 
     const auto refit = [&](const PairFit& p, std::vector<Term>& t) {
         t = {{&lib[p.a], p.xa}, {&lib[p.b], p.xb}};
@@ -203,7 +212,7 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
                                     [&](const PairFit& p) { return p.a == lead || p.b == lead; });
         std::vector<Term> q_terms;
         nll_forward = q == screened.end() ? r.fits[lead].nll : refit(*q, q_terms);
-        cost_forward = q == screened.end() ? cost(lib[lead]) : terms_cost(q_terms);
+        cost_forward = q == screened.end() ? cost(lib[lead], r.fits[lead].value) : terms_cost(q_terms);
         if (nll_forward >= kFailedNll) return false;
     }
     const double margin = 2.0 * (nll_forward - nll_pair) - (terms_cost(pair_terms) - cost_forward);
@@ -225,7 +234,8 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
         double low = kFailedNll;
         for (size_t c : contenders) {
             const PairFit& p = screened[c];
-            const double v = PairSurrogate(E, r.responses[p.a], r.responses[p.b], r.base_pred, neutral).minimise(idx).nll;
+            const double v = PairSurrogate(E, r.responses[p.a], r.responses[p.b], r.base_pred, neutral).minimise(idx).nll +
+                             0.5 * (lib[p.a].prior_penalty(p.xa) + lib[p.b].prior_penalty(p.xb));
             if (v < low) low = v, winner = c;
         }
         ++wins[winner];

@@ -112,8 +112,8 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
         std::vector<Term> best_terms;
         std::vector<char> best_flags;
         // The BIC of the swap: a replacement with a parameter more than the one it replaces (a
-        // scale factor for a form) pays for it.
-        auto penalty = [&](const Effect& e) { return e.bic_penalty(N); };
+        // scale factor for a form) pays for it, and each for its prior at its value.
+        auto penalty = [&](const Term& t) { return t.effect->bic_penalty(N, t.value); };
         double best_bic = 2.0 * (nll_full - 1.0);
         int tried = 0;
         for (const auto& c : S.candidates) {
@@ -127,7 +127,7 @@ double exchange(const Engine& E, const std::vector<Effect>& lib, const Hypothesi
             std::vector<char> fl = flags;
             const double nll = refit_jointly(E, neutral, swapped, fl, opt, false, -1, true);
             // The candidate as the refit left its shape.
-            const double bic = 2.0 * nll + penalty(*swapped[j].effect) - penalty(*terms[j].effect);
+            const double bic = 2.0 * nll + penalty(swapped[j]) - penalty(terms[j]);
             if (bic < best_bic) {
                 best_bic = bic;
                 best_nll = nll;
@@ -302,10 +302,14 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 // With the shape the joint refit gave it (it moves with the others).
                 Fit fk = E.fit(*joint.back().effect, others, &rk);
                 if (!fk.failed.empty()) continue;
-                // A refinement of a finding moved beside the candidate is paid by the candidate.
-                for (size_t j = 0; j + 1 < joint.size(); ++j)
+                // A refinement of a finding moved beside the candidate is paid by the candidate, and
+                // so is what the findings' priors say of the values the joint refit gave them.
+                for (size_t j = 0; j + 1 < joint.size(); ++j) {
                     if (joint[j].effect->shape && joint[j].effect->shape->deferred)
                         fk.extra_penalty += joint[j].effect->shape_penalty() - terms[j].effect->shape_penalty();
+                    fk.extra_penalty += joint[j].effect->prior_penalty(joint[j].value) -
+                                        terms[j].effect->prior_penalty(terms[j].value);
+                }
                 const double dk = delta_bic(nll_base, fk, N);
                 if (dk > dbic[k]) {
                     dbic[k] = dk;
@@ -365,10 +369,11 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 Fit f;
                 if (lib[k].kind == EffectKind::pointwise) f = E.fit_unstabilised(base, idx, opt.loss_uncertainty);
                 else {
-                    // The effect whose response this is (its shape as the joint refit left it).
+                    // The effect whose response this is (its shape as the joint refit left it); its
+                    // costs beyond k ln N (shape, prior) as on all points.
                     const Effect& ek = refitted[k].empty() ? lib[k] : *refitted[k].back().effect;
                     f.k = ek.bic_parameters();
-                    f.extra_penalty = refitted[k].empty() ? ek.shape_penalty() : fits[k].extra_penalty;
+                    f.extra_penalty = fits[k].extra_penalty;
                     f.nll = resp[k].minimise(idx).second;
                 }
                 if (!f.failed.empty()) continue;
@@ -484,7 +489,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                     terms[j].effect->kind == EffectKind::pointwise
                         ? parameters_of({terms[j]}, flags) *
                               (std::log(static_cast<double>(N)) + std::log(static_cast<double>(all.size())))
-                        : terms[j].effect->bic_penalty(N);
+                        : terms[j].effect->bic_penalty(N, terms[j].value);
                 const double need = 2.0 * (nll_wo - nll_full) - penalty;
                 if (need < opt.bic_threshold) {
                     S.warnings.push_back(fmt::format("{} is no longer needed once {} is fitted with it (delta BIC {:.1f}); "

@@ -68,6 +68,14 @@ void Hypothesis::apply_to(solver::Model& m) const {
     for (const auto& f : forms) m.mechanisms.at(f.mechanism).set_form(m, f.axis, f.form);
 }
 
+double Effect::prior_penalty(double value) const {
+    if (!scales_loss || !(value < nominal) || !(nominal > 0)) return 0.0;
+    // A factor at (or below) a thousandth of nominal costs what a thousandth does (100): the
+    // mechanism switched off is possible, only very unlikely.
+    const double z = std::log(std::max(value / nominal, 1e-3)) / std::log(2.0);
+    return z * z;
+}
+
 namespace {
 // A candidate of the diagnosis itself (oil, heat path, artefacts), not of a mechanism.
 Effect builtin(std::string id, std::string description, std::string parameter, std::string unit, double lower,
@@ -121,6 +129,8 @@ std::vector<Effect> candidate_effects(const solver::Model& m) {
             e.mechanism = std::string(mech.name());
             e.oil_dependent = p.oil_dependent;
             e.group = e.id;
+            e.scales_loss = p.scales_loss;
+            e.nominal = p.nominal;
             e.apply = [mname = std::string(mech.name()), pname = p.name](Hypothesis& h, double x) { h.set(mname, pname, x); };
             v.push_back(std::move(e));
         }

@@ -142,6 +142,21 @@ struct Effect {
     // level, its foaming): such effects are also offered per oil.
     bool oil_dependent = false;
     std::optional<ShapeProfile> shape;  // a setting profiled with the parameter (none: one parameter)
+    // A factor on a mechanism's whole predicted loss (losses::Parameter::scales_loss), and the
+    // value that leaves its published correlation unchanged. Above it, the factor is how the
+    // diagnosis names a loss left out with that mechanism's signature (a second seal, parts
+    // the model does not churn): whatever was left out sets its size. Below it, the factor
+    // says the correlation itself over-predicts that mechanism's loss in this box, and that
+    // error has a size: a log-normal prior, one standard deviation a factor 2 (an assumption
+    // of this code, not a published scatter), so that churning at 7 % of its correlation
+    // (cost 15 in BIC units) does not stand in for a thinner oil, which lowers churning,
+    // bearing drag and seal friction together.
+    bool scales_loss = false;
+    double nominal = 1;
+    // -2 ln of that prior (relative to the nominal value): ((ln(value / nominal)) / ln 2)^2
+    // below nominal, 0 at or above it and for every other effect. Evaluated at the fitted
+    // value and added to the effect's cost in every information criterion.
+    double prior_penalty(double value) const;
     bool discrete() const { return kind == EffectKind::form; }
     // Its fitted parameters (the degrees of freedom the adequacy tests take off): a form none,
     // a profiled shape one more.
@@ -151,10 +166,12 @@ struct Effect {
     int bic_parameters() const { return discrete() ? 0 : 1; }
     // What its shape's choice costs in the BIC (none without a shape).
     double shape_penalty() const { return shape ? shape->bic_penalty() : 0.0; }
-    // What the effect costs in the BIC with n_obs observations.
+    // What the effect costs in the BIC with n_obs observations (its parameters, its shape's
+    // choice); at a fitted value also its prior.
     double bic_penalty(size_t n_obs) const {
         return bic_parameters() * std::log(static_cast<double>(n_obs)) + shape_penalty();
     }
+    double bic_penalty(size_t n_obs, double value) const { return bic_penalty(n_obs) + prior_penalty(value); }
 };
 
 // The effect with its shape setting held at `value` (applied with the parameter): the

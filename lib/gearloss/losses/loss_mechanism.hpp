@@ -110,6 +110,10 @@ struct Parameter {
     // A refinement: not profiled when that effect is screened, moved over the grid only once it
     // is named (diagnosis: ShapeProfile::deferred).
     bool profile_deferred = false;
+    // A factor on the mechanism's whole predicted loss (nominal 1): below nominal it says the
+    // mechanism's own correlation over-predicts, which the diagnosis weighs by a prior
+    // (diagnosis::Effect::prior_penalty).
+    bool scales_loss = false;
 };
 
 // A choice between published forms of the same physics ("friction": schlenk, iso_6336_20, ...).

@@ -90,7 +90,7 @@ public:
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_churn_{}_W", 1.0}, {"", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {
-        return {{"factor", "scales every churning loss", nullptr, "1.3", 1.0, 0.0, 100.0, true, "churning",
+        std::vector<losses::Parameter> v{{"factor", "scales every churning loss", nullptr, "1.3", 1.0, 0.0, 100.0, true, "churning",
                  "churning level of the dipping gears (immersion or oil level) differs from the description"},
                 {"roughness_factor",
                  "roughness factor R_f of the tooth-surface form (heingartner_mba_2003); 0: R_f = 7.93 - 4.648/m_t "
@@ -107,6 +107,8 @@ public:
                 {"splash_length",
                  "length l_h of the splash factor C_Sp of mauz_1987 (its definition is not verified); 0: C_Sp = 1",
                  &units::dim::length, "200 mm", 0.0, 0.0, 100.0, false, "", "", false, kFormNames[2]}};
+        v[0].scales_loss = true;
+        return v;
     }
     std::vector<losses::FormAxis> forms(const solver::Model&) const override {
         return {{"form", {kFormNames[0], kFormNames[1], kFormNames[2]}}};

@@ -71,7 +71,7 @@ public:
     std::vector<losses::Parameter> parameters() const override {
         // The boundary / full-film pair of the mixed-film model (Fernandes et al. 2015):
         // settings of the physics, not calibration terms; their order is checked in validate().
-        return {{"friction_factor", "scales mu_mZ (an error of X_L)", nullptr, "1.1", 1.0, 0.05, 20.0, true, "mesh_friction",
+        std::vector<losses::Parameter> v{{"friction_factor", "scales mu_mZ (an error of X_L)", nullptr, "1.1", 1.0, 0.05, 20.0, true, "mesh_friction",
                  "load-dependent mesh friction level differs (lubricant factor X_L, surface finish)",
                  /*oil_dependent=*/true},
                 {"mu_bl", "boundary friction of fernandes_mixed", nullptr, "0.10", 0.10, 0.0, 1.0, false, "", "", false,
@@ -101,6 +101,8 @@ public:
                  "(1000: none)", nullptr, "1.5", kFilmLimitNone, 0.1, kFilmLimitNone, true, "", "", false, "",
                  "mesh_friction", {0.25, 0.3, 0.35, 0.42, 0.5, 0.6, 0.7, 0.84, 1.0, 1.19, 1.41, 1.68, 2.0, 2.38, 2.83, 3.36, 4.0},
                  /*profile_deferred=*/true}};
+        v[0].scales_loss = true;
+        return v;
     }
     // The pair is a property of the lubricant (Fernandes et al. 2015 measure it per oil):
     // an oil's `gear_friction` gives it where the case does not.

@@ -27,8 +27,10 @@ public:
     }
     std::vector<losses::DetailQuantity> quantities() const override { return {{"P_seal_{}_W", 1.0}}; }
     std::vector<losses::Parameter> parameters() const override {
-        return {{"factor", "scales every seal loss", nullptr, "1.2", 1.0, 0.0, 100.0, true, "seal_friction",
+        std::vector<losses::Parameter> v{{"factor", "scales every seal loss", nullptr, "1.2", 1.0, 0.0, 100.0, true, "seal_friction",
                  "radial lip seal friction differs from the standard estimate (P ~ d^2 n)"}};
+        v[0].scales_loss = true;
+        return v;
     }
     std::unique_ptr<losses::MechanismPoint> make_point() const override { return std::make_unique<SealPoint>(); }
 
