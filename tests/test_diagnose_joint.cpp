@@ -14,6 +14,7 @@
 #include "gearloss/diagnosis/synth.hpp"
 #include "gearloss/case/config.hpp"
 #include "gearloss/solver/operating_point.hpp"
+#include "diagnosis_campaign.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;
@@ -381,9 +382,7 @@ TEST_CASE("a further effect that does not hold over the resamples is said but no
     // hides behind it (the suite's own check: expected BIC gain 5.0). On top of the drag a
     // constant loss fits better by a delta BIC of 10.1 but wins only 29 % of 24 resamples: it is
     // not named, and the report says so, with the rival that took resamples.
-    const auto c = io::load_case(test_support::source_path("tests/data/diagnosis/manual-rig-resistance.yaml"));
-    const auto d = diagnosis::diagnose(c.model, diagnosis::read_recordings(test_support::source_path(
-                                                    "tests/data/diagnosis/manual-drag-seal-s4.csv")));
+    const auto d = test_support::diagnose_campaign("manual-rig-resistance.yaml", "manual-drag-seal-s4.csv");
     REQUIRE(d.findings.size() == 1);
     CHECK(d.findings.front().effect == "bearing_drag");
     INFO(d.unsettled);

@@ -7,6 +7,7 @@
 #include "gearloss/case/config.hpp"
 #include "gearloss/diagnosis/diagnose.hpp"
 #include "gearloss/diagnosis/recordings.hpp"
+#include "diagnosis_campaign.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;
@@ -21,9 +22,7 @@ TEST_CASE("windage under a forced cooling is named as the pair and not as a heat
     // sum is far from the sum of each one's change at the case: the surrogate put the pair fifth
     // and a heat rejection factor with churning at 4.5 times its correlation was named. Refitted
     // with the model the pair is first, 12.3 ahead of the next in 2 ln L.
-    const auto c = io::load_case(test_support::source_path("tests/data/diagnosis/spur-rig-resistance.yaml"));
-    const auto d = diagnosis::diagnose(c.model, diagnosis::read_recordings(test_support::source_path(
-                                                    "tests/data/diagnosis/spur-forced-aero-s3.csv")));
+    const auto d = test_support::diagnose_campaign("spur-rig-resistance.yaml", "spur-forced-aero-s3.csv");
     INFO(d.summary);
     REQUIRE(d.findings.size() == 2);
     CHECK(d.findings[0].effect == "windage");

@@ -10,6 +10,7 @@
 #include "gearloss/diagnosis/effects.hpp"
 #include "gearloss/diagnosis/recordings.hpp"
 #include "gearloss/case/config.hpp"
+#include "diagnosis_campaign.hpp"
 #include "test_support.hpp"
 
 using namespace gearloss;
@@ -62,9 +63,7 @@ TEST_CASE("a thinner oil beside a seal friction is named as the oil and not as c
     // behaving as the datasheet's 5.1 K warmer (viscosity x 0.837 at the median temperature).
     // Without the prior the seal was named with churning at 0.066 of its correlation second
     // (delta BIC 18.9 against the oil's 11.6); with it, the oil: 18.9 - (log2 0.066)^2 = 3.5.
-    const auto c = io::load_case(test_support::source_path("tests/data/diagnosis/manual-rig-resistance.yaml"));
-    const auto d = diagnosis::diagnose(c.model, diagnosis::read_recordings(test_support::source_path(
-                                                    "tests/data/diagnosis/manual-seal-visc-s3.csv")));
+    const auto d = test_support::diagnose_campaign("manual-rig-resistance.yaml", "manual-seal-visc-s3.csv");
     INFO(d.summary);
     REQUIRE(d.findings.size() == 2);
     CHECK(d.findings[0].effect == "seal_friction");

@@ -252,8 +252,13 @@ bool select_pair(const Engine& E, const std::vector<Effect>& lib, const Hypothes
         // The best pair forward selection can reach: the leading candidate with its best partner.
         const auto q = std::find_if(screened.begin(), screened.end(),
                                     [&](const PairFit& p) { return p.a == lead || p.b == lead; });
+        // (Refitted already when it is among the leading pairs.)
+        const size_t at = static_cast<size_t>(q - screened.begin());
         std::vector<Term> q_terms;
-        nll_forward = q == screened.end() ? r.fits[lead].nll : refit(*q, q_terms);
+        if (q == screened.end()) nll_forward = r.fits[lead].nll;
+        else if (at < refitted.size() && std::isfinite(refitted[at].criterion))
+            nll_forward = q->nll, q_terms = refitted[at].terms;
+        else nll_forward = refit(*q, q_terms);
         cost_forward = q == screened.end() ? cost(lib[lead], r.fits[lead].value) : terms_cost(q_terms);
         if (nll_forward >= kFailedNll) return false;
     }
