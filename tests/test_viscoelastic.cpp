@@ -51,6 +51,26 @@ TEST_CASE("Maxwell-Eyring: De -> infinity gives the elastic stress G gamma cappe
           Approx(50e6).epsilon(2e-4));
 }
 
+TEST_CASE("Maxwell-Eyring: a viscous film follows the Eyring stress of each slice, down as well as up, and is held at tau_L",
+          "[viscoelastic]") {
+    // Every slice stiff (De ~ 1e-6: the stress reaches each slice's Eyring value within nm).
+    // G 1 GPa, u_e 1 m/s, 2a = 1 mm, gamma_dot 1e7 1/s, tau_E 5 MPa. First half eta 10 Pa s:
+    // S = 20, tau = 5 MPa x asinh(20) = 5 MPa x ln(20 + sqrt(401)) = 5 x 3.689504 = 18.4475 MPa;
+    // second half eta 1 Pa s: S = 2, 7.21818 MPa (the stress falls into it). Mean of the two:
+    // 12.8328 MPa.
+    std::vector<mesh::MaxwellCell> cells = uniform(16, 0.5e-3, 10.0, 1e9, 1e12);
+    const auto thin = uniform(16, 0.5e-3, 1.0, 1e9, 1e12);
+    cells.insert(cells.end(), thin.begin(), thin.end());
+    CHECK(mesh::maxwell_eyring_mean_stress(cells, 1e7, 1.0, 5e6) == Approx(12.8328e6).epsilon(1e-4));
+    // The same film with tau_L = 10 MPa in the first half: held there, then 7.21818 MPa:
+    // mean 8.60909 MPa.
+    for (size_t i = 0; i < 16; ++i) cells[i].tau_L = 10e6;
+    CHECK(mesh::maxwell_eyring_mean_stress(cells, 1e7, 1.0, 5e6) == Approx(8.60909e6).epsilon(1e-4));
+    // tau_L = 6 MPa everywhere, below both Eyring values: 6 MPa.
+    for (auto& c : cells) c.tau_L = 6e6;
+    CHECK(mesh::maxwell_eyring_mean_stress(cells, 1e7, 1.0, 5e6) == Approx(6e6).epsilon(1e-4));
+}
+
 TEST_CASE("Maxwell-Eyring: the exact slice step agrees with a numerical integration at De ~ 1", "[viscoelastic]") {
     // u_e d tau/dx = G [gamma_dot - (tau_E/eta) sinh(tau/tau_E)] integrated by Dormand-Prince
     // (Boost.Odeint, tolerance 1e-10) with the mean stress as a second state; eta 100 Pa s,
