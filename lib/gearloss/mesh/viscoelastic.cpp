@@ -20,9 +20,10 @@ struct SliceSolution {
         z_minus = -1.0 / z_plus;
         const double a = gamma_dot / tau_E, b = 1.0 / eta, hi = std::max(a, b), lo = std::min(a, b);
         rate = G * dx / u_e * (hi > 0 ? hi * unit_hypot(lo / hi) : 0.0);  // relaxation lengths in the slice
-        // (Past 745 the exponential is 0 in double: said so, without the library's underflow path.)
-        decay = rate > 745.2 ? 0.0 : std::exp(-rate);
-        one_minus_decay = rate > 745.2 ? 1.0 : -std::expm1(-rate);
+        // (Past kNoDecay the exponential is 0 in double: said so, without the library's underflow path.)
+        constexpr double kNoDecay = 745.2;
+        decay = rate > kNoDecay ? 0.0 : std::exp(-rate);
+        one_minus_decay = rate > kNoDecay ? 1.0 : -std::expm1(-rate);
     }
     // The slice twice as long, from this one's constants: the decay squares, and
     // 1 - exp(-2 r) = (1 - exp(-r)) (1 + exp(-r)) keeps its digits.
@@ -70,34 +71,24 @@ double maxwell_eyring_mean_stress(std::span<const MaxwellCell> cells, double gam
         double z0 = z;
         const double t0 = capped(tau, z0);
         const SliceSolution half(0.5 * c.dx, gamma_dot, u_e, c.eta, c.G, tau_E);
-        double z_end = 0;
+        double z_end = 0, t_end = 0;
         const double kappa = 2.0 * half.rate;  // the slice in relaxation lengths u_e eta / (G sqrt(S^2 + 1))
-        // The two half steps (to the middle, to the end), each capped by tau_L.
-        const auto halves = [&](double& t_mid) {
-            double z_mid = 0;
-            t_mid = capped(half.step_z(t0, z0, tau_E, &z_mid), z_mid);
-            return capped(half.step_z(t_mid, z_mid, tau_E, &z_end), z_end);
-        };
-        double t_end = 0;
         if (kappa > 2.0) {
             // Stiff slice (viscous, De of the slice < 1/2): the stress relaxes to the Eyring
             // value tau_inf = tau_E asinh(S) (capped) within a fraction 1/kappa of the slice, as
             // tau_inf + (t0 - tau_inf) exp(-kappa x/dx) near it (rate linearised about tau_inf,
             // where d/dtau of sinh(tau/tau_E) is sqrt(S^2 + 1)/tau_E): the mean of that. The end
             // in one exact step over the slice: the stress moves monotonically from t0 towards the
-            // root, so the middle lies between t0 and the end, and the cap can act inside only
-            // where the end passes it (then the two halves, as in the smooth case).
-            t_end = half.doubled().step_z(t0, z0, tau_E, &z_end);
-            if (t_end > c.tau_L) {
-                double t_mid = 0;
-                t_end = halves(t_mid);
-            }
+            // root, so an end past tau_L means it rose through the cap and stays there.
+            t_end = capped(half.doubled().step_z(t0, z0, tau_E, &z_end), z_end);
             const double tau_inf = std::min(tau_E * std::log(half.z_plus), c.tau_L);
             integral += c.dx * (tau_inf + (t0 - tau_inf) * (half.one_minus_decay * (1.0 + half.decay)) / kappa);
         } else {
-            double t_mid = 0;
-            t_end = halves(t_mid);
-            integral += c.dx * (t0 + 4.0 * t_mid + t_end) / 6.0;  // Simpson: smooth over the slice
+            // Two half steps (to the middle, to the end), each capped; Simpson: smooth over the slice.
+            double z_mid = 0;
+            const double t_mid = capped(half.step_z(t0, z0, tau_E, &z_mid), z_mid);
+            t_end = capped(half.step_z(t_mid, z_mid, tau_E, &z_end), z_end);
+            integral += c.dx * (t0 + 4.0 * t_mid + t_end) / 6.0;
         }
         width += c.dx;
         tau = t_end;
