@@ -202,6 +202,8 @@ mut D21 diagnosis lib/gearloss/diagnosis/effects.cpp "a mechanism's scale factor
     'if (!scales_loss || !(value < nominal) || !(nominal > 0)) return 0.0;' 'if (true) return 0.0;'
 mut D22 diagnosis lib/gearloss/diagnosis/diagnose_pairs.cpp "the pair search ranks on its additive surrogate alone (only its leader refitted with the model)" \
     'constexpr size_t kPairsRefitted = 6;' 'constexpr size_t kPairsRefitted = 1;'
+mut D23 diagnosis lib/gearloss/diagnosis/hypothesis.cpp "the remainder formula's leading term taken as the best of the folds (no smooth form within one standard error)" \
+    'if (p == 0) best_c = smooth_within_one_se(lib, cv, best_c);' 'if (false) best_c = smooth_within_one_se(lib, cv, best_c);'
 mut K3 clutch lib/gearloss/clutch/wet_clutch.cpp "streak oil fraction squared (f -> f^2 beyond the wetted radius)" \
     'const double streaks = rw < c.r_outer ? f * oil_moment(rw, c.r_outer) : 0.0;' 'const double streaks = rw < c.r_outer ? f * f * oil_moment(rw, c.r_outer) : 0.0;'
 mut K4 clutch lib/gearloss/clutch/wet_clutch.cpp "air between the streaks sheared over the whole gap (1 - f dropped)" \

@@ -239,3 +239,34 @@ TEST_CASE("1000 points take well under a second", "[hypothesis]") {
     REQUIRE(p.found);
     CHECK(p.terms[0].basis == "[n > 1150 rpm]");
 }
+
+TEST_CASE("a viscous drag is found as a power of the viscosity, not a threshold of the oil temperature", "[hypothesis]") {
+    // Truth: dP = 20 W (nu/100 cSt)^1.2, an oil of 220 cSt at 40 degC, nu = 220 exp(-0.03 (theta
+    // - 40 degC)) cSt, the oil at theta = 30 degC + 0.03 n/rpm + 0.12 T/(N*m): 48-108 degC,
+    // nu 173-29 cSt, dP 39-2.4 W; noise 5 W; 100 draws. Hinges of the oil temperature and of the
+    // viscosity (hundreds of locations) come close to a power over such a range; the power, with
+    // no location to choose, is the form when it predicts within one standard error of them. The
+    // exponent is searched on a grid of 0.1 and is scored within 0.3 of the truth, as the issue
+    // asks. Before that preference: a viscosity power first in 84 and within 0.3 in 76 of the 100.
+    int first = 0, within = 0;
+    for (std::uint64_t s = 0; s < 100; ++s) {
+        auto c = grid(7000 + s, 0.0, [](double, double, double) { return 0.0; });
+        std::mt19937_64 rng(s);
+        std::normal_distribution<double> noise(0.0, 5.0);
+        for (std::size_t i = 0; i < c.residual.size(); ++i) {
+            const double theta = 30 + 0.03 * c.f.speed_rpm[i] + 0.12 * c.f.torque_Nm[i];
+            c.f.oil_temp_C[i] = theta;
+            c.f.viscosity_cSt[i] = 220 * std::exp(-0.03 * (theta - 40));
+            c.residual[i] = 20.0 * std::pow(c.f.viscosity_cSt[i] / 100, 1.2) + noise(rng);
+        }
+        const Proposal p = propose(c.residual, c.scale, c.f);
+        if (p.found && p.terms[0].variable == "viscosity_cSt" && p.terms[0].shape == "power") {
+            ++first;
+            within += std::fabs(p.terms[0].exponent - 1.2) <= 0.3;
+        } else {
+            UNSCOPED_INFO(p.formula);
+        }
+    }
+    CHECK(first >= 92);
+    CHECK(within >= 85);
+}

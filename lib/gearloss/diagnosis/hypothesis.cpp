@@ -1,6 +1,7 @@
 // A compact formula for an unexplained remainder: forward stepwise selection over the basis
 // library (hypothesis_basis.cpp) by K-fold cross-validated weighted least squares, the size
 // chosen by the one-standard-error rule (Hastie, Tibshirani & Friedman 2009, section 7.10),
+// which also gives the leading term a form without a location (a power) where one predicts as well,
 // a paired test of the cross-validated gain against predicting zero, a refit on all points
 // with standard errors, and the nearest known mechanisms.
 #include "gearloss/diagnosis/hypothesis.hpp"
@@ -259,6 +260,32 @@ void profile_exponents(std::vector<Column>& lib, std::vector<Eigen::Index>& sel,
     }
 }
 
+// A column without a location: a plain power of one variable, or the constant.
+bool smooth(const Column& c) { return plain_power(c) || (c.term.shape == "constant" && c.term.oil.empty()); }
+
+// best_c, or the smooth column that predicts out of fold within one paired standard error of it
+// (beside the columns already selected).
+Eigen::Index smooth_within_one_se(const std::vector<Column>& lib, const CrossValidation& cv, Eigen::Index best_c) {
+    if (smooth(lib[static_cast<std::size_t>(best_c)])) return best_c;
+    Eigen::Index smooth_c = -1;
+    double least = std::numeric_limits<double>::infinity();
+    for (Eigen::Index c = 0; c < static_cast<Eigen::Index>(lib.size()); ++c) {
+        if (!smooth(lib[static_cast<std::size_t>(c)])) continue;
+        if (std::find(cv.selected().begin(), cv.selected().end(), c) != cv.selected().end()) continue;
+        if (!cv.independent(c)) continue;
+        const double e = cv.mse_with(c);
+        if (e < least) least = e, smooth_c = c;
+    }
+    if (smooth_c < 0) return best_c;
+    auto errors_with = [&cv](Eigen::Index c) {
+        auto cols = cv.selected();
+        cols.push_back(c);
+        return cv.point_errors(cols);
+    };
+    const Eigen::VectorXd worse = errors_with(smooth_c) - errors_with(best_c);
+    return mean(worse) <= standard_error(worse) ? smooth_c : best_c;
+}
+
 }  // namespace
 
 Proposal propose(const std::vector<double>& residual, const std::vector<double>& scale, const Features& f,
@@ -346,6 +373,13 @@ Proposal propose(const std::vector<double>& residual, const std::vector<double>&
             }
         }
         if (best_c < 0) break;
+        // The leading term states the form. A power (or the constant) has no location to
+        // choose, while hundreds of steps and hinges do, and the best of those wins the folds
+        // on noise: a hinge in cold oil beats a viscous drag nu^p by a fraction of a standard
+        // error. So the best smooth column leads when its out-of-fold error is within one
+        // standard error (paired, per point) of the best column's: the one-standard-error rule
+        // of the size below, applied to the form (Hastie, Tibshirani & Friedman 2009, 7.10).
+        if (p == 0) best_c = smooth_within_one_se(lib, cv, best_c);
         // The best of several hundred candidates lowers the out-of-fold error on noise alone in
         // many campaigns; it must also be significant on all points, at 5 % family-wise over
         // the candidates it was chosen from (Bonferroni), or it is noise that the engineer
