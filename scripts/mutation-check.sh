@@ -204,6 +204,8 @@ mut D22 diagnosis lib/gearloss/diagnosis/diagnose_pairs.cpp "the pair search ran
     'constexpr size_t kPairsRefitted = 6;' 'constexpr size_t kPairsRefitted = 1;'
 mut D23 diagnosis lib/gearloss/diagnosis/hypothesis.cpp "the remainder formula's leading term taken as the best of the folds (no smooth form within one standard error)" \
     'if (p == 0) best_c = smooth_within_one_se(lib, cv, best_c);' 'if (false) best_c = smooth_within_one_se(lib, cv, best_c);'
+mut D24 diagnosis lib/gearloss/diagnosis/adequacy_structure.cpp "a mismatch claimed by Holm or Fisher each at the whole level (the claim at up to twice it)" \
+    'ClaimLevels claim_levels(double level) { return {0.5 * level, 0.5 * level}; }' 'ClaimLevels claim_levels(double level) { return {level, level}; }'
 mut K3 clutch lib/gearloss/clutch/wet_clutch.cpp "streak oil fraction squared (f -> f^2 beyond the wetted radius)" \
     'const double streaks = rw < c.r_outer ? f * oil_moment(rw, c.r_outer) : 0.0;' 'const double streaks = rw < c.r_outer ? f * f * oil_moment(rw, c.r_outer) : 0.0;'
 mut K4 clutch lib/gearloss/clutch/wet_clutch.cpp "air between the streaks sheared over the whole gap (1 - f dropped)" \

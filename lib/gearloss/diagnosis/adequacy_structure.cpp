@@ -182,4 +182,6 @@ double holm_threshold(std::vector<double> p_values, double level) {
     return threshold;
 }
 
+ClaimLevels claim_levels(double level) { return {0.5 * level, 0.5 * level}; }
+
 }  // namespace gearloss::diagnosis::adequacy

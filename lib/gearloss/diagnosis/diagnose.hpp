@@ -50,9 +50,10 @@ struct DiagnoseOptions {
     // the stabilisation criterion's tenths of a kelvin (Pereira 2017, sec. 3.5.2: 0.5 K over
     // 30 min). The report says when the floor was the noise used.
     double loss_noise_floor = 0.01, temp_noise_floor = 0.2;
-    // Level of each adequacy test (goodness of fit and structure, per channel), and of their
-    // combination for the claim that there is a mismatch at all: the null model is rejected
-    // only on strong evidence.
+    // Level of the adequacy tests (goodness of fit and structure, per channel) as a family
+    // (Holm), and of the claim that there is a mismatch at all, made when the family or the
+    // tests' combination rejects, each at half of it (adequacy::claim_levels): the null model
+    // is rejected only on strong evidence.
     double adequacy_level = 0.01;
     // Level of the tests' combination (Fisher 1932) that what the findings leave must pass for
     // them to be named with confidence (`missing_physics`; else `partly_explained`). Laxer

@@ -177,7 +177,14 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
     if (E.has_temperature())
         test(ct, oil_t, A.noise_temp, A.fit_temp, A.structure_temp, opt.temp_uncertainty, kFloorTemp, opt.temp_noise_floor,
              "oil temperature", 1.0, "K", "--temp-uncertainty", A.noise_temp_why, A.rms_temp);
-    const double threshold = adequacy::holm_threshold(p_values, level);  // p-values below it are rejected
+    // The claim that there is a mismatch at all (the combination no laxer than the tests' own
+    // level) is made at `level` as a whole (adequacy::claim_levels); what findings leave is
+    // judged by each test at `level` and by the combination at the laxer `combined_level`.
+    const bool mismatch_claim = combined_level <= level;
+    const adequacy::ClaimLevels claim = adequacy::claim_levels(level);
+    const double holm_level = mismatch_claim ? claim.holm : level;
+    const double fisher_level = mismatch_claim ? claim.combination : combined_level;
+    const double threshold = adequacy::holm_threshold(p_values, holm_level);  // p-values below it are rejected
     std::vector<std::string> left;
     for (auto& r : results) {
         r.bad_fit = r.fit && r.fit->p_value < threshold;
@@ -198,13 +205,13 @@ Adequacy assess(const Engine& E, const Pred& p, const Hypothesis& h, int fitted,
     }
     if (p_values.size() > 1) {
         A.combined_p = adequacy::combined_p(p_values);
-        if (A.adequate && A.combined_p < combined_level) {
+        if (A.adequate && A.combined_p < fisher_level) {
             A.adequate = false;
             std::string list;
             for (const auto& t : tested) list += (list.empty() ? "" : ", ") + t;
             left.push_back(fmt::format("no single test fails at {:g} (Holm over {} tests), but together they do (Fisher's "
                                        "combination, {} < {:g}): {}",
-                                       level, p_values.size(), p_value_text(A.combined_p), combined_level, list));
+                                       holm_level, p_values.size(), p_value_text(A.combined_p), fisher_level, list));
         }
     }
     for (const auto& s : left) A.text += (A.text.empty() ? "" : "\n") + s;
