@@ -203,7 +203,7 @@ mut D21 diagnosis lib/gearloss/diagnosis/effects.cpp "a mechanism's scale factor
 mut D22 diagnosis lib/gearloss/diagnosis/diagnose_pairs.cpp "the pair search ranks on its additive surrogate alone (only its leader refitted with the model)" \
     'constexpr size_t kPairsRefitted = 6;' 'constexpr size_t kPairsRefitted = 1;'
 mut D23 diagnosis lib/gearloss/diagnosis/hypothesis.cpp "the remainder formula's leading term taken as the best of the folds (no smooth form within one standard error)" \
-    'if (p == 0) best_c = smooth_within_one_se(lib, cv, best_c);' 'if (false) best_c = smooth_within_one_se(lib, cv, best_c);'
+    'if (p == 0) best_c = smooth_within_one_se(cv, best_c, smooth_c);' 'if (false) best_c = smooth_within_one_se(cv, best_c, smooth_c);'
 mut D24 diagnosis lib/gearloss/diagnosis/adequacy_structure.cpp "a mismatch claimed by Holm or Fisher each at the whole level (the claim at up to twice it)" \
     'ClaimLevels claim_levels(double level) { return {0.5 * level, 0.5 * level}; }' 'ClaimLevels claim_levels(double level) { return {level, level}; }'
 mut K3 clutch lib/gearloss/clutch/wet_clutch.cpp "streak oil fraction squared (f -> f^2 beyond the wetted radius)" \

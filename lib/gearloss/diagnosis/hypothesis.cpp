@@ -263,20 +263,10 @@ void profile_exponents(std::vector<Column>& lib, std::vector<Eigen::Index>& sel,
 // A column without a location: a plain power of one variable, or the constant.
 bool smooth(const Column& c) { return plain_power(c) || (c.term.shape == "constant" && c.term.oil.empty()); }
 
-// best_c, or the smooth column that predicts out of fold within one paired standard error of it
-// (beside the columns already selected).
-Eigen::Index smooth_within_one_se(const std::vector<Column>& lib, const CrossValidation& cv, Eigen::Index best_c) {
-    if (smooth(lib[static_cast<std::size_t>(best_c)])) return best_c;
-    Eigen::Index smooth_c = -1;
-    double least = std::numeric_limits<double>::infinity();
-    for (Eigen::Index c = 0; c < static_cast<Eigen::Index>(lib.size()); ++c) {
-        if (!smooth(lib[static_cast<std::size_t>(c)])) continue;
-        if (std::find(cv.selected().begin(), cv.selected().end(), c) != cv.selected().end()) continue;
-        if (!cv.independent(c)) continue;
-        const double e = cv.mse_with(c);
-        if (e < least) least = e, smooth_c = c;
-    }
-    if (smooth_c < 0) return best_c;
+// best_c, or smooth_c (the best smooth column, -1: none) when it predicts out of fold within one
+// paired standard error of it (beside the columns already selected).
+Eigen::Index smooth_within_one_se(const CrossValidation& cv, Eigen::Index best_c, Eigen::Index smooth_c) {
+    if (smooth_c < 0 || smooth_c == best_c) return best_c;
     auto errors_with = [&cv](Eigen::Index c) {
         auto cols = cv.selected();
         cols.push_back(c);
@@ -359,8 +349,8 @@ Proposal propose(const std::vector<double>& residual, const std::vector<double>&
     // The forward path: at each size the column that lowers the out-of-fold error most.
     std::vector<std::vector<Eigen::Index>> path = {{}};
     for (int p = 0; p < p_max; ++p) {
-        double best = std::numeric_limits<double>::infinity();
-        Eigen::Index best_c = -1;
+        double best = std::numeric_limits<double>::infinity(), best_smooth = best;
+        Eigen::Index best_c = -1, smooth_c = -1;
         std::size_t candidates = 0;
         for (Eigen::Index c = 0; c < C; ++c) {
             if (std::find(cv.selected().begin(), cv.selected().end(), c) != cv.selected().end()) continue;
@@ -371,6 +361,10 @@ Proposal propose(const std::vector<double>& residual, const std::vector<double>&
                 best = e;
                 best_c = c;
             }
+            if (e < best_smooth && smooth(lib[static_cast<std::size_t>(c)])) {
+                best_smooth = e;
+                smooth_c = c;
+            }
         }
         if (best_c < 0) break;
         // The leading term states the form. A power (or the constant) has no location to
@@ -379,7 +373,7 @@ Proposal propose(const std::vector<double>& residual, const std::vector<double>&
         // error. So the best smooth column leads when its out-of-fold error is within one
         // standard error (paired, per point) of the best column's: the one-standard-error rule
         // of the size below, applied to the form (Hastie, Tibshirani & Friedman 2009, 7.10).
-        if (p == 0) best_c = smooth_within_one_se(lib, cv, best_c);
+        if (p == 0) best_c = smooth_within_one_se(cv, best_c, smooth_c);
         // The best of several hundred candidates lowers the out-of-fold error on noise alone in
         // many campaigns; it must also be significant on all points, at 5 % family-wise over
         // the candidates it was chosen from (Bonferroni), or it is noise that the engineer
