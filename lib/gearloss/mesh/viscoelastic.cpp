@@ -80,9 +80,10 @@ double maxwell_eyring_mean_stress(std::span<const MaxwellCell> cells, double gam
             // where d/dtau of sinh(tau/tau_E) is sqrt(S^2 + 1)/tau_E): the mean of that. The end
             // in one exact step over the slice: the stress moves monotonically from t0 towards the
             // root, so an end past tau_L means it rose through the cap and stays there.
-            t_end = capped(half.doubled().step_z(t0, z0, tau_E, &z_end), z_end);
+            const SliceSolution whole = half.doubled();
+            t_end = capped(whole.step_z(t0, z0, tau_E, &z_end), z_end);
             const double tau_inf = std::min(tau_E * std::log(half.z_plus), c.tau_L);
-            integral += c.dx * (tau_inf + (t0 - tau_inf) * (half.one_minus_decay * (1.0 + half.decay)) / kappa);
+            integral += c.dx * (tau_inf + (t0 - tau_inf) * whole.one_minus_decay / kappa);
         } else {
             // Two half steps (to the middle, to the end), each capped; Simpson: smooth over the slice.
             double z_mid = 0;
