@@ -201,7 +201,11 @@ mut M17 mesh lib/gearloss/mesh/ehl_contact.cpp "local EHL film temperatures read
 mut D21 diagnosis lib/gearloss/diagnosis/effects.cpp "a mechanism's scale factor below nominal costs nothing (no prior)" \
     'if (!scales_loss || !(value < nominal) || !(nominal > 0)) return 0.0;' 'if (true) return 0.0;'
 mut D22 diagnosis lib/gearloss/diagnosis/diagnose_pairs.cpp "the pair search ranks on its additive surrogate alone (only its leader refitted with the model)" \
-    'constexpr size_t kPairsRefitted = 6;' 'constexpr size_t kPairsRefitted = 1;'
+    'constexpr size_t kPairsRefitted = 8;' 'constexpr size_t kPairsRefitted = 1;'
+mut D25 diagnosis lib/gearloss/diagnosis/diagnose_pairs.cpp "the pairs screened at the surrogate's knots only (no pair refined between its knots before the ranking)" \
+    'r.responses[b], r.base_pred, neutral).minimise(all);' 'r.responses[b], r.base_pred, neutral).grid(all);'
+mut D26 diagnosis lib/gearloss/diagnosis/diagnose_pairs.cpp "six leading pairs refitted with the model instead of eight" \
+    'constexpr size_t kPairsRefitted = 8;' 'constexpr size_t kPairsRefitted = 6;'
 mut D23 diagnosis lib/gearloss/diagnosis/hypothesis.cpp "the remainder formula's leading term taken as the best of the folds (no smooth form within one standard error)" \
     'if (p == 0) best_c = smooth_within_one_se(cv, best_c, smooth_c);' 'if (false) best_c = smooth_within_one_se(cv, best_c, smooth_c);'
 mut D24 diagnosis lib/gearloss/diagnosis/adequacy_structure.cpp "a mismatch claimed by Holm or Fisher each at the whole level (the claim at up to twice it)" \
