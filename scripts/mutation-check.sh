@@ -206,6 +206,12 @@ mut D25 diagnosis lib/gearloss/diagnosis/diagnose_pairs.cpp "the pairs screened 
     'r.responses[b], r.base_pred, neutral).minimise(all);' 'r.responses[b], r.base_pred, neutral).grid(all);'
 mut D26 diagnosis lib/gearloss/diagnosis/diagnose_pairs.cpp "six leading pairs refitted with the model instead of eight" \
     'constexpr size_t kPairsRefitted = 8;' 'constexpr size_t kPairsRefitted = 6;'
+mut T10 thermal lib/gearloss/model/model.cpp "the heat flow linear in the rise whatever heat_rejection_rise_slope" \
+    'const double rise = s == 0.0 ? 1.0 : 1.0 + s * (T_surface - T_amb - 50.0) / 50.0;' 'const double rise = 1.0;'
+mut T11 thermal lib/gearloss/model/model.cpp "the heat flow's rise slope taken about a 0 K rise instead of 50 K" \
+    '1.0 + s * (T_surface - T_amb - 50.0) / 50.0;' '1.0 + s * (T_surface - T_amb) / 50.0;'
+mut D27 diagnosis lib/gearloss/diagnosis/effects.cpp "the heat path's rise slope never moved (only the case's value on its grid)" \
+    '"heat_rejection_rise_slope", {-0.15, 0.0, 0.15}' '"heat_rejection_rise_slope", {0.0}'
 mut D23 diagnosis lib/gearloss/diagnosis/hypothesis.cpp "the remainder formula's leading term taken as the best of the folds (no smooth form within one standard error)" \
     'if (p == 0) best_c = smooth_within_one_se(cv, best_c, smooth_c);' 'if (false) best_c = smooth_within_one_se(cv, best_c, smooth_c);'
 mut D24 diagnosis lib/gearloss/diagnosis/adequacy_structure.cpp "a mismatch claimed by Holm or Fisher each at the whole level (the claim at up to twice it)" \

@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
 
 #include "gearloss/case/config.hpp"
 #include "gearloss/core/errors.hpp"
@@ -10,6 +11,21 @@
 
 using namespace gearloss;
 using Approx = Catch::Detail::Approx;
+
+namespace {
+// A calibration block outside a key's bounds: an InputError naming the key and its bounds.
+void check_calibration_rejected(const std::string& calibration, const std::string& key, const std::string& bounds) {
+    const std::string base = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
+    test_support::TempConfig bad(base + "calibration:\n" + calibration);
+    try {
+        io::load_case(bad.path);
+        FAIL("no error for " + calibration);
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()).find(key) != std::string::npos);
+        CHECK(std::string(e.what()).find("must be in " + bounds) != std::string::npos);
+    }
+}
+}  // namespace
 
 TEST_CASE("constant loss through a thermal resistance: T = Ta + P R", "[thermal]") {
     thermal::HeatRejection h{thermal::ThermalResistance{0.1, 0, 0}};
@@ -96,12 +112,35 @@ TEST_CASE("forced cooling grows as the fitted power of speed", "[thermal]") {
         test_support::TempConfig cfg(base + "calibration:\n  cooling_per_1000rpm: 0.1\n  cooling_speed_exponent: 0.65\n");
         CHECK(io::load_case(cfg.path).model.calibration.cooling_speed_exponent == 0.65);
     }
-    test_support::TempConfig bad(base + "calibration:\n  cooling_speed_exponent: 5\n");
-    try {
-        io::load_case(bad.path);
-        FAIL("no error for cooling_speed_exponent 5");
-    } catch (const InputError& e) {
-        CHECK(std::string(e.what()).find("cooling_speed_exponent") != std::string::npos);
-        CHECK(std::string(e.what()).find("must be in [0.2, 2]") != std::string::npos);
+    check_calibration_rejected("  cooling_speed_exponent: 5\n", "cooling_speed_exponent", "[0.2, 2]");
+}
+
+TEST_CASE("the heat flow bends with the oil's rise over ambient by the calibrated slope", "[thermal]") {
+    // calibration heat_rejection_rise_slope s: the heat flow to ambient times
+    // (1 + s (dT - 50 K)/50 K), dT the surface's rise over ambient. Hand check: at a 50 K rise
+    // any s leaves it; at 80 K, s = 0.1 gives 1 + 0.1 x 30/50 = 1.06; at 20 K, s = -0.15 gives
+    // 1 - 0.15 x (-30)/50 = 1.09. With forced cooling and a factor the three multiply.
+    auto c = test_support::load_shipped("configs/transfer-box.yaml");
+    auto& m = c.model;
+    const double Ta = 298.15, w = 2000 * M_PI / 30;
+    const double Q50 = m.surface_heat_flow(Ta + 50, Ta, w, 0), Q80 = m.surface_heat_flow(Ta + 80, Ta, w, 0),
+                 Q20 = m.surface_heat_flow(Ta + 20, Ta, w, 0);
+    REQUIRE(Q20 > 0);
+    m.calibration.heat_rejection_rise_slope = 0.1;
+    CHECK(m.surface_heat_flow(Ta + 50, Ta, w, 0) == Approx(Q50).epsilon(1e-12));
+    CHECK(m.surface_heat_flow(Ta + 80, Ta, w, 0) == Approx(1.06 * Q80).epsilon(1e-12));
+    m.calibration.heat_rejection_rise_slope = -0.15;
+    CHECK(m.surface_heat_flow(Ta + 20, Ta, w, 0) == Approx(1.09 * Q20).epsilon(1e-12));
+    CHECK_FALSE(m.calibration.neutral());
+    // 1.09 x 0.8 x (1 + 0.2 x 2) at 2000 rpm with a factor 0.8 and a linear forced cooling 0.2.
+    m.calibration.heat_rejection_factor = 0.8;
+    m.calibration.cooling_per_1000rpm = 0.2;
+    CHECK(m.surface_heat_flow(Ta + 20, Ta, w, 0) == Approx(1.09 * 0.8 * 1.4 * Q20).epsilon(1e-12));
+    // Read with its bounds: beyond |s| = 0.2 the heat flow could fall as the oil heats.
+    const std::string base = test_support::read_file(test_support::source_path("configs/transfer-box.yaml"));
+    {
+        test_support::TempConfig cfg(base + "calibration:\n  heat_rejection_rise_slope: -0.12\n");
+        CHECK(io::load_case(cfg.path).model.calibration.heat_rejection_rise_slope == -0.12);
     }
+    check_calibration_rejected("  heat_rejection_rise_slope: 0.3\n", "heat_rejection_rise_slope", "[-0.2, 0.2]");
 }

@@ -69,6 +69,7 @@ void load_calibration(const YamlNode& n, solver::Model& m) {
         if (key == "heat_rejection_factor") { factor(x, c.heat_rejection_factor, 0.05, 20); continue; }
         if (key == "cooling_per_1000rpm") { factor(x, c.cooling_per_1000rpm, -0.95, 50); continue; }
         if (key == "cooling_speed_exponent") { factor(x, c.cooling_speed_exponent, 0.2, 2); continue; }
+        if (key == "heat_rejection_rise_slope") { factor(x, c.heat_rejection_rise_slope, -0.2, 0.2); continue; }
         if (auto* mech = m.mechanisms.find(key); mech && x.is_map()) {
             for (const auto& [pk, px] : x.entries()) {
                 if (pk == "note") continue;
@@ -96,7 +97,7 @@ void load_calibration(const YamlNode& n, solver::Model& m) {
         if (m.mechanisms.find(key)) x.fail(fmt::format("give the calibration of '{}' as a block, e.g. {}: {{{}}}", key, key,
                                                        allowed_keys(m.mechanisms.at(key), m, true)));
         x.fail(fmt::format("unknown calibration key '{}'; give viscosity_factor, heat_rejection_factor, "
-                           "cooling_per_1000rpm, cooling_speed_exponent or a block per loss mechanism ({})",
+                           "cooling_per_1000rpm, cooling_speed_exponent, heat_rejection_rise_slope or a block per loss mechanism ({})",
                            excerpt(key), losses::registered_names()));
     }
 }
@@ -146,6 +147,8 @@ std::vector<CalibrationEntry> calibration_entries(const losses::MechanismSet& me
     if (c.cooling_per_1000rpm != 0) out.push_back({"", "cooling_per_1000rpm", c.cooling_per_1000rpm, ""});
     if (c.cooling_per_1000rpm != 0 && c.cooling_speed_exponent != 1)
         out.push_back({"", "cooling_speed_exponent", c.cooling_speed_exponent, ""});
+    if (c.heat_rejection_rise_slope != 0)
+        out.push_back({"", "heat_rejection_rise_slope", c.heat_rejection_rise_slope, ""});
     return out;
 }
 

@@ -376,7 +376,7 @@ void write_calibrated_config(const std::string& config_in, const std::string& co
     // calibration, so it holds the terms read from this block (in either spelling).
     for (const char* k : {"windage", "churning_factor", "bearing_drag_f0", "seal_factor", "mesh_friction_factor",
                           "auxiliary", "viscosity_factor", "heat_rejection_factor", "cooling_per_1000rpm",
-                          "cooling_speed_exponent"})
+                          "cooling_speed_exponent", "heat_rejection_rise_slope"})
         cal.remove(k);
     const auto& mechs = d.calibrated.mechanisms;
     for (size_t i = 0; i < mechs.size(); ++i) cal.remove(std::string(mechs[i].name()));

@@ -14,7 +14,7 @@
 namespace gearloss::solver {
 
 bool Calibration::neutral() const {
-    return viscosity_factor == 1 && heat_rejection_factor == 1 && cooling_per_1000rpm == 0;
+    return viscosity_factor == 1 && heat_rejection_factor == 1 && cooling_per_1000rpm == 0 && heat_rejection_rise_slope == 0;
 }
 
 bool Model::calibration_neutral() const {
@@ -33,8 +33,11 @@ double Model::surface_heat_flow(double T_surface, double T_amb, double omega_in,
     const double q = calibration.cooling_speed_exponent;
     const double forced = calibration.cooling_per_1000rpm == 0.0 ? 0.0
                           : calibration.cooling_per_1000rpm * (q == 1.0 ? n_k : std::pow(n_k, q));
+    // (|s| <= 0.2, validate_calibration: the heat flow grows with the rise up to 150 K.)
+    const double s = calibration.heat_rejection_rise_slope;
+    const double rise = s == 0.0 ? 1.0 : 1.0 + s * (T_surface - T_amb - 50.0) / 50.0;
     return thermal.rejection.heat_flow(T_surface, T_amb, omega_in, air_speed) * calibration.heat_rejection_factor *
-           (1.0 + forced);
+           (1.0 + forced) * rise;
 }
 
 double Model::cooler_heat_flow(double T_oil) const {

@@ -157,6 +157,8 @@ void validate_calibration(const Calibration& k, std::vector<Issue>& out) {
     c.range("heat_rejection_factor", k.heat_rejection_factor, 0.05, 20.0, "heat rejection factor");
     c.range("cooling_per_1000rpm", k.cooling_per_1000rpm, -0.95, 50.0, "cooling per 1000 rpm");
     c.range("cooling_speed_exponent", k.cooling_speed_exponent, 0.2, 2.0, "power of speed in the forced cooling");
+    c.range("heat_rejection_rise_slope", k.heat_rejection_rise_slope, -0.2, 0.2,
+            "change of the heat flow per 50 K of oil rise over ambient");
 }
 
 void validate_gearbox(const Model& m, std::vector<Issue>& out) {
