@@ -207,9 +207,11 @@ mut D25 diagnosis lib/gearloss/diagnosis/diagnose_pairs.cpp "the pairs screened 
 mut D26 diagnosis lib/gearloss/diagnosis/diagnose_pairs.cpp "six leading pairs refitted with the model instead of eight" \
     'constexpr size_t kPairsRefitted = 8;' 'constexpr size_t kPairsRefitted = 6;'
 mut T10 thermal lib/gearloss/model/model.cpp "the heat flow linear in the rise whatever heat_rejection_rise_slope" \
-    'const double rise = s == 0.0 ? 1.0 : 1.0 + s * (T_surface - T_amb - 50.0) / 50.0;' 'const double rise = 1.0;'
+    'const double rise = s == 0.0 ? 1.0 : 1.0 + s * (std::clamp(T_surface - T_amb, 0.0, 150.0) - 50.0) / 50.0;' 'const double rise = 1.0;'
 mut T11 thermal lib/gearloss/model/model.cpp "the heat flow's rise slope taken about a 0 K rise instead of 50 K" \
-    '1.0 + s * (T_surface - T_amb - 50.0) / 50.0;' '1.0 + s * (T_surface - T_amb) / 50.0;'
+    '1.0 + s * (std::clamp(T_surface - T_amb, 0.0, 150.0) - 50.0) / 50.0;' '1.0 + s * std::clamp(T_surface - T_amb, 0.0, 150.0) / 50.0;'
+mut D28 diagnosis lib/gearloss/diagnosis/diagnose_select.cpp "beside a finding whose refinement has moved, a candidate's own refinement scanned over its whole grid" \
+    'opt, false, -1, !refinable, refinable ? &leads : nullptr)' 'opt, false, -1, !refinable, leads.empty() ? nullptr : &leads)'
 mut D27 diagnosis lib/gearloss/diagnosis/effects.cpp "the heat path's rise slope never moved (only the case's value on its grid)" \
     '"heat_rejection_rise_slope", {-0.15, 0.0, 0.15}' '"heat_rejection_rise_slope", {0.0}'
 mut D23 diagnosis lib/gearloss/diagnosis/hypothesis.cpp "the remainder formula's leading term taken as the best of the folds (no smooth form within one standard error)" \

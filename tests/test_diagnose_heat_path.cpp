@@ -32,8 +32,10 @@ TEST_CASE("a heat path that bends with the rise is named with a seal, not with a
     REQUIRE(heat.effect == "thermal_resistance");
     CHECK(seal.effect == "seal_friction");
     CHECK(seal.parameter.value == Approx(2.79).epsilon(0.15));
-    // The factor at a 50 K rise: the suite's 1.308 at its median oil temperature.
-    CHECK(heat.parameter.value == Approx(1.308).epsilon(0.08));
+    // The factor is the heat path's at a 50 K rise: the suite's 1.308 holds at its T_mid, the
+    // median oil temperature of the case without effects (54.81 degC, a rise of 29.81 K over the
+    // 25 degC ambient; truth.json), so at 50 K it is 1.308 (1 - 0.143 x 20.19/50) = 1.233.
+    CHECK(heat.parameter.value == Approx(1.233).epsilon(0.03));
     // The slope within one grid step (0.15) of the suite's -0.143, and negative.
     REQUIRE(heat.shape);
     CHECK(heat.shape->name == "heat_rejection_rise_slope");
@@ -57,7 +59,7 @@ TEST_CASE("a heat path that bends with the rise is named with a seal, not with a
 TEST_CASE("a heat path linear in the rise keeps its slope at the case's value", "[diagnose_heat_path]") {
     // The refinement must not move without cause: synth's own heat path (linear in the rise)
     // with the heat flow 0.8 times the model's and 1.5 % noise. The slope stays at 0 (the case's
-    // value) and the factor is found within its uncertainty of 0.8.
+    // value) and the factor is found within 3 % of 0.8.
     auto c = io::load_case(test_support::source_path("tests/data/diagnosis/transfer-rig-resistance.yaml"));
     diagnosis::SynthOptions so;
     so.effects = {{"thermal_resistance", 0.8}};
@@ -72,5 +74,6 @@ TEST_CASE("a heat path linear in the rise keeps its slope at the case's value", 
     REQUIRE_FALSE(d.findings.empty());
     CHECK(d.findings[0].effect == "thermal_resistance");
     CHECK(d.findings[0].parameter.value == Approx(0.8).epsilon(0.03));
-    if (d.findings[0].shape) CHECK(d.findings[0].shape->value == 0.0);
+    // (A refinement is reported only once it has moved.)
+    CHECK_FALSE(d.findings[0].shape);
 }

@@ -132,6 +132,18 @@ TEST_CASE("the heat flow bends with the oil's rise over ambient by the calibrate
     m.calibration.heat_rejection_rise_slope = -0.15;
     CHECK(m.surface_heat_flow(Ta + 20, Ta, w, 0) == Approx(1.09 * Q20).epsilon(1e-12));
     CHECK_FALSE(m.calibration.neutral());
+    // Beyond the rises it is valid for (0 to 150 K) the factor is held at its end: at a 200 K
+    // rise with s = -0.2 it is 1 - 0.2 x 100/50 = 0.6 (not 1 - 0.2 x 150/50 = 0.4), at a surface
+    // 10 K below ambient with s = 0.15 it is 1 + 0.15 x (-50)/50 = 0.85.
+    {
+        auto held = m;
+        held.calibration.heat_rejection_rise_slope = 0;
+        const double Q200 = held.surface_heat_flow(Ta + 200, Ta, w, 0), Qcold = held.surface_heat_flow(Ta - 10, Ta, w, 0);
+        held.calibration.heat_rejection_rise_slope = -0.2;
+        CHECK(held.surface_heat_flow(Ta + 200, Ta, w, 0) == Approx(0.6 * Q200).epsilon(1e-12));
+        held.calibration.heat_rejection_rise_slope = 0.15;
+        CHECK(held.surface_heat_flow(Ta - 10, Ta, w, 0) == Approx(0.85 * Qcold).epsilon(1e-12));
+    }
     // 1.09 x 0.8 x (1 + 0.2 x 2) at 2000 rpm with a factor 0.8 and a linear forced cooling 0.2.
     m.calibration.heat_rejection_factor = 0.8;
     m.calibration.cooling_per_1000rpm = 0.2;
@@ -142,5 +154,10 @@ TEST_CASE("the heat flow bends with the oil's rise over ambient by the calibrate
         test_support::TempConfig cfg(base + "calibration:\n  heat_rejection_rise_slope: -0.12\n");
         CHECK(io::load_case(cfg.path).model.calibration.heat_rejection_rise_slope == -0.12);
     }
+    for (const char* s : {"-0.2", "0.2"}) {
+        test_support::TempConfig cfg(base + "calibration:\n  heat_rejection_rise_slope: " + s + "\n");
+        CHECK(io::load_case(cfg.path).model.calibration.heat_rejection_rise_slope == std::stod(s));
+    }
     check_calibration_rejected("  heat_rejection_rise_slope: 0.3\n", "heat_rejection_rise_slope", "[-0.2, 0.2]");
+    check_calibration_rejected("  heat_rejection_rise_slope: -0.3\n", "heat_rejection_rise_slope", "[-0.2, 0.2]");
 }

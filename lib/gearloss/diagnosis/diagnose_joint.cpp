@@ -251,8 +251,15 @@ double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Ter
     // likelihood improves, towards the better neighbour. A deferred shape (a refinement of a
     // named effect) moves also when its effect stands alone, and is held while a candidate is
     // judged beside the findings (`hold_deferred`: the candidate would be credited with its move).
+    // The refinement `scan` belongs to: the first unmoved one, as refinement_leads finds it.
+    const auto unmoved_refinement = [](const Term& t) {
+        return t.effect->shape && t.effect->shape->deferred && t.effect->shape->variants && t.effect->shape->at_own();
+    };
+    const auto scanned = scan ? std::find_if(terms.begin(), terms.end(), unmoved_refinement) - terms.begin() : -1;
     auto movable = [&](const Term& t) {
-        return t.effect->shape && t.effect->shape->variants && !(hold_deferred && t.effect->shape->deferred);
+        if (!t.effect->shape || !t.effect->shape->variants) return false;
+        if (!t.effect->shape->deferred) return true;
+        return !hold_deferred && (!scan || &t - terms.data() == scanned || !t.effect->shape->at_own());
     };
     const bool refinement = !hold_deferred && std::any_of(terms.begin(), terms.end(), [&](const Term& t) {
         return movable(t) && t.effect->shape->deferred && (skip < 0 || &t != &terms[static_cast<size_t>(skip)]);

@@ -294,7 +294,7 @@ Selection select_effects(const Engine& E, const std::vector<Effect>& lib, const 
                 std::vector<Term> joint = terms;
                 joint.push_back({&lib[k], fits[k].value});
                 std::vector<char> fl = flags;
-                if (refit_jointly(E, neutral, joint, fl, opt, false, -1, !refinable, leads.empty() ? nullptr : &leads) >=
+                if (refit_jointly(E, neutral, joint, fl, opt, false, -1, !refinable, refinable ? &leads : nullptr) >=
                     kFailedNll)
                     continue;
                 const Hypothesis others = with_terms(neutral, joint, fl, static_cast<int>(joint.size() - 1));

@@ -37,7 +37,10 @@ bool taken(const std::vector<Term>& terms, const Effect& e, int skip = -1);
 // evaluated): Gauss-Newton for two or more continuous parameters, else coordinate descent;
 // the flagged points are chosen again only when `refit_flags`. Shapes move along their grids;
 // a deferred one (a refinement) is held when `hold_deferred`, and where it has not moved yet it
-// is first scanned over every other grid value, or over the indices in `scan`.
+// is first scanned over every other grid value. With `scan` (a finding's refinement scanned
+// beside a candidate: the indices refinement_leads gave) only that refinement moves, over those
+// indices; any other unmoved one, a candidate's own, is held (not offered before its effect is
+// named), and one that has moved already steps on from where it is.
 double refit_jointly(const Engine& E, const Hypothesis& neutral, std::vector<Term>& terms, std::vector<char>& flags,
                      const DiagnoseOptions& opt, bool refit_flags, int skip = -1, bool hold_deferred = false,
                      const std::vector<size_t>* scan = nullptr);

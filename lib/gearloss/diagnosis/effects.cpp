@@ -156,7 +156,7 @@ std::vector<Effect> candidate_effects(const solver::Model& m) {
     v.push_back(builtin("thermal_resistance", "the heat path to ambient differs (housing area, mounting, heat conducted into the rig)",
                  "heat rejection factor", "", 0.2, 5, c.heat_rejection_factor, EffectKind::heat_path, true,
                  [](Hypothesis& h, double x) { h.cal.heat_rejection_factor = x; }));
-    // Its change with the oil's rise over ambient, moved once the heat path is named (a
+    // Its change with the surface's rise over ambient, moved once the heat path is named (a
     // refinement): a rig's path is rarely linear in the rise (Model::surface_heat_flow).
     give_shape(v.back(), "heat_rejection_rise_slope", {-0.15, 0.0, 0.15}, c.heat_rejection_rise_slope,
                [](Hypothesis& h, double s) { h.cal.heat_rejection_rise_slope = s; });

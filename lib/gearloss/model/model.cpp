@@ -33,9 +33,12 @@ double Model::surface_heat_flow(double T_surface, double T_amb, double omega_in,
     const double q = calibration.cooling_speed_exponent;
     const double forced = calibration.cooling_per_1000rpm == 0.0 ? 0.0
                           : calibration.cooling_per_1000rpm * (q == 1.0 ? n_k : std::pow(n_k, q));
-    // (|s| <= 0.2, validate_calibration: the heat flow grows with the rise up to 150 K.)
+    // |s| <= 0.2 (validate_calibration) keeps the heat flow growing with the rise up to 150 K.
+    // Beyond 0 to 150 K the factor is held at its end, so that the heat flow stays positive and
+    // growing at any temperature an equilibrium search brackets (a colder surface than the
+    // ambient, a rise of several hundred kelvin).
     const double s = calibration.heat_rejection_rise_slope;
-    const double rise = s == 0.0 ? 1.0 : 1.0 + s * (T_surface - T_amb - 50.0) / 50.0;
+    const double rise = s == 0.0 ? 1.0 : 1.0 + s * (std::clamp(T_surface - T_amb, 0.0, 150.0) - 50.0) / 50.0;
     return thermal.rejection.heat_flow(T_surface, T_amb, omega_in, air_speed) * calibration.heat_rejection_factor *
            (1.0 + forced) * rise;
 }

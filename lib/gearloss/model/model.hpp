@@ -29,7 +29,8 @@ struct Calibration {
     // grow as Re^0.5 (laminar boundary layer) to Re^0.8 (turbulent) (Incropera et al. 2007,
     // ch. 7); 1 keeps the cooling linear in speed.
     double cooling_speed_exponent = 1;
-    // s: the heat flow's change with the oil's rise over ambient, heat flow x (1 + s (dT - 50 K)/50 K).
+    // s: the heat flow's change with the rise dT over ambient of the surface giving the heat away (the
+    // oil, or a thermal network's housing node): heat flow x (1 + s (dT - 50 K)/50 K).
     // A housing's coefficient grows with the rise (free convection h ~ dT^0.25 to dT^0.33,
     // radiation; Incropera et al. 2007, ch. 9 and 12) and a rig bed warmed by the box carries
     // less away: a linear law, first order in the rise, with the factor fixed at a 50 K rise.
